@@ -1,0 +1,161 @@
+//! Declivities (paper §II–III): segmentation of a line into the runs between
+//! consecutive extrema, the amplitude test that keeps the characteristic ones,
+//! their sub-pixel position (eq. 3) and their attributes.
+//!
+//! ## Extrema and the plateau rule
+//! The gradient is `g(x) = I(x+1) - I(x)`, `x = 0 … W-2`. A local extremum is
+//! where the sign of the **non-zero** gradient changes; zero steps (flat runs)
+//! are skipped while tracking the sign, so a flat stretch inside a monotone run
+//! does not break it. A declivity is the run between two consecutive extrema.
+//!
+//! Bounds follow the *tight* rule: a declivity starts at the pixel `x_i` of its
+//! first non-zero gradient and ends at the pixel `x_{i+1}` just after its last
+//! non-zero gradient. Of a plateau between a rise and a fall, the rise ends at
+//! the plateau's first pixel and the fall starts at its last pixel. The line's
+//! ends close the first and last declivity the same way: a flat run at either
+//! end of the line belongs to no declivity. A flat line has no declivity.
+//! Neither choice changes eq. 3 (zero gradients have no weight) nor the
+//! amplitude (a plateau is flat); they fix which pixels the attributes read.
+
+/// One declivity of a line with the attributes the matcher uses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Declivity {
+    /// First extremum `x_i` (pixel index).
+    pub start: usize,
+    /// Second extremum `x_{i+1}` (pixel index), `> start`.
+    pub end: usize,
+    /// `a_i = I(x_{i+1}) - I(x_i)`; its sign is the polarity.
+    pub amplitude: i32,
+    /// Sub-pixel position `X_i` of eq. 3, in pixel coordinates (pixel `x`
+    /// has its centre at `x`).
+    pub position: f64,
+    /// `I(x_i - k)`, k = 0, 1, 2, clamped at the line's first pixel.
+    pub left: [u8; 3],
+    /// `I(x_{i+1} + k)`, k = 0, 1, 2, clamped at the line's last pixel.
+    pub right: [u8; 3],
+}
+
+impl Declivity {
+    /// `+1` for a rising declivity, `-1` for a falling one.
+    pub fn polarity(&self) -> i32 {
+        self.amplitude.signum()
+    }
+}
+
+/// Iterator over the bounds `(x_i, x_{i+1})` of every declivity of a line,
+/// left to right (the plateau rule is in the module doc).
+#[derive(Debug, Clone)]
+pub struct DeclivityBounds<'a> {
+    line: &'a [u8],
+    x: usize,
+}
+
+impl Iterator for DeclivityBounds<'_> {
+    type Item = (usize, usize);
+
+    fn next(&mut self) -> Option<(usize, usize)> {
+        let line = self.line;
+        let n = line.len();
+        // Skip flat steps up to the first non-zero gradient.
+        while self.x + 1 < n && line[self.x] == line[self.x + 1] {
+            self.x += 1;
+        }
+        if self.x + 1 >= n {
+            return None;
+        }
+        let start = self.x;
+        let rising = line[start + 1] > line[start];
+        let mut last_nonzero = start;
+        let mut x = start + 1;
+        while x + 1 < n {
+            let (a, b) = (line[x], line[x + 1]);
+            if a != b {
+                if (b > a) != rising {
+                    break;
+                }
+                last_nonzero = x;
+            }
+            x += 1;
+        }
+        let end = last_nonzero + 1;
+        // The next declivity starts at or after this one's end.
+        self.x = end;
+        Some((start, end))
+    }
+}
+
+/// The bounds of every declivity of `line`, characteristic or not.
+pub fn declivity_bounds(line: &[u8]) -> DeclivityBounds<'_> {
+    DeclivityBounds { line, x: 0 }
+}
+
+/// Amplitude `a_i = I(x_{i+1}) - I(x_i)` of the declivity `(start, end)`.
+pub fn amplitude(line: &[u8], start: usize, end: usize) -> i32 {
+    line[end] as i32 - line[start] as i32
+}
+
+/// A declivity is characteristic when its amplitude exceeds the line's
+/// threshold: `|a_i| > d_t` (paper §II, with `d_t` of eq. 2).
+pub fn is_characteristic(amplitude: i32, dt: f64) -> bool {
+    amplitude.unsigned_abs() as f64 > dt
+}
+
+/// The two sums of eq. 3 over `x = start … end-1`, exact in integers:
+/// `(Σ g(x)², Σ g(x)²·(2x+1))`. The second is twice `Σ g²(x + 0.5)`.
+pub fn position_sums(line: &[u8], start: usize, end: usize) -> (u64, u64) {
+    let mut s0 = 0u64;
+    let mut s1 = 0u64;
+    for x in start..end {
+        let g = line[x + 1] as i64 - line[x] as i64;
+        let g2 = (g * g) as u64;
+        s0 += g2;
+        s1 += g2 * (2 * x as u64 + 1);
+    }
+    (s0, s1)
+}
+
+/// Eq. 3: `X_i = Σ g(x)² (x + 0.5) / Σ g(x)²` over `x = x_i … x_{i+1}-1`,
+/// `g(x) = I(x+1) - I(x)`. Every declivity has a non-zero gradient, so the
+/// denominator is positive.
+pub fn position(line: &[u8], start: usize, end: usize) -> f64 {
+    let (s0, s1) = position_sums(line, start, end);
+    debug_assert!(s0 > 0, "a declivity has a non-zero gradient");
+    s1 as f64 / (2.0 * s0 as f64)
+}
+
+/// The attributes of paper §III: the grey levels `I(x_i - k)` and
+/// `I(x_{i+1} + k)` for k = 0, 1, 2, clamped at the line's ends.
+pub fn neighbour_levels(line: &[u8], start: usize, end: usize) -> ([u8; 3], [u8; 3]) {
+    let last = line.len() - 1;
+    let left = [0, 1, 2].map(|k| line[start.saturating_sub(k)]);
+    let right = [0, 1, 2].map(|k| line[(end + k).min(last)]);
+    (left, right)
+}
+
+/// The declivity `(start, end)` of `line` with its amplitude, eq. 3 position
+/// and attributes.
+pub fn describe(line: &[u8], start: usize, end: usize) -> Declivity {
+    let (left, right) = neighbour_levels(line, start, end);
+    Declivity {
+        start,
+        end,
+        amplitude: amplitude(line, start, end),
+        position: position(line, start, end),
+        left,
+        right,
+    }
+}
+
+/// Every declivity of the line, described (used for pictures and tests).
+pub fn all_declivities(line: &[u8]) -> Vec<Declivity> {
+    declivity_bounds(line).map(|(s, e)| describe(line, s, e)).collect()
+}
+
+/// The characteristic declivities of a line for the threshold `dt`, left to
+/// right, with positions and attributes.
+pub fn characteristic_declivities(line: &[u8], dt: f64) -> Vec<Declivity> {
+    declivity_bounds(line)
+        .filter(|&(s, e)| is_characteristic(amplitude(line, s, e), dt))
+        .map(|(s, e)| describe(line, s, e))
+        .collect()
+}

@@ -1,0 +1,350 @@
+//! The optimal path through the matching graph (paper §IV, eq. 9).
+//!
+//! A path is a chain of nodes strictly increasing in both indices (the
+//! non-reversal and uniqueness constraints), starting at any node; its gain is
+//! the sum of its nodes' local gains. Eq. 9 gives the best gain of a partial
+//! path ending at node `(i, j)`:
+//! `G(i,j) = g(i,j) + max(0, max_{m<i, n<j} G(m,n))`.
+//!
+//! Three implementations, checked against each other by the tests:
+//! - [`literal_g`]: eq. 9 as written, the quadrant maximum scanned cell by
+//!   cell, `O(N²M²)` — the reference, for tests only;
+//! - [`prefix_max_dp`]: the quadrant maximum is a prefix maximum, so the
+//!   recurrence is local:
+//!   `P(i,j) = max(0, G(i,j), P(i-1,j), P(i,j-1))`, `G(i,j) = g(i,j) + P(i-1,j-1)`,
+//!   `P(0,·) = P(·,0) = 0`, with one 2-bit [`Choice`] per cell and a
+//!   [`traceback`] from `P(N,M)`. This is the computation the systolic
+//!   hardware mirrors;
+//! - [`banded_dp`]: the same recurrence and the same choices, computed only in
+//!   the band of columns that eq. 6 allows in each row (the frame pipeline's
+//!   fast path).
+//!
+//! ## Tie-break (fixed; the hardware uses the same)
+//! Candidates are taken in the order **start, node, up, left**, each replacing
+//! the best so far only when *strictly* greater: `start` (value 0) wins every
+//! tie, then the node, then `up` (`P(i-1,j)`), then `left` (`P(i,j-1)`).
+//! Hence zero-gain nodes never join a path, and between equal paths the
+//! traceback prefers matching the current pair, then dropping the reference
+//! declivity.
+//!
+//! Indices: declivities are 0-based (`i` in `0..n` reference, `j` in `0..m`
+//! other view); the tables are 1-based with row and column 0 as the border.
+
+/// Which term gave `P(i,j)`: the 2-bit choice stored per cell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum Choice {
+    /// `P(i,j) = 0`: no path ends at or before this cell.
+    Start = 0,
+    /// `P(i,j) = G(i,j)`: the path takes node `(i,j)`.
+    Node = 1,
+    /// `P(i,j) = P(i-1,j)`.
+    Up = 2,
+    /// `P(i,j) = P(i,j-1)`.
+    Left = 3,
+}
+
+/// The local gains of an `n × m` graph (`None` where there is no node).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GainTable {
+    n: usize,
+    m: usize,
+    cells: Vec<Option<f64>>,
+}
+
+impl GainTable {
+    /// A graph with no nodes.
+    pub fn new(n: usize, m: usize) -> Self {
+        GainTable { n, m, cells: vec![None; n * m] }
+    }
+
+    /// Builds the table from a function of the 0-based node indices.
+    pub fn from_fn(n: usize, m: usize, mut f: impl FnMut(usize, usize) -> Option<f64>) -> Self {
+        let mut t = GainTable::new(n, m);
+        for i in 0..n {
+            for j in 0..m {
+                t.cells[i * m + j] = f(i, j);
+            }
+        }
+        t
+    }
+
+    /// Rows (reference declivities).
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Columns (other-view declivities).
+    pub fn m(&self) -> usize {
+        self.m
+    }
+
+    /// The gain of node `(i, j)` (0-based), `None` where there is no node.
+    pub fn get(&self, i: usize, j: usize) -> Option<f64> {
+        self.cells[i * self.m + j]
+    }
+
+    /// Sets node `(i, j)` (0-based).
+    pub fn set(&mut self, i: usize, j: usize, g: Option<f64>) {
+        self.cells[i * self.m + j] = g;
+    }
+}
+
+/// The best path: its gain and its nodes `(i, j)` (0-based) in increasing
+/// order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Path {
+    /// Sum of the local gains of the path's nodes (0 for the empty path).
+    pub gain: f64,
+    /// Nodes, strictly increasing in both indices.
+    pub nodes: Vec<(usize, usize)>,
+}
+
+/// Eq. 9 as written: `G(i,j) = g(i,j) + max(0, max_{m<i,n<j} G(m,n))` for
+/// every node, scanning the whole quadrant (`O(N²M²)`, for tests). Returns the
+/// table of `G` (0-based, `None` where there is no node).
+pub fn literal_g(t: &GainTable) -> Vec<Option<f64>> {
+    let (n, m) = (t.n, t.m);
+    let mut g = vec![None; n * m];
+    for i in 0..n {
+        for j in 0..m {
+            if let Some(local) = t.get(i, j) {
+                let mut best = 0.0f64;
+                for mi in 0..i {
+                    for nj in 0..j {
+                        if let Some(v) = g[mi * m + nj] {
+                            best = best.max(v);
+                        }
+                    }
+                }
+                g[i * m + j] = Some(local + best);
+            }
+        }
+    }
+    g
+}
+
+/// The best path gain by eq. 9 literally: `max(0, max G(i,j))`.
+pub fn literal_best_gain(t: &GainTable) -> f64 {
+    literal_g(t).into_iter().flatten().fold(0.0, f64::max)
+}
+
+/// One step of the recurrence with the fixed tie-break order (module doc):
+/// returns `(P(i,j), choice)` from `G(i,j)` (if a node), `P(i-1,j)` and
+/// `P(i,j-1)`.
+#[inline]
+pub fn cell_step(g: Option<f64>, up: f64, left: f64) -> (f64, Choice) {
+    let mut best = 0.0;
+    let mut choice = Choice::Start;
+    if let Some(g) = g {
+        if g > best {
+            best = g;
+            choice = Choice::Node;
+        }
+    }
+    if up > best {
+        best = up;
+        choice = Choice::Up;
+    }
+    if left > best {
+        best = left;
+        choice = Choice::Left;
+    }
+    (best, choice)
+}
+
+/// The full tables of the prefix-max recurrence.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrefixMaxTables {
+    /// Rows.
+    pub n: usize,
+    /// Columns.
+    pub m: usize,
+    /// `P(i,j)`, 1-based, `(n+1) × (m+1)` row-major, border zero.
+    pub p: Vec<f64>,
+    /// `G(i,j)` at nodes, 1-based like `p`; `None` elsewhere.
+    pub g: Vec<Option<f64>>,
+    /// The 2-bit choice of each cell, 1-based like `p` (border: `Start`).
+    pub choice: Vec<Choice>,
+}
+
+impl PrefixMaxTables {
+    /// `P(i,j)` (1-based).
+    pub fn p_at(&self, i: usize, j: usize) -> f64 {
+        self.p[i * (self.m + 1) + j]
+    }
+
+    /// The choice of cell `(i,j)` (1-based).
+    pub fn choice_at(&self, i: usize, j: usize) -> Choice {
+        self.choice[i * (self.m + 1) + j]
+    }
+
+    /// The best path gain `P(N,M)`.
+    pub fn best_gain(&self) -> f64 {
+        self.p_at(self.n, self.m)
+    }
+}
+
+/// The prefix-max recurrence over the whole table, with choices (the
+/// computation the systolic array mirrors; see the module doc).
+pub fn prefix_max_dp(t: &GainTable) -> PrefixMaxTables {
+    let (n, m) = (t.n, t.m);
+    let w = m + 1;
+    let mut p = vec![0.0; (n + 1) * w];
+    let mut g = vec![None; (n + 1) * w];
+    let mut choice = vec![Choice::Start; (n + 1) * w];
+    for i in 1..=n {
+        for j in 1..=m {
+            let gij = t.get(i - 1, j - 1).map(|local| local + p[(i - 1) * w + j - 1]);
+            let (pij, c) = cell_step(gij, p[(i - 1) * w + j], p[i * w + j - 1]);
+            p[i * w + j] = pij;
+            g[i * w + j] = gij;
+            choice[i * w + j] = c;
+        }
+    }
+    PrefixMaxTables { n, m, p, g, choice }
+}
+
+/// Walks the choices back from `(N, M)`: `node` takes `(i,j)` and moves to
+/// `(i-1,j-1)`, `up` moves to `(i-1,j)`, `left` to `(i,j-1)`, `start` ends
+/// the path. Returns the 0-based nodes in increasing order.
+pub fn traceback(n: usize, m: usize, choice_at: impl Fn(usize, usize) -> Choice) -> Vec<(usize, usize)> {
+    let (mut i, mut j) = (n, m);
+    let mut nodes = Vec::new();
+    while i > 0 && j > 0 {
+        match choice_at(i, j) {
+            Choice::Start => break,
+            Choice::Node => {
+                nodes.push((i - 1, j - 1));
+                i -= 1;
+                j -= 1;
+            }
+            Choice::Up => i -= 1,
+            Choice::Left => j -= 1,
+        }
+    }
+    nodes.reverse();
+    nodes
+}
+
+/// The best path by the full prefix-max recurrence and its traceback.
+pub fn best_path(t: &GainTable) -> Path {
+    let tables = prefix_max_dp(t);
+    let nodes = traceback(t.n, t.m, |i, j| tables.choice_at(i, j));
+    Path { gain: tables.best_gain(), nodes }
+}
+
+/// The nodes allowed in one row: columns `lo .. lo + gains.len()` (0-based)
+/// with their gains (`None` for a rejected node inside the band).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandRow {
+    /// First column of the band (0-based); for an empty band, the column the
+    /// band would start at, so that `lo` stays non-decreasing over the rows.
+    pub lo: usize,
+    /// Gains of the columns `lo ..`.
+    pub gains: Vec<Option<f64>>,
+}
+
+/// The graph as one band per row. Both `lo` and `lo + len` must be
+/// non-decreasing over the rows, as eq. 6 makes them for sorted positions.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct BandedGains {
+    /// Columns of the graph.
+    pub m: usize,
+    /// One band per reference declivity.
+    pub rows: Vec<BandRow>,
+}
+
+impl BandedGains {
+    /// The same graph as a dense table.
+    pub fn to_table(&self) -> GainTable {
+        let mut t = GainTable::new(self.rows.len(), self.m);
+        for (i, row) in self.rows.iter().enumerate() {
+            for (k, &g) in row.gains.iter().enumerate() {
+                t.set(i, row.lo + k, g);
+            }
+        }
+        t
+    }
+}
+
+/// The prefix-max recurrence restricted to the bands, with the same values
+/// and choices as [`prefix_max_dp`] on the dense table, and its traceback.
+///
+/// Outside the bands no node exists, so with non-decreasing bands the table
+/// is known without computing it: left of row `i`'s band, `P(i,j)` equals the
+/// value of the latest row whose band starts at or before `j`; right of it,
+/// `P(i,j) = T_i`, the best gain of rows `1 … i`. Only the band cells are
+/// computed, in `O(band)` per row; the traceback looks the rest up.
+pub fn banded_dp(b: &BandedGains) -> Path {
+    let n = b.rows.len();
+    let m = b.m;
+    // Row i (1-based): band columns lo+1 ..= hi (1-based), empty when hi < lo+1.
+    let mut band_lo = Vec::with_capacity(n); // 1-based first column
+    let mut band_p: Vec<Vec<f64>> = Vec::with_capacity(n);
+    let mut band_c: Vec<Vec<Choice>> = Vec::with_capacity(n);
+    let mut tails = Vec::with_capacity(n); // T_i
+    // q[j] = P(current row, j) for j <= filled; beyond, the tail T.
+    let mut q = vec![0.0f64; m + 1];
+    let mut filled = 0usize;
+    let mut tail = 0.0f64;
+    for row in &b.rows {
+        let lo = row.lo + 1;
+        let len = row.gains.len();
+        debug_assert!(row.lo + len <= m, "band inside the table");
+        band_lo.push(lo);
+        let mut ps = Vec::with_capacity(len);
+        let mut cs = Vec::with_capacity(len);
+        if len > 0 {
+            let hi = lo + len - 1;
+            while filled < hi {
+                filled += 1;
+                q[filled] = tail;
+            }
+            let mut diag = q[lo - 1];
+            let mut left = q[lo - 1];
+            for (k, &g) in row.gains.iter().enumerate() {
+                let j = lo + k;
+                let up = q[j];
+                let (pij, c) = cell_step(g.map(|local| local + diag), up, left);
+                diag = up;
+                q[j] = pij;
+                left = pij;
+                ps.push(pij);
+                cs.push(c);
+            }
+            tail = tail.max(q[hi]);
+        }
+        band_p.push(ps);
+        band_c.push(cs);
+        tails.push(tail);
+    }
+
+    // P(i, j) anywhere (1-based), from the bands and tails.
+    let p_at = |i: usize, j: usize| -> f64 {
+        if i == 0 || j == 0 {
+            return 0.0;
+        }
+        // Latest row k <= i whose band starts at or before j.
+        let k = band_lo[..i].partition_point(|&lo| lo <= j);
+        if k == 0 {
+            return 0.0;
+        }
+        let r = k - 1;
+        let off = j - band_lo[r];
+        match band_p[r].get(off) {
+            Some(&v) => v,
+            None => tails[r],
+        }
+    };
+    let choice_at = |i: usize, j: usize| -> Choice {
+        let r = i - 1;
+        if j >= band_lo[r] && j - band_lo[r] < band_c[r].len() {
+            return band_c[r][j - band_lo[r]];
+        }
+        // No node here: the same tie-break with g = None.
+        cell_step(None, p_at(i - 1, j), p_at(i, j - 1)).1
+    };
+    let nodes = traceback(n, m, choice_at);
+    Path { gain: p_at(n, m), nodes }
+}

@@ -1,0 +1,25 @@
+//! Typed errors of the golden model.
+
+use thiserror::Error;
+
+/// What can be wrong with the inputs of the golden model.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum GoldenError {
+    /// The two views of a pair must have the same size (rectified pair).
+    #[error("the two images differ in size: left {left_w}x{left_h}, right {right_w}x{right_h}")]
+    SizeMismatch {
+        left_w: usize,
+        left_h: usize,
+        right_w: usize,
+        right_h: usize,
+    },
+    /// Pixel buffer length disagrees with width × height.
+    #[error("pixel buffer holds {len} bytes, {width}x{height} needs {}", width * height)]
+    BufferSize { width: usize, height: usize, len: usize },
+    /// An image without pixels.
+    #[error("the image is empty ({width}x{height})")]
+    EmptyImage { width: usize, height: usize },
+    /// The search bound of eq. 6 must leave room for a positive disparity.
+    #[error("dispmax must be greater than 1 (got {0}): eq. 6 needs 0 < d < dispmax")]
+    InvalidDispmax(f64),
+}
