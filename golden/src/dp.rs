@@ -245,23 +245,70 @@ pub struct BandRow {
     pub gains: Vec<Option<f64>>,
 }
 
-/// The graph as one band per row. Both `lo` and `lo + len` must be
-/// non-decreasing over the rows, as eq. 6 makes them for sorted positions.
+/// The graph as one band of columns per row, stored flat. Both `lo` and
+/// `lo + len` must be non-decreasing over the rows, as eq. 6 makes them for
+/// sorted positions.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct BandedGains {
-    /// Columns of the graph.
-    pub m: usize,
-    /// One band per reference declivity.
-    pub rows: Vec<BandRow>,
+    m: usize,
+    /// Per row: first column and offset of its gains in `gains`.
+    rows: Vec<(usize, usize)>,
+    gains: Vec<Option<f64>>,
 }
 
 impl BandedGains {
+    /// A graph of `m` columns and no rows yet.
+    pub fn new(m: usize) -> Self {
+        BandedGains { m, rows: Vec::new(), gains: Vec::new() }
+    }
+
+    /// The graph of `m` columns with the given rows.
+    pub fn from_rows(m: usize, rows: &[BandRow]) -> Self {
+        let mut b = BandedGains::new(m);
+        for r in rows {
+            b.push_row(r.lo, r.gains.iter().copied());
+        }
+        b
+    }
+
+    /// Appends the next row: its band starts at column `lo` (0-based).
+    pub fn push_row(&mut self, lo: usize, gains: impl IntoIterator<Item = Option<f64>>) {
+        let start = self.gains.len();
+        self.gains.extend(gains);
+        debug_assert!(lo + (self.gains.len() - start) <= self.m, "band inside the table");
+        self.rows.push((lo, start));
+    }
+
+    /// Rows (reference declivities).
+    pub fn n(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// Columns (other-view declivities).
+    pub fn m(&self) -> usize {
+        self.m
+    }
+
+    /// Row `i` (0-based): the first column of its band and the band's gains.
+    pub fn row(&self, i: usize) -> (usize, &[Option<f64>]) {
+        let (lo, start) = self.rows[i];
+        let end = self.rows.get(i + 1).map_or(self.gains.len(), |r| r.1);
+        (lo, &self.gains[start..end])
+    }
+
+    /// The gain of node `(i, j)` (0-based), `None` outside the band.
+    pub fn get(&self, i: usize, j: usize) -> Option<f64> {
+        let (lo, g) = self.row(i);
+        j.checked_sub(lo).and_then(|k| g.get(k).copied().flatten())
+    }
+
     /// The same graph as a dense table.
     pub fn to_table(&self) -> GainTable {
-        let mut t = GainTable::new(self.rows.len(), self.m);
-        for (i, row) in self.rows.iter().enumerate() {
-            for (k, &g) in row.gains.iter().enumerate() {
-                t.set(i, row.lo + k, g);
+        let mut t = GainTable::new(self.n(), self.m);
+        for i in 0..self.n() {
+            let (lo, gains) = self.row(i);
+            for (k, &g) in gains.iter().enumerate() {
+                t.set(i, lo + k, g);
             }
         }
         t
@@ -277,24 +324,22 @@ impl BandedGains {
 /// `P(i,j) = T_i`, the best gain of rows `1 … i`. Only the band cells are
 /// computed, in `O(band)` per row; the traceback looks the rest up.
 pub fn banded_dp(b: &BandedGains) -> Path {
-    let n = b.rows.len();
+    let n = b.n();
     let m = b.m;
-    // Row i (1-based): band columns lo+1 ..= hi (1-based), empty when hi < lo+1.
-    let mut band_lo = Vec::with_capacity(n); // 1-based first column
-    let mut band_p: Vec<Vec<f64>> = Vec::with_capacity(n);
-    let mut band_c: Vec<Vec<Choice>> = Vec::with_capacity(n);
+    // Row i (1-based) = b.rows[i-1]: band columns lo+1 ..= lo+len (1-based).
+    // band_p / band_c are laid out like b.gains.
+    let mut band_p = vec![0.0f64; b.gains.len()];
+    let mut band_c = vec![Choice::Start; b.gains.len()];
     let mut tails = Vec::with_capacity(n); // T_i
     // q[j] = P(current row, j) for j <= filled; beyond, the tail T.
     let mut q = vec![0.0f64; m + 1];
     let mut filled = 0usize;
     let mut tail = 0.0f64;
-    for row in &b.rows {
-        let lo = row.lo + 1;
-        let len = row.gains.len();
-        debug_assert!(row.lo + len <= m, "band inside the table");
-        band_lo.push(lo);
-        let mut ps = Vec::with_capacity(len);
-        let mut cs = Vec::with_capacity(len);
+    for i in 0..n {
+        let (lo0, gains) = b.row(i);
+        let off = b.rows[i].1;
+        let lo = lo0 + 1;
+        let len = gains.len();
         if len > 0 {
             let hi = lo + len - 1;
             while filled < hi {
@@ -303,20 +348,18 @@ pub fn banded_dp(b: &BandedGains) -> Path {
             }
             let mut diag = q[lo - 1];
             let mut left = q[lo - 1];
-            for (k, &g) in row.gains.iter().enumerate() {
+            for (k, &g) in gains.iter().enumerate() {
                 let j = lo + k;
                 let up = q[j];
                 let (pij, c) = cell_step(g.map(|local| local + diag), up, left);
                 diag = up;
                 q[j] = pij;
                 left = pij;
-                ps.push(pij);
-                cs.push(c);
+                band_p[off + k] = pij;
+                band_c[off + k] = c;
             }
             tail = tail.max(q[hi]);
         }
-        band_p.push(ps);
-        band_c.push(cs);
         tails.push(tail);
     }
 
@@ -325,22 +368,24 @@ pub fn banded_dp(b: &BandedGains) -> Path {
         if i == 0 || j == 0 {
             return 0.0;
         }
-        // Latest row k <= i whose band starts at or before j.
-        let k = band_lo[..i].partition_point(|&lo| lo <= j);
+        // Latest row r < i (0-based) whose band starts at or before j (1-based).
+        let k = b.rows[..i].partition_point(|&(lo0, _)| lo0 < j);
         if k == 0 {
             return 0.0;
         }
         let r = k - 1;
-        let off = j - band_lo[r];
-        match band_p[r].get(off) {
-            Some(&v) => v,
-            None => tails[r],
+        let (lo0, gains) = b.row(r);
+        let col = j - 1 - lo0;
+        if col < gains.len() {
+            band_p[b.rows[r].1 + col]
+        } else {
+            tails[r]
         }
     };
     let choice_at = |i: usize, j: usize| -> Choice {
-        let r = i - 1;
-        if j >= band_lo[r] && j - band_lo[r] < band_c[r].len() {
-            return band_c[r][j - band_lo[r]];
+        let (lo0, gains) = b.row(i - 1);
+        if j > lo0 && j - 1 - lo0 < gains.len() {
+            return band_c[b.rows[i - 1].1 + j - 1 - lo0];
         }
         // No node here: the same tie-break with g = None.
         cell_step(None, p_at(i - 1, j), p_at(i, j - 1)).1

@@ -53,11 +53,11 @@ pub fn gmax(dt_ref: f64, dt_other: f64) -> f64 {
 /// improves a path: the paper's "partially masked" case never fires.
 pub fn f_gmax(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
     match mode {
-        Mode::Paper => match (lpd < gmax, rpd < gmax) {
-            (true, true) => Some(3.0 * gmax),
-            (true, false) | (false, true) => Some(gmax),
-            (false, false) => None,
-        },
+        Mode::Paper => {
+            let below = (lpd < gmax) as u8 + (rpd < gmax) as u8;
+            // 2: both similar, 1: one side similar, 0: rejected.
+            (below > 0).then_some(if below == 2 { 3.0 * gmax } else { gmax })
+        }
     }
 }
 

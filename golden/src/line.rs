@@ -4,7 +4,7 @@
 
 use crate::declivity::{characteristic_declivities, Declivity};
 use crate::disparity::Anchor;
-use crate::dp::{banded_dp, BandRow, BandedGains, GainTable};
+use crate::dp::{banded_dp, BandedGains, GainTable};
 use crate::gain::{gmax, node_gain, pair_disparity};
 use crate::noise::{noise_sigma, threshold};
 use crate::params::{Params, RefView};
@@ -64,44 +64,54 @@ pub struct LineResult {
     pub path_gain: f64,
 }
 
-/// The columns of the other view that eq. 6 allows for a reference declivity
-/// at `x_ref`: `lo .. hi` (0-based, possibly empty) in the sorted positions
-/// `others`. Both bounds are non-decreasing in `x_ref`.
-pub fn search_band(x_ref: f64, others: &[f64], params: &Params) -> (usize, usize) {
-    let d = |x_other: f64| pair_disparity(x_ref, x_other, params.ref_view);
-    let (lo, hi) = match params.ref_view {
-        // d falls as x_other grows.
-        RefView::Left => (
-            others.partition_point(|&o| d(o) >= params.dispmax),
-            others.partition_point(|&o| d(o) > 0.0),
-        ),
-        // d grows with x_other.
-        RefView::Right => (
-            others.partition_point(|&o| d(o) <= 0.0),
-            others.partition_point(|&o| d(o) < params.dispmax),
-        ),
-    };
-    (lo, hi.max(lo))
+/// The columns of the other view that eq. 6 allows for each reference
+/// declivity: `lo .. hi` (0-based, possibly empty) in the sorted positions
+/// `others`, one pair per position of `refs` (sorted too). Both bounds are
+/// non-decreasing, so one sweep finds them all.
+pub fn search_bands(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
+    let (mut lo, mut hi) = (0usize, 0usize);
+    refs.iter()
+        .map(|&x_ref| {
+            let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
+            match params.ref_view {
+                // d falls as x_other grows: skip d >= dispmax, keep d > 0.
+                RefView::Left => {
+                    while lo < others.len() && d(lo) >= params.dispmax {
+                        lo += 1;
+                    }
+                    while hi < others.len() && d(hi) > 0.0 {
+                        hi += 1;
+                    }
+                }
+                // d grows with x_other: skip d <= 0, keep d < dispmax.
+                RefView::Right => {
+                    while lo < others.len() && d(lo) <= 0.0 {
+                        lo += 1;
+                    }
+                    while hi < others.len() && d(hi) < params.dispmax {
+                        hi += 1;
+                    }
+                }
+            }
+            (lo, hi.max(lo))
+        })
+        .collect()
 }
 
 /// The graph of two lines as bands of nodes with their gains (eq. 4–8); the
 /// columns outside each band are outside the search area (eq. 6).
 pub fn banded_gains(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> BandedGains {
+    let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
     let others: Vec<f64> = other.declivities.iter().map(|d| d.position).collect();
     let g = gmax(reference.dt, other.dt);
-    let rows = reference
-        .declivities
-        .iter()
-        .map(|r| {
-            let (lo, hi) = search_band(r.position, &others, params);
-            let gains = other.declivities[lo..hi]
-                .iter()
-                .map(|o| node_gain(r, o, g, params.dispmax, params.ref_view, params.mode))
-                .collect();
-            BandRow { lo, gains }
-        })
-        .collect();
-    BandedGains { m: others.len(), rows }
+    let mut bands = BandedGains::new(others.len());
+    for (r, (lo, hi)) in reference.declivities.iter().zip(search_bands(&refs, &others, params)) {
+        bands.push_row(
+            lo,
+            other.declivities[lo..hi].iter().map(|o| node_gain(r, o, g, params.dispmax, params.ref_view, params.mode)),
+        );
+    }
+    bands
 }
 
 /// The dense gain table of two lines (for pictures of the graph and tests).
@@ -130,14 +140,13 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
         .iter()
         .map(|&(i, j)| {
             let (r, o) = (&reference.declivities[i], &other.declivities[j]);
-            let row = &bands.rows[i];
             Match {
                 ref_index: i,
                 other_index: j,
                 x_ref: r.position,
                 x_other: o.position,
                 disparity: pair_disparity(r.position, o.position, params.ref_view),
-                gain: row.gains[j - row.lo].expect("a path node is a node"),
+                gain: bands.get(i, j).expect("a path node is a node"),
             }
         })
         .collect();

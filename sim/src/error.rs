@@ -1,0 +1,42 @@
+//! Typed errors of the `sim` library; the CLI reports them with context.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+/// What can go wrong reading inputs or writing results.
+#[derive(Debug, Error)]
+pub enum SimError {
+    /// A file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file is not an image the `image` crate can decode.
+    #[error("{}: cannot read image: {source}", path.display())]
+    Image {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+    /// A pair folder lacks something the evaluation needs.
+    #[error("{}: {msg}", path.display())]
+    PairDir { path: PathBuf, msg: String },
+    /// Ground truth or mask of a size other than the images'.
+    #[error("{}: is {got_w}x{got_h}, the images are {want_w}x{want_h}", path.display())]
+    SizeMismatch {
+        path: PathBuf,
+        got_w: u32,
+        got_h: u32,
+        want_w: usize,
+        want_h: usize,
+    },
+    /// The golden model refused its inputs.
+    #[error(transparent)]
+    Golden(#[from] golden::GoldenError),
+    /// A picture could not be written.
+    #[error(transparent)]
+    Picture(#[from] crate::pictures::PictureError),
+}

@@ -1,0 +1,243 @@
+//! Evaluation against ground truth, Middlebury style (definitions in
+//! `shared/data/stereo/README.md`).
+//!
+//! - Evaluation set E: pixels with valid ground truth (and, for the
+//!   `nonocc` region, `nonocc.png > 127`). A pixel is bad when
+//!   `|d - gt| > t` (strict).
+//! - `bad1`, `bad2`: % of E bad at t = 1, 2 px, pixels without an output
+//!   disparity counted as bad; `bad1v`, `bad2v`: over E ∩ {output}.
+//! - `density`: % of all pixels that received a disparity.
+//! - `sparse_acc1`: % of matched reference declivities, at pixels of E
+//!   (rounded position), whose disparity is within 1 px of the ground truth:
+//!   the paper's "more than 98 % of declivities correctly matched".
+
+use std::time::Instant;
+
+use golden::{process_frame, FrameResult, Params, RefView, Threads};
+use serde::Serialize;
+
+use crate::error::SimError;
+use crate::io::PairData;
+
+/// Dense scores of a disparity map on one region.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DenseScores {
+    /// % of E with no output or `|d - gt| > 1`.
+    pub bad1: f64,
+    /// % of E with no output or `|d - gt| > 2`.
+    pub bad2: f64,
+    /// % of E ∩ output with `|d - gt| > 1`.
+    pub bad1v: f64,
+    /// % of E ∩ output with `|d - gt| > 2`.
+    pub bad2v: f64,
+    /// % of all pixels with an output.
+    pub density: f64,
+    /// |E|.
+    pub n_eval: usize,
+}
+
+fn pct(num: usize, den: usize) -> f64 {
+    100.0 * num as f64 / den.max(1) as f64
+}
+
+/// Dense scores of `disp` (0 = none) against `gt` (0 = unknown) over the
+/// pixels where `mask` holds (all pixels without a mask).
+pub fn dense_scores(disp: &[f64], gt: &[f64], mask: Option<&[bool]>) -> DenseScores {
+    let (mut n_eval, mut n_valid, mut miss, mut b1, mut b2, mut b1v, mut b2v) = (0, 0, 0, 0, 0, 0, 0);
+    for (k, (&d, &g)) in disp.iter().zip(gt).enumerate() {
+        if g <= 0.0 || !g.is_finite() || mask.is_some_and(|m| !m[k]) {
+            continue;
+        }
+        n_eval += 1;
+        if d <= 0.0 {
+            miss += 1;
+            continue;
+        }
+        n_valid += 1;
+        let err = (d - g).abs();
+        if err > 1.0 {
+            b1v += 1;
+        }
+        if err > 2.0 {
+            b2v += 1;
+        }
+    }
+    b1 += miss + b1v;
+    b2 += miss + b2v;
+    let with_output = disp.iter().filter(|&&d| d > 0.0).count();
+    DenseScores {
+        bad1: pct(b1, n_eval),
+        bad2: pct(b2, n_eval),
+        bad1v: pct(b1v, n_valid),
+        bad2v: pct(b2v, n_valid),
+        density: pct(with_output, disp.len()),
+        n_eval,
+    }
+}
+
+/// Sparse accuracy: `(correct, evaluated)` matched reference declivities at
+/// valid-GT pixels (position rounded to the nearest pixel), correct when
+/// `|d - gt| ≤ 1`.
+pub fn sparse_counts(frame: &FrameResult, gt: &[f64]) -> (usize, usize) {
+    let w = frame.width;
+    let (mut ok, mut n) = (0, 0);
+    for (y, line) in frame.lines.iter().enumerate() {
+        for m in &line.matches {
+            let x = m.x_ref.round();
+            if x < 0.0 || x >= w as f64 {
+                continue;
+            }
+            let g = gt[y * w + x as usize];
+            if g <= 0.0 || !g.is_finite() {
+                continue;
+            }
+            n += 1;
+            if (m.disparity - g).abs() <= 1.0 {
+                ok += 1;
+            }
+        }
+    }
+    (ok, n)
+}
+
+/// One pair's evaluation: the `eval --json` object.
+#[derive(Debug, Clone, Serialize)]
+pub struct EvalReport {
+    /// Pair folder name.
+    pub pair: String,
+    /// Matching mode.
+    pub mode: &'static str,
+    /// Reference view.
+    pub ref_view: &'static str,
+    /// Image width.
+    pub width: usize,
+    /// Image height.
+    pub height: usize,
+    /// Search bound used (eq. 6): the pair's `dispmax + 1`.
+    pub search_bound: f64,
+    /// Characteristic declivities of the reference view.
+    pub declivities: usize,
+    /// Matched reference declivities.
+    pub matches: usize,
+    /// `matches / declivities`.
+    pub match_frac: f64,
+    /// % of matched reference declivities at valid-GT pixels within 1 px.
+    pub sparse_acc1: f64,
+    /// Matched declivities at valid-GT pixels (the denominator of `sparse_acc1`).
+    pub sparse_n: usize,
+    /// Dense scores, all pixels with ground truth.
+    pub bad1: f64,
+    pub bad2: f64,
+    pub bad1v: f64,
+    pub bad2v: f64,
+    pub density: f64,
+    /// `bad2` on `nonocc.png > 127`; `null` without a mask.
+    pub nonocc_bad2: Option<f64>,
+    /// Golden time per frame, one thread, image loading excluded, median of
+    /// `runs` runs (ms).
+    pub ms: f64,
+    /// Timed runs.
+    pub runs: usize,
+}
+
+/// The ground truth for the reference view, or an error when the folder has
+/// none for it.
+pub fn reference_gt<'a>(pair: &'a PairData, ref_view: RefView) -> Result<&'a [f64], SimError> {
+    match ref_view {
+        RefView::Left => Ok(&pair.gt_left),
+        RefView::Right => pair.gt_right.as_deref().ok_or_else(|| SimError::PairDir {
+            path: pair.dir.clone(),
+            msg: "has no disp_gt_right.* for --ref-view right".into(),
+        }),
+    }
+}
+
+/// Median of the times (ms) of `runs ≥ 1` single-thread frames, and the
+/// frame's result.
+pub fn timed_frame(pair: &PairData, params: &Params, runs: usize) -> Result<(FrameResult, f64), SimError> {
+    let mut times = Vec::with_capacity(runs.max(1));
+    let mut result = None;
+    // One warm-up run, as the OpenCV baseline does.
+    process_frame(&pair.left, &pair.right, params, Threads::One)?;
+    for _ in 0..runs.max(1) {
+        let t0 = Instant::now();
+        let r = process_frame(&pair.left, &pair.right, params, Threads::One)?;
+        times.push(t0.elapsed().as_secs_f64() * 1e3);
+        result = Some(r);
+    }
+    times.sort_by(f64::total_cmp);
+    let ms = times[times.len() / 2];
+    Ok((result.expect("at least one run"), ms))
+}
+
+/// Runs golden on a pair with the search bound `dispmax + 1` and scores it.
+/// `params.dispmax` is replaced by the pair's bound.
+pub fn evaluate_pair(pair: &PairData, params: &Params, runs: usize) -> Result<(EvalReport, FrameResult), SimError> {
+    let params = Params { dispmax: pair.dispmax + 1.0, ..*params };
+    params.validate()?;
+    let gt = reference_gt(pair, params.ref_view)?;
+    let (frame, ms) = timed_frame(pair, &params, runs)?;
+    let all = dense_scores(&frame.disparity, gt, None);
+    let nonocc_bad2 = match (&pair.nonocc, params.ref_view) {
+        (Some(mask), RefView::Left) => Some(dense_scores(&frame.disparity, gt, Some(mask)).bad2),
+        _ => None,
+    };
+    let (ok, n) = sparse_counts(&frame, gt);
+    let declivities = frame.reference_declivities();
+    let matches = frame.matches();
+    let report = EvalReport {
+        pair: pair.name.clone(),
+        mode: params.mode.name(),
+        ref_view: match params.ref_view {
+            RefView::Left => "left",
+            RefView::Right => "right",
+        },
+        width: frame.width,
+        height: frame.height,
+        search_bound: params.dispmax,
+        declivities,
+        matches,
+        match_frac: matches as f64 / declivities.max(1) as f64,
+        sparse_acc1: pct(ok, n),
+        sparse_n: n,
+        bad1: all.bad1,
+        bad2: all.bad2,
+        bad1v: all.bad1v,
+        bad2v: all.bad2v,
+        density: all.density,
+        nonocc_bad2,
+        ms,
+        runs: runs.max(1),
+    };
+    Ok((report, frame))
+}
+
+/// The reports as a Markdown table (what `eval` prints without `--json`).
+pub fn markdown_table(reports: &[EvalReport]) -> String {
+    let mut s = String::from(
+        "| pair | mode | size | declivities | matches | match_frac | sparse_acc1 | bad1 | bad2 | bad2v | density | nonocc bad2 | ms |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in reports {
+        let nonocc = r.nonocc_bad2.map_or("—".to_string(), |v| format!("{v:.1}"));
+        s += &format!(
+            "| {} | {} | {}x{} | {} | {} | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} | {:.2} |\n",
+            r.pair, r.mode, r.width, r.height, r.declivities, r.matches, r.match_frac, r.sparse_acc1, r.bad1, r.bad2, r.bad2v, r.density, nonocc, r.ms
+        );
+    }
+    if reports.len() > 1 {
+        let n = reports.len() as f64;
+        let mean = |f: fn(&EvalReport) -> f64| reports.iter().map(f).sum::<f64>() / n;
+        s += &format!(
+            "| mean | | | | | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | | {:.2} |\n",
+            mean(|r| r.match_frac),
+            mean(|r| r.sparse_acc1),
+            mean(|r| r.bad1),
+            mean(|r| r.bad2),
+            mean(|r| r.bad2v),
+            mean(|r| r.density),
+            mean(|r| r.ms)
+        );
+    }
+    s
+}
