@@ -91,38 +91,58 @@ pub fn declivity_bounds_reference(line: &[u8]) -> DeclivityBounds<'_> {
     DeclivityBounds { line, x: 0 }
 }
 
-/// The bounds `(x_i, x_{i+1})` of every declivity of `line`, left to right:
-/// the same as [`declivity_bounds_reference`], computed in one branch-free
-/// pass over the gradient signs (the way the streaming detector sees them).
+/// Where the declivities of `line` start, left to right, followed by the end
+/// of the last one: `[x_0, x_1, …, x_{K-1}, e_{K-1}]` for `K` declivities
+/// (empty when there is none), computed in one branch-free pass over the
+/// gradient signs, the way the streaming detector sees them: a declivity
+/// starts at every non-zero gradient whose sign differs from the last
+/// non-zero sign.
 ///
-/// At every non-zero gradient whose sign differs from the last non-zero sign,
-/// a declivity starts at `x`, and the previous one ends one pixel after the
-/// last non-zero gradient before `x`.
-pub fn declivity_bounds(line: &[u8]) -> Vec<(usize, usize)> {
+/// Declivity `k` ends where the flat run before `x_{k+1}` begins (see
+/// [`end_before`]); as that run is flat, `I(x_{k+1})` is also the level at
+/// the end of declivity `k`, so amplitudes need no ends.
+pub fn declivity_starts(line: &[u8]) -> Vec<usize> {
     let n = line.len();
     if n < 2 {
         return Vec::new();
     }
-    // spans[k] = (start of declivity k, end of declivity k-1); slot k is
-    // rewritten until a new declivity starts, then frozen.
-    let mut spans = vec![(0usize, 0usize); n + 1];
+    // Slot k is rewritten until a declivity starts there, then frozen.
+    let mut starts = vec![0usize; n];
     let mut k = 0usize;
     let mut last_sign = 0i32;
     let mut last_nonzero = 0usize;
     for x in 0..n - 1 {
         let s = (line[x + 1] as i32 - line[x] as i32).signum();
-        let new = (s != 0) & (s != last_sign);
-        spans[k] = (x, last_nonzero + 1);
-        k += new as usize;
+        starts[k] = x;
+        k += ((s != 0) & (s != last_sign)) as usize;
         last_sign = if s != 0 { s } else { last_sign };
         last_nonzero = if s != 0 { x } else { last_nonzero };
     }
-    // Turn (start_k, end_{k-1}) into (start_k, end_k) in place.
-    for r in 0..k {
-        spans[r].1 = if r + 1 < k { spans[r + 1].1 } else { last_nonzero + 1 };
+    starts.truncate(k);
+    if k > 0 {
+        starts.push(last_nonzero + 1);
     }
-    spans.truncate(k);
-    spans
+    starts
+}
+
+/// The end `x_{i+1}` of the declivity that starts at `start`, given the
+/// start `next` of the following one (or the last declivity's end): the
+/// first pixel of the flat run that ends at `next`.
+pub fn end_before(line: &[u8], start: usize, next: usize) -> usize {
+    let mut e = next;
+    while e > start + 1 && line[e - 1] == line[e] {
+        e -= 1;
+    }
+    e
+}
+
+/// The bounds `(x_i, x_{i+1})` of every declivity of `line`, left to right:
+/// the same as [`declivity_bounds_reference`], from [`declivity_starts`].
+pub fn declivity_bounds(line: &[u8]) -> Vec<(usize, usize)> {
+    declivity_starts(line)
+        .windows(2)
+        .map(|w| (w[0], end_before(line, w[0], w[1])))
+        .collect()
 }
 
 /// Amplitude `a_i = I(x_{i+1}) - I(x_i)` of the declivity `(start, end)`.
@@ -189,11 +209,20 @@ pub fn all_declivities(line: &[u8]) -> Vec<Declivity> {
 
 /// The characteristic declivities of a line for the threshold `dt`, left to
 /// right, with positions and attributes.
+///
+/// The amplitude test runs on every declivity without a branch; only the
+/// characteristic ones are bounded and described.
 pub fn characteristic_declivities(line: &[u8], dt: f64) -> Vec<Declivity> {
-    declivity_bounds(line)
-        .into_iter()
-        .filter(|&(s, e)| is_characteristic(amplitude(line, s, e), dt))
-        .map(|(s, e)| describe(line, s, e))
+    let starts = declivity_starts(line);
+    let mut kept = vec![0usize; starts.len()];
+    let mut n = 0usize;
+    for (k, w) in starts.windows(2).enumerate() {
+        kept[n] = k;
+        n += is_characteristic(line[w[1]] as i32 - line[w[0]] as i32, dt) as usize;
+    }
+    kept[..n]
+        .iter()
+        .map(|&k| describe(line, starts[k], end_before(line, starts[k], starts[k + 1])))
         .collect()
 }
 

@@ -38,29 +38,28 @@ pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, out: &mut [f64]) {
     let (Some(first), Some(last)) = (anchors.first(), anchors.last()) else {
         return;
     };
-    let mut k = 0usize; // anchors[k].x <= x < anchors[k+1].x
-    for (x, v) in out.iter_mut().enumerate() {
-        let xf = x as f64;
-        *v = if xf < first.x {
-            match ends {
-                EndRule::Hold => first.d,
-                EndRule::Empty => NO_DISPARITY,
-            }
-        } else if xf > last.x {
-            match ends {
-                EndRule::Hold => last.d,
-                EndRule::Empty => NO_DISPARITY,
-            }
-        } else {
-            while k + 1 < anchors.len() && anchors[k + 1].x <= xf {
-                k += 1;
-            }
-            if k + 1 == anchors.len() {
-                last.d
-            } else {
-                let (a, b) = (anchors[k], anchors[k + 1]);
-                a.d + (b.d - a.d) * (xf - a.x) / (b.x - a.x)
-            }
-        };
+    // Pixels x (centres) in [x_a, x_b) for consecutive anchors a, b, as
+    // index ranges of `out`.
+    let width = out.len();
+    let first_at_or_after = |x: f64| (x.max(0.0).ceil() as usize).min(width);
+    let begin = first_at_or_after(first.x);
+    if ends == EndRule::Hold {
+        out[..begin].fill(first.d);
+    }
+    for w in anchors.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let slope = (b.d - a.d) / (b.x - a.x);
+        for x in first_at_or_after(a.x)..first_at_or_after(b.x) {
+            out[x] = a.d + slope * (x as f64 - a.x);
+        }
+    }
+    // x >= last.x: the last anchor's value at x = last.x, held beyond.
+    let end = first_at_or_after(last.x);
+    if end < width && end as f64 == last.x {
+        out[end] = last.d;
+    }
+    let tail = if end < width && end as f64 == last.x { end + 1 } else { end };
+    if ends == EndRule::Hold {
+        out[tail..].fill(last.d);
     }
 }

@@ -134,22 +134,19 @@ pub fn literal_best_gain(t: &GainTable) -> f64 {
 /// `P(i,j-1)`.
 #[inline]
 pub fn cell_step(g: Option<f64>, up: f64, left: f64) -> (f64, Choice) {
-    let mut best = 0.0;
-    let mut choice = Choice::Start;
-    if let Some(g) = g {
-        if g > best {
-            best = g;
-            choice = Choice::Node;
-        }
-    }
-    if up > best {
-        best = up;
-        choice = Choice::Up;
-    }
-    if left > best {
-        best = left;
-        choice = Choice::Left;
-    }
+    // Written as selects rather than branches: the outcome is data-dependent
+    // and would be mispredicted often.
+    let g = g.unwrap_or(f64::NEG_INFINITY);
+    let (mut best, mut choice) = (0.0, Choice::Start);
+    let take = g > best;
+    best = if take { g } else { best };
+    choice = if take { Choice::Node } else { choice };
+    let take = up > best;
+    best = if take { up } else { best };
+    choice = if take { Choice::Up } else { choice };
+    let take = left > best;
+    best = if take { left } else { best };
+    choice = if take { Choice::Left } else { choice };
     (best, choice)
 }
 
@@ -271,6 +268,11 @@ impl BandedGains {
         b
     }
 
+    /// Room for `rows` rows and `cells` band cells.
+    pub fn with_capacity(m: usize, rows: usize, cells: usize) -> Self {
+        BandedGains { m, rows: Vec::with_capacity(rows), gains: Vec::with_capacity(cells) }
+    }
+
     /// Appends the next row: its band starts at column `lo` (0-based).
     pub fn push_row(&mut self, lo: usize, gains: impl IntoIterator<Item = Option<f64>>) {
         let start = self.gains.len();
@@ -322,7 +324,8 @@ impl BandedGains {
 /// is known without computing it: left of row `i`'s band, `P(i,j)` equals the
 /// value of the latest row whose band starts at or before `j`; right of it,
 /// `P(i,j) = T_i`, the best gain of rows `1 … i`. Only the band cells are
-/// computed, in `O(band)` per row; the traceback looks the rest up.
+/// computed, in `O(band)` per row; the traceback derives the rest from the
+/// tails.
 pub fn banded_dp(b: &BandedGains) -> Path {
     let n = b.n();
     let m = b.m;
@@ -363,33 +366,30 @@ pub fn banded_dp(b: &BandedGains) -> Path {
         tails.push(tail);
     }
 
-    // P(i, j) anywhere (1-based), from the bands and tails.
-    let p_at = |i: usize, j: usize| -> f64 {
-        if i == 0 || j == 0 {
-            return 0.0;
-        }
-        // Latest row r < i (0-based) whose band starts at or before j (1-based).
-        let k = b.rows[..i].partition_point(|&(lo0, _)| lo0 < j);
-        if k == 0 {
-            return 0.0;
-        }
-        let r = k - 1;
-        let (lo0, gains) = b.row(r);
-        let col = j - 1 - lo0;
-        if col < gains.len() {
-            band_p[b.rows[r].1 + col]
-        } else {
-            tails[r]
-        }
-    };
+    // Outside the bands, the choices follow from the tails: right of row i's
+    // band, P(i,j) = T_i and P(i-1,j) = T_{i-1}; left of it,
+    // P(i,j) = P(i-1,j). The tie-break of `cell_step` with no node gives
+    // start when P = 0, else up when P(i-1,j) = P(i,j), else left. Left of
+    // the band the walk goes up without looking at P: from a cell with
+    // P = 0 every cell the walk can reach has P = 0 and holds no node, so
+    // the path's nodes are those of `prefix_max_dp`'s traceback.
     let choice_at = |i: usize, j: usize| -> Choice {
         let (lo0, gains) = b.row(i - 1);
-        if j > lo0 && j - 1 - lo0 < gains.len() {
-            return band_c[b.rows[i - 1].1 + j - 1 - lo0];
+        if j <= lo0 {
+            return Choice::Up;
         }
-        // No node here: the same tie-break with g = None.
-        cell_step(None, p_at(i - 1, j), p_at(i, j - 1)).1
+        let k = j - 1 - lo0;
+        if k < gains.len() {
+            return band_c[b.rows[i - 1].1 + k];
+        }
+        let t_prev = if i >= 2 { tails[i - 2] } else { 0.0 };
+        match tails[i - 1] {
+            t if t <= 0.0 => Choice::Start,
+            t if t == t_prev => Choice::Up,
+            _ => Choice::Left,
+        }
     };
     let nodes = traceback(n, m, choice_at);
-    Path { gain: p_at(n, m), nodes }
+    // P(N,M) = T_N: no column lies right of the last one.
+    Path { gain: tails.last().copied().unwrap_or(0.0), nodes }
 }

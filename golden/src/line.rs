@@ -104,8 +104,10 @@ pub fn banded_gains(reference: &LineFeatures, other: &LineFeatures, params: &Par
     let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
     let others: Vec<f64> = other.declivities.iter().map(|d| d.position).collect();
     let g = gmax(reference.dt, other.dt);
-    let mut bands = BandedGains::new(others.len());
-    for (r, (lo, hi)) in reference.declivities.iter().zip(search_bands(&refs, &others, params)) {
+    let spans = search_bands(&refs, &others, params);
+    let cells = spans.iter().map(|(lo, hi)| hi - lo).sum();
+    let mut bands = BandedGains::with_capacity(others.len(), refs.len(), cells);
+    for (r, &(lo, hi)) in reference.declivities.iter().zip(&spans) {
         bands.push_row(
             lo,
             other.declivities[lo..hi].iter().map(|o| node_gain(r, o, g, params.dispmax, params.ref_view, params.mode)),

@@ -232,3 +232,30 @@ pub fn shared_stereo_dir() -> PathBuf {
         None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/stereo"),
     }
 }
+
+/// The pair folders named by `paths`: a folder with a `meta.txt` is a pair;
+/// a folder without one stands for its sub-folders that have one (sorted),
+/// so `shared/data/stereo` names all eight pairs. Anything else is an error.
+pub fn expand_pair_dirs(paths: &[PathBuf]) -> Result<Vec<PathBuf>, SimError> {
+    let mut out = Vec::new();
+    for p in paths {
+        if !p.is_dir() {
+            return Err(pair_err(p, "not a pair folder (a folder with meta.txt, or a folder of such folders)"));
+        }
+        if p.join("meta.txt").is_file() {
+            out.push(p.clone());
+            continue;
+        }
+        let entries = std::fs::read_dir(p).map_err(|source| SimError::Io { path: p.clone(), source })?;
+        let mut subs: Vec<PathBuf> = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|s| s.join("meta.txt").is_file())
+            .collect();
+        if subs.is_empty() {
+            return Err(pair_err(p, "has no meta.txt and no pair folders inside: nothing to evaluate"));
+        }
+        subs.sort();
+        out.extend(subs);
+    }
+    Ok(out)
+}

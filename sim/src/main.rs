@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use sim::depth::{run_depth, DepthJob, DepthSummary};
 use sim::error::SimError;
 use sim::eval::{evaluate_pair, markdown_table};
-use sim::io::{load_grey, load_pair_dir};
+use sim::io::{expand_pair_dirs, load_grey, load_pair_dir};
 use sim::{bundled, eval};
 
 const ABOUT: &str = "Declivity stereo: depth maps by the method of Bensrhair, Miché and Debrie \
@@ -99,7 +99,7 @@ struct DepthArgs {
 
 #[derive(Args, Debug)]
 struct EvalArgs {
-    /// Pair folders (e.g. ../shared/data/stereo/*).
+    /// Pair folders (with meta.txt), or folders of pair folders (e.g. ../shared/data/stereo).
     #[arg(required = true)]
     pairs: Vec<PathBuf>,
     /// One JSON object per pair per line instead of a table.
@@ -210,7 +210,7 @@ fn main_job() -> Result<(), SimError> {
     let all = eval::dense_scores(&summary.frame.disparity, &pair.gt_left, None);
     let (ok, n) = eval::sparse_counts(&summary.frame, &pair.gt_left);
     println!(
-        "against the ground truth: sparse_acc1 {:.1} % of {n} matched declivities, bad2 {:.1} %, bad2 on matched pixels {:.1} %",
+        "against the ground truth: sparse_acc1 {:.1} % of {n} matched declivities, bad2 {:.1} % (bad2v {:.1} % where there is a disparity)",
         100.0 * ok as f64 / n.max(1) as f64,
         all.bad2,
         all.bad2v
@@ -251,11 +251,12 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
 
 fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
     let params = a.method.params(2.0)?;
-    let bar = ProgressBar::new(a.pairs.len() as u64).with_style(
+    let dirs = expand_pair_dirs(&a.pairs)?;
+    let bar = ProgressBar::new(dirs.len() as u64).with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let mut reports = Vec::new();
-    for dir in &a.pairs {
+    for dir in &dirs {
         bar.set_message(dir.display().to_string());
         let pair = load_pair_dir(dir)?;
         for n in &pair.notes {
