@@ -241,3 +241,135 @@ pub fn markdown_table(reports: &[EvalReport]) -> String {
     }
     s
 }
+
+/// Why the matcher fails where it fails: counts that separate the causes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Diagnosis {
+    /// % of reference rows with characteristic declivities but no match.
+    pub rows_without_match: f64,
+    /// % of reference declivities at valid-GT pixels that have a *true
+    /// partner*: an other-view declivity of the same polarity within 1 px of
+    /// where the ground truth puts it.
+    pub with_partner: f64,
+    /// Of the declivities with a true partner, % whose node passes both
+    /// photometric tests (`lpd < gmax` and `rpd < gmax`, eq. 7).
+    pub partner_both_sides: f64,
+    /// … % that pass exactly one side (gain ≤ 0 in paper mode: never matched).
+    pub partner_one_side: f64,
+    /// … % rejected on both sides.
+    pub partner_rejected: f64,
+    /// … % matched to that partner.
+    pub partner_matched: f64,
+    /// Mean |mean grey level difference| of the six neighbours of true
+    /// partners (a brightness offset between the cameras shows here).
+    pub partner_level_offset: f64,
+    /// Median over rows of `max(d_t,L, d_t,R) / min(…)`: how differently the
+    /// two views of one row are thresholded.
+    pub dt_ratio_median: f64,
+    /// % of bad2 pixels lying between two correct matches: interpolation
+    /// bridging a depth discontinuity, not a wrong match.
+    pub bad2_between_correct: f64,
+}
+
+/// Counts the causes of failure of `frame` against the reference view's
+/// ground truth `gt` (see [`Diagnosis`]).
+pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
+    use golden::gain::{gmax, lpd, rpd};
+    let w = frame.width;
+    let gt_at = |y: usize, x: f64| -> Option<f64> {
+        let xr = x.round();
+        (xr >= 0.0 && xr < w as f64).then(|| gt[y * w + xr as usize]).filter(|&g| g > 0.0 && g.is_finite())
+    };
+    let (mut rows_with, mut rows_none) = (0usize, 0usize);
+    let (mut n_ref, mut partners, mut both, mut one, mut matched) = (0usize, 0usize, 0usize, 0usize, 0usize);
+    let mut offset_sum = 0.0;
+    let mut ratios = Vec::with_capacity(frame.height);
+    let (mut bad, mut bad_between) = (0usize, 0usize);
+    for (y, line) in frame.lines.iter().enumerate() {
+        let (r, o) = (&line.reference, &line.other);
+        if !r.declivities.is_empty() {
+            rows_with += 1;
+            rows_none += line.matches.is_empty() as usize;
+        }
+        ratios.push(r.dt.max(o.dt) / r.dt.min(o.dt));
+        let g = gmax(r.dt, o.dt);
+        for (i, rd) in r.declivities.iter().enumerate() {
+            let Some(d) = gt_at(y, rd.position) else { continue };
+            n_ref += 1;
+            // The other view's position the ground truth predicts.
+            let target = match frame.params.ref_view {
+                golden::RefView::Left => rd.position - d,
+                golden::RefView::Right => rd.position + d,
+            };
+            let partner = o
+                .declivities
+                .iter()
+                .enumerate()
+                .filter(|(_, od)| od.polarity() == rd.polarity())
+                .min_by(|a, b| (a.1.position - target).abs().total_cmp(&(b.1.position - target).abs()))
+                .filter(|(_, od)| (od.position - target).abs() <= 1.0);
+            let Some((j, od)) = partner else { continue };
+            partners += 1;
+            let (l, rr) = (lpd(rd, od) as f64, rpd(rd, od) as f64);
+            both += (l < g && rr < g) as usize;
+            one += ((l < g) != (rr < g)) as usize;
+            matched += line.matches.iter().any(|m| m.ref_index == i && m.other_index == j) as usize;
+            let mean = |dcl: &golden::Declivity| dcl.left.iter().chain(&dcl.right).map(|&v| v as f64).sum::<f64>() / 6.0;
+            offset_sum += (mean(rd) - mean(od)).abs();
+        }
+        // Bad pixels between two correct matches.
+        let anchors: Vec<(f64, bool)> = line
+            .matches
+            .iter()
+            .map(|m| (m.x_ref, gt_at(y, m.x_ref).is_some_and(|g| (m.disparity - g).abs() <= 1.0)))
+            .collect();
+        for x in 0..w {
+            let gv = gt[y * w + x];
+            if !(gv > 0.0 && gv.is_finite()) {
+                continue;
+            }
+            let dv = frame.disparity[y * w + x];
+            if dv > 0.0 && (dv - gv).abs() <= 2.0 {
+                continue;
+            }
+            bad += 1;
+            let k = anchors.partition_point(|a| a.0 <= x as f64);
+            bad_between += (k > 0 && anchors[k - 1].1 && k < anchors.len() && anchors[k].1) as usize;
+        }
+    }
+    ratios.sort_by(f64::total_cmp);
+    Diagnosis {
+        rows_without_match: pct(rows_none, rows_with),
+        with_partner: pct(partners, n_ref),
+        partner_both_sides: pct(both, partners),
+        partner_one_side: pct(one, partners),
+        partner_rejected: pct(partners - both - one, partners),
+        partner_matched: pct(matched, partners),
+        partner_level_offset: offset_sum / partners.max(1) as f64,
+        dt_ratio_median: ratios.get(ratios.len() / 2).copied().unwrap_or(1.0),
+        bad2_between_correct: pct(bad_between, bad),
+    }
+}
+
+/// The diagnoses as a Markdown table.
+pub fn diagnosis_table(rows: &[(String, Diagnosis)]) -> String {
+    let mut s = String::from(
+        "| pair | rows without match % | declivities with a true partner % | … passing both sides % | … one side % | … rejected % | … matched to it % | partner level offset | median d_t ratio L/R | bad2 px between two correct matches % |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for (name, d) in rows {
+        s += &format!(
+            "| {name} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.1} |\n",
+            d.rows_without_match,
+            d.with_partner,
+            d.partner_both_sides,
+            d.partner_one_side,
+            d.partner_rejected,
+            d.partner_matched,
+            d.partner_level_offset,
+            d.dt_ratio_median,
+            d.bad2_between_correct
+        );
+    }
+    s
+}

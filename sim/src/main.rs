@@ -108,6 +108,10 @@ struct EvalArgs {
     /// Timed single-thread runs per pair (the median is reported as `ms`).
     #[arg(long, default_value_t = 5)]
     runs: usize,
+    /// Also print why matches fail: rows without match, declivities whose true
+    /// partner fails the photometric test (eq. 7), interpolation across depth edges.
+    #[arg(long)]
+    diagnose: bool,
     #[command(flatten)]
     method: MethodArgs,
 }
@@ -256,13 +260,17 @@ fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
         ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let mut reports = Vec::new();
+    let mut diagnoses = Vec::new();
     for dir in &dirs {
         bar.set_message(dir.display().to_string());
         let pair = load_pair_dir(dir)?;
         for n in &pair.notes {
             bar.suspend(|| eprintln!("note: {n}"));
         }
-        let (report, _) = evaluate_pair(&pair, &params, a.runs)?;
+        let (report, frame) = evaluate_pair(&pair, &params, a.runs)?;
+        if a.diagnose {
+            diagnoses.push((report.pair.clone(), eval::diagnose(&frame, eval::reference_gt(&pair, params.ref_view)?)));
+        }
         if a.json {
             bar.suspend(|| println!("{}", serde_json::to_string(&report).expect("report serializes")));
         }
@@ -272,6 +280,16 @@ fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
     bar.finish_and_clear();
     if !a.json {
         print!("{}", markdown_table(&reports));
+    }
+    if a.diagnose {
+        if a.json {
+            for (pair, d) in &diagnoses {
+                println!("{}", serde_json::json!({ "pair": pair, "diagnosis": d }));
+            }
+        } else {
+            println!();
+            print!("{}", eval::diagnosis_table(&diagnoses));
+        }
     }
     Ok(())
 }
