@@ -23,9 +23,10 @@
 //! Candidates are taken in the order **start, node, up, left**, each replacing
 //! the best so far only when *strictly* greater: `start` (value 0) wins every
 //! tie, then the node, then `up` (`P(i-1,j)`), then `left` (`P(i,j-1)`).
-//! Hence zero-gain nodes never join a path, and between equal paths the
-//! traceback prefers matching the current pair, then dropping the reference
-//! declivity.
+//! Hence a path never starts with a node of gain ≤ 0 (`start` wins), but a
+//! zero-gain node that extends a path ties with `up` and joins it; between
+//! equal paths the traceback prefers matching the current pair, then
+//! dropping the reference declivity.
 //!
 //! Indices: declivities are 0-based (`i` in `0..n` reference, `j` in `0..m`
 //! other view); the tables are 1-based with row and column 0 as the border.
