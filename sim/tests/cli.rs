@@ -1,0 +1,155 @@
+//! The `declivity` binary as a user meets it: the main job, `depth`, `eval`,
+//! and clear errors with a non-zero exit on bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use image::{GrayImage, Luma, Rgb, RgbImage};
+
+fn declivity(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_declivity")).args(args).current_dir(cwd).output().expect("the binary runs")
+}
+
+fn text(o: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+fn stereo() -> PathBuf {
+    sim::io::shared_stereo_dir()
+}
+
+/// A textured grey image and the same shifted left by `d` pixels (so the
+/// disparity is `d` everywhere away from the border).
+fn shifted_pair(w: u32, h: u32, d: u32) -> (GrayImage, GrayImage) {
+    let tex = |x: u32, y: u32| -> u8 {
+        let v = ((x / 5) * 37 + (y / 7) * 11) % 7;
+        (40 + v * 30) as u8
+    };
+    let left = GrayImage::from_fn(w, h, |x, y| Luma([tex(x, y)]));
+    let right = GrayImage::from_fn(w, h, |x, y| Luma([tex(x + d, y)]));
+    (left, right)
+}
+
+#[test]
+fn main_job_without_arguments_writes_the_bundled_pair_pictures_and_cites_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = declivity(&[], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(out.contains("Scharstein") && out.contains("Tsukuba"), "citation printed: {out}");
+    let folder = dir.path().join("declivity-out/tsukuba");
+    assert!(out.contains("declivity-out/tsukuba"), "names its folder: {out}");
+    for f in ["disparity16.png", "disparity.png", "declivities_left.png", "declivities_right.png", "graph_line_144.png"] {
+        assert!(folder.join(f).is_file(), "{f} written");
+    }
+    let d16 = image::open(folder.join("disparity16.png")).unwrap().into_luma16();
+    assert_eq!(d16.dimensions(), (384, 288));
+    // Tsukuba's ground truth lies in 5..14 px; in paper mode 69.5 % of the
+    // pixels (76 849) were measured to hold d x 16 with d in 5..=15.
+    let in_range = d16.pixels().filter(|p| (5 * 16..=15 * 16).contains(&p[0])).count();
+    assert!(in_range as f64 > 0.65 * (384.0 * 288.0), "{in_range} pixels in range");
+}
+
+#[test]
+fn depth_on_a_shifted_pair_recovers_the_shift_and_writes_depth_and_point_cloud() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = shifted_pair(120, 16, 6);
+    l.save(dir.path().join("l.png")).unwrap();
+    r.save(dir.path().join("r.png")).unwrap();
+    let o = declivity(
+        &["depth", "l.png", "r.png", "--dispmax", "10", "--out", "out", "--focal-px", "500", "--baseline-m", "0.1", "--graph-line", "3"],
+        dir.path(),
+    );
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let d16 = image::open(dir.path().join("out/disparity16.png")).unwrap().into_luma16();
+    // d = 6 px -> 96 in the 16-bit map, at every pixel away from the right border.
+    let centre = d16.get_pixel(60, 8)[0];
+    assert_eq!(centre, 96);
+    let depth = image::open(dir.path().join("out/depth_mm.png")).unwrap().into_luma16();
+    // Z = f b / d = 500 * 0.1 / 6 m = 8333 mm.
+    assert_eq!(depth.get_pixel(60, 8)[0], 8333);
+    let ply = std::fs::read_to_string(dir.path().join("out/points.ply")).unwrap();
+    assert!(ply.starts_with("ply\nformat ascii 1.0"), "PLY header");
+    assert!(dir.path().join("out/graph_line_3.png").is_file());
+}
+
+#[test]
+fn colour_input_is_converted_with_a_note_not_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = shifted_pair(80, 8, 4);
+    let colour = RgbImage::from_fn(80, 8, |x, y| {
+        let v = l.get_pixel(x, y)[0];
+        Rgb([v, v, v])
+    });
+    colour.save(dir.path().join("l.png")).unwrap();
+    r.save(dir.path().join("r.png")).unwrap();
+    let o = declivity(&["depth", "l.png", "r.png", "--dispmax", "8", "--out", "o"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(err.contains("note:") && err.contains("converted to grey"), "stderr {err}");
+}
+
+#[test]
+fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = shifted_pair(60, 10, 3);
+    l.save(p.join("l.png")).unwrap();
+    r.save(p.join("r.png")).unwrap();
+    GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
+    std::fs::write(p.join("junk.png"), b"not an image").unwrap();
+    std::fs::create_dir(p.join("empty")).unwrap();
+    let cases: [(&[&str], &str); 6] = [
+        (&["depth", "missing.png", "r.png", "--dispmax", "8"], "missing.png"),
+        (&["depth", "junk.png", "r.png", "--dispmax", "8"], "cannot read image"),
+        (&["depth", "l.png", "small.png", "--dispmax", "8"], "differ in size"),
+        (&["depth", "l.png", "r.png", "--dispmax", "1"], "dispmax must be greater than 1"),
+        (&["eval", "empty"], "nothing to evaluate"),
+        (&["depth", "l.png", "r.png", "--dispmax", "8", "--graph-line", "10"], "outside the image"),
+    ];
+    for (args, needle) in cases {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains("error:") && err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    }
+}
+
+#[test]
+fn eval_json_has_the_documented_keys_per_pair() {
+    let o = declivity(&["eval", "--json", "--runs", "1", stereo().join("tsukuba").to_str().unwrap()], Path::new("."));
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stderr {err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 1, "one object per pair: {out}");
+    let v: serde_json::Value = serde_json::from_str(lines[0]).unwrap();
+    for k in [
+        "pair", "mode", "width", "height", "declivities", "matches", "match_frac", "sparse_acc1", "bad1", "bad2", "bad1v", "bad2v", "density",
+        "nonocc_bad2", "ms",
+    ] {
+        assert!(v.get(k).is_some(), "key {k} in {v}");
+    }
+    assert_eq!(v["pair"], "tsukuba");
+    assert_eq!(v["mode"], "paper");
+    assert!(v["nonocc_bad2"].is_number(), "tsukuba has a mask");
+}
+
+#[test]
+fn eval_json_gives_null_nonocc_without_a_mask() {
+    let o = declivity(&["eval", "--json", "--runs", "1", stereo().join("map").to_str().unwrap()], Path::new("."));
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert!(v["nonocc_bad2"].is_null(), "{v}");
+}
+
+#[test]
+fn every_subcommand_explains_itself_in_help() {
+    for args in [&["--help"][..], &["depth", "--help"], &["eval", "--help"]] {
+        let o = declivity(args, Path::new("."));
+        let (out, _) = text(&o);
+        assert!(o.status.success());
+        assert!(out.contains("Usage:") && out.len() > 400, "{args:?}: {out}");
+    }
+}
