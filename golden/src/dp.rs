@@ -135,9 +135,14 @@ pub fn literal_best_gain(t: &GainTable) -> f64 {
 /// `P(i,j-1)`.
 #[inline]
 pub fn cell_step(g: Option<f64>, up: f64, left: f64) -> (f64, Choice) {
+    cell_step_g(g.unwrap_or(NO_NODE), up, left)
+}
+
+/// [`cell_step`] with "no node" as `G = -∞`.
+#[inline]
+fn cell_step_g(g: f64, up: f64, left: f64) -> (f64, Choice) {
     // Written as selects rather than branches: the outcome is data-dependent
     // and would be mispredicted often.
-    let g = g.unwrap_or(f64::NEG_INFINITY);
     let (mut best, mut choice) = (0.0, Choice::Start);
     let take = g > best;
     best = if take { g } else { best };
@@ -251,13 +256,24 @@ pub struct BandedGains {
     m: usize,
     /// Per row: first column and offset of its gains in `gains`.
     rows: Vec<(usize, usize)>,
-    gains: Vec<Option<f64>>,
+    /// Band cells' gains, [`NO_NODE`] where a node was rejected.
+    gains: Vec<f64>,
 }
+
+/// The gain stored for a band cell without a node: it never wins a
+/// comparison and stays `-∞` when a path gain is added to it (the same value
+/// as [`crate::gain::REJECTED`]).
+pub const NO_NODE: f64 = f64::NEG_INFINITY;
 
 impl BandedGains {
     /// A graph of `m` columns and no rows yet.
     pub fn new(m: usize) -> Self {
         BandedGains { m, rows: Vec::new(), gains: Vec::new() }
+    }
+
+    /// Room for `rows` rows and `cells` band cells.
+    pub fn with_capacity(m: usize, rows: usize, cells: usize) -> Self {
+        BandedGains { m, rows: Vec::with_capacity(rows), gains: Vec::with_capacity(cells) }
     }
 
     /// The graph of `m` columns with the given rows.
@@ -269,15 +285,10 @@ impl BandedGains {
         b
     }
 
-    /// Room for `rows` rows and `cells` band cells.
-    pub fn with_capacity(m: usize, rows: usize, cells: usize) -> Self {
-        BandedGains { m, rows: Vec::with_capacity(rows), gains: Vec::with_capacity(cells) }
-    }
-
     /// Appends the next row: its band starts at column `lo` (0-based).
     pub fn push_row(&mut self, lo: usize, gains: impl IntoIterator<Item = Option<f64>>) {
         let start = self.gains.len();
-        self.gains.extend(gains);
+        self.gains.extend(gains.into_iter().map(|g| g.unwrap_or(NO_NODE)));
         debug_assert!(lo + (self.gains.len() - start) <= self.m, "band inside the table");
         self.rows.push((lo, start));
     }
@@ -292,26 +303,26 @@ impl BandedGains {
         self.m
     }
 
-    /// Row `i` (0-based): the first column of its band and the band's gains.
-    pub fn row(&self, i: usize) -> (usize, &[Option<f64>]) {
+    /// Row `i` (0-based): the first column of its band and the band's gains
+    /// ([`NO_NODE`] where there is no node).
+    pub fn row(&self, i: usize) -> (usize, &[f64]) {
         let (lo, start) = self.rows[i];
         let end = self.rows.get(i + 1).map_or(self.gains.len(), |r| r.1);
         (lo, &self.gains[start..end])
     }
 
-    /// The gain of node `(i, j)` (0-based), `None` outside the band.
+    /// The gain of node `(i, j)` (0-based), `None` where there is no node.
     pub fn get(&self, i: usize, j: usize) -> Option<f64> {
         let (lo, g) = self.row(i);
-        j.checked_sub(lo).and_then(|k| g.get(k).copied().flatten())
+        j.checked_sub(lo).and_then(|k| g.get(k).copied()).filter(|&v| v != NO_NODE)
     }
 
     /// The same graph as a dense table.
     pub fn to_table(&self) -> GainTable {
         let mut t = GainTable::new(self.n(), self.m);
         for i in 0..self.n() {
-            let (lo, gains) = self.row(i);
-            for (k, &g) in gains.iter().enumerate() {
-                t.set(i, lo + k, g);
+            for j in 0..self.m {
+                t.set(i, j, self.get(i, j));
             }
         }
         t
@@ -328,39 +339,49 @@ impl BandedGains {
 /// computed, in `O(band)` per row; the traceback derives the rest from the
 /// tails.
 pub fn banded_dp(b: &BandedGains) -> Path {
-    let n = b.n();
-    let m = b.m;
-    // Row i (1-based) = b.rows[i-1]: band columns lo+1 ..= lo+len (1-based).
-    // band_p / band_c are laid out like b.gains.
-    let mut band_p = vec![0.0f64; b.gains.len()];
-    let mut band_c = vec![Choice::Start; b.gains.len()];
+    let bands: Vec<(usize, usize)> = (0..b.n())
+        .map(|i| {
+            let (lo, g) = b.row(i);
+            (lo, lo + g.len())
+        })
+        .collect();
+    banded_dp_with(b.m, &bands, |i, j| b.gains[b.rows[i].1 + j - b.rows[i].0])
+}
+
+/// [`banded_dp`] on a graph given as its bands, `bands[i] = (lo, hi)`: the
+/// columns `lo .. hi` (0-based) of row `i`, and a function giving the gain of
+/// each band cell `(i, j)` ([`NO_NODE`] where there is no node). The gains
+/// are asked for once each, row by row, left to right, so they can be
+/// computed on the fly.
+pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> Path {
+    let n = bands.len();
+    // Choices of the band cells, row after row; offs[i] = first of row i.
+    let mut offs = Vec::with_capacity(n);
+    let mut band_c = Vec::with_capacity(bands.iter().map(|&(lo, hi)| hi.saturating_sub(lo)).sum());
     let mut tails = Vec::with_capacity(n); // T_i
     // q[j] = P(current row, j) for j <= filled; beyond, the tail T.
     let mut q = vec![0.0f64; m + 1];
     let mut filled = 0usize;
     let mut tail = 0.0f64;
-    for i in 0..n {
-        let (lo0, gains) = b.row(i);
-        let off = b.rows[i].1;
-        let lo = lo0 + 1;
-        let len = gains.len();
-        if len > 0 {
-            let hi = lo + len - 1;
+    for (i, &(lo0, hi0)) in bands.iter().enumerate() {
+        debug_assert!(hi0 <= m, "band inside the table");
+        offs.push(band_c.len());
+        if hi0 > lo0 {
+            // 1-based columns lo ..= hi.
+            let (lo, hi) = (lo0 + 1, hi0);
             while filled < hi {
                 filled += 1;
                 q[filled] = tail;
             }
             let mut diag = q[lo - 1];
             let mut left = q[lo - 1];
-            for (k, &g) in gains.iter().enumerate() {
-                let j = lo + k;
+            for j in lo..=hi {
                 let up = q[j];
-                let (pij, c) = cell_step(g.map(|local| local + diag), up, left);
+                let (pij, c) = cell_step_g(gain(i, j - 1) + diag, up, left);
                 diag = up;
                 q[j] = pij;
                 left = pij;
-                band_p[off + k] = pij;
-                band_c[off + k] = c;
+                band_c.push(c);
             }
             tail = tail.max(q[hi]);
         }
@@ -375,13 +396,12 @@ pub fn banded_dp(b: &BandedGains) -> Path {
     // P = 0 every cell the walk can reach has P = 0 and holds no node, so
     // the path's nodes are those of `prefix_max_dp`'s traceback.
     let choice_at = |i: usize, j: usize| -> Choice {
-        let (lo0, gains) = b.row(i - 1);
+        let (lo0, hi0) = bands[i - 1];
         if j <= lo0 {
             return Choice::Up;
         }
-        let k = j - 1 - lo0;
-        if k < gains.len() {
-            return band_c[b.rows[i - 1].1 + k];
+        if j <= hi0 {
+            return band_c[offs[i - 1] + j - 1 - lo0];
         }
         let t_prev = if i >= 2 { tails[i - 2] } else { 0.0 };
         match tails[i - 1] {

@@ -52,11 +52,27 @@ pub fn gmax(dt_ref: f64, dt_other: f64) -> f64 {
 /// one-sided case gives `gain = gmax - lpd - rpd ≤ 0`, so such a node never
 /// improves a path: the paper's "partially masked" case never fires.
 pub fn f_gmax(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
+    let f = f_gmax_or_reject(lpd, rpd, gmax, mode);
+    (f != REJECTED).then_some(f)
+}
+
+/// The value standing for a rejected node: `-∞`, which no gain beats and
+/// which stays `-∞` whatever is added to it (the DP's "no node").
+pub const REJECTED: f64 = f64::NEG_INFINITY;
+
+/// [`f_gmax`] as a plain number, [`REJECTED`] for a rejected node, computed
+/// with selects rather than branches (the frame pipeline's hot path).
+#[inline]
+pub fn f_gmax_or_reject(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> f64 {
     match mode {
         Mode::Paper => {
-            let below = (lpd < gmax) as u8 + (rpd < gmax) as u8;
-            // 2: both similar, 1: one side similar, 0: rejected.
-            (below > 0).then_some(if below == 2 { 3.0 * gmax } else { gmax })
+            let (l, r) = (lpd < gmax, rpd < gmax);
+            let f = if l & r { 3.0 * gmax } else { gmax };
+            if l | r {
+                f
+            } else {
+                REJECTED
+            }
         }
     }
 }
@@ -76,9 +92,26 @@ pub fn node_gain(
     ref_view: RefView,
     mode: Mode,
 ) -> Option<f64> {
+    let g = node_gain_or_reject(reference, other, gmax, dispmax, ref_view, mode);
+    (g != REJECTED).then_some(g)
+}
+
+/// [`node_gain`] as a plain number, [`REJECTED`] where there is no node.
+#[inline]
+pub fn node_gain_or_reject(
+    reference: &Declivity,
+    other: &Declivity,
+    gmax: f64,
+    dispmax: f64,
+    ref_view: RefView,
+    mode: Mode,
+) -> f64 {
     let d = pair_disparity(reference.position, other.position, ref_view);
-    if !in_search_area(d, dispmax) {
-        return None;
+    let (l, r) = (lpd(reference, other) as f64, rpd(reference, other) as f64);
+    let g = f_gmax_or_reject(l, r, gmax, mode) - l - r;
+    if in_search_area(d, dispmax) {
+        g
+    } else {
+        REJECTED
     }
-    local_gain(lpd(reference, other) as f64, rpd(reference, other) as f64, gmax, mode)
 }

@@ -4,8 +4,10 @@
 
 use crate::declivity::{characteristic_declivities, Declivity};
 use crate::disparity::Anchor;
-use crate::dp::{banded_dp, BandedGains, GainTable};
-use crate::gain::{gmax, node_gain, pair_disparity};
+use crate::dp::{banded_dp_with, BandedGains, GainTable};
+#[cfg(doc)]
+use crate::dp::banded_dp;
+use crate::gain::{gmax, node_gain, node_gain_or_reject, pair_disparity};
 use crate::noise::{noise_sigma, threshold};
 use crate::params::{Params, RefView};
 
@@ -131,25 +133,30 @@ pub fn gain_table(reference: &LineFeatures, other: &LineFeatures, params: &Param
     })
 }
 
-/// Matches two segmented lines: the optimal path (eq. 9) and the disparity of
-/// each matched reference declivity. Returns the matches in reference order
-/// and the path's gain.
+/// Matches two segmented lines: the optimal path (eq. 9) through the nodes
+/// of the search area (eq. 6) with their gains (eq. 4–8), and the disparity
+/// of each matched reference declivity. Returns the matches in reference
+/// order and the path's gain. (The same as [`banded_dp`] on
+/// [`banded_gains`], with the gains computed as the DP sweeps them.)
 pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
-    let bands = banded_gains(reference, other, params);
-    let path = banded_dp(&bands);
+    let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
+    let others: Vec<f64> = other.declivities.iter().map(|d| d.position).collect();
+    let bands = search_bands(&refs, &others, params);
+    let g = gmax(reference.dt, other.dt);
+    let gain = |i: usize, j: usize| {
+        node_gain_or_reject(&reference.declivities[i], &other.declivities[j], g, params.dispmax, params.ref_view, params.mode)
+    };
+    let path = banded_dp_with(others.len(), &bands, gain);
     let matches = path
         .nodes
         .iter()
-        .map(|&(i, j)| {
-            let (r, o) = (&reference.declivities[i], &other.declivities[j]);
-            Match {
-                ref_index: i,
-                other_index: j,
-                x_ref: r.position,
-                x_other: o.position,
-                disparity: pair_disparity(r.position, o.position, params.ref_view),
-                gain: bands.get(i, j).expect("a path node is a node"),
-            }
+        .map(|&(i, j)| Match {
+            ref_index: i,
+            other_index: j,
+            x_ref: refs[i],
+            x_other: others[j],
+            disparity: pair_disparity(refs[i], others[j], params.ref_view),
+            gain: gain(i, j),
         })
         .collect();
     (matches, path.gain)
