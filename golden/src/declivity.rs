@@ -91,43 +91,49 @@ pub fn declivity_bounds_reference(line: &[u8]) -> DeclivityBounds<'_> {
     DeclivityBounds { line, x: 0 }
 }
 
-/// Where the declivities of `line` start, left to right, followed by the end
-/// of the last one: `[x_0, x_1, …, x_{K-1}, e_{K-1}]` for `K` declivities
-/// (empty when there is none), computed in one branch-free pass over the
-/// gradient signs, the way the streaming detector sees them: a declivity
-/// starts at every non-zero gradient whose sign differs from the last
-/// non-zero sign.
+/// The declivities of `line` whose amplitude exceeds `threshold` in absolute
+/// value, left to right, as `(x_i, next)` where `next` is the start of the
+/// following declivity (or, for the last, its end): one branch-free pass over
+/// the gradient signs, the way the streaming detector sees the line.
 ///
-/// Declivity `k` ends where the flat run before `x_{k+1}` begins (see
-/// [`end_before`]); as that run is flat, `I(x_{k+1})` is also the level at
-/// the end of declivity `k`, so amplitudes need no ends.
-pub fn declivity_starts(line: &[u8]) -> Vec<usize> {
+/// A declivity starts at every non-zero gradient whose sign differs from the
+/// last non-zero sign, and is closed there. The flat run between its end and
+/// `next` has its end's level, so its amplitude is `I(next) - I(x_i)`, known
+/// when it is closed; its end is found from `next` by [`end_before`].
+pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
     let n = line.len();
     if n < 2 {
         return Vec::new();
     }
-    // Slot k is rewritten until a declivity starts there, then frozen.
-    let mut starts = vec![0usize; n];
+    // Slot k is rewritten until a kept declivity is closed into it.
+    let mut spans = vec![(0usize, 0usize); n];
     let mut k = 0usize;
+    let mut start = 0usize;
     let mut last_sign = 0i32;
     let mut last_nonzero = 0usize;
     for x in 0..n - 1 {
         let s = (line[x + 1] as i32 - line[x] as i32).signum();
-        starts[k] = x;
-        k += ((s != 0) & (s != last_sign)) as usize;
+        let new = (s != 0) & (s != last_sign);
+        let amplitude = line[x].abs_diff(line[start]) as u32;
+        spans[k] = (start, x);
+        k += (new & (last_sign != 0) & (amplitude > threshold)) as usize;
+        start = if new { x } else { start };
         last_sign = if s != 0 { s } else { last_sign };
         last_nonzero = if s != 0 { x } else { last_nonzero };
     }
-    starts.truncate(k);
-    if k > 0 {
-        starts.push(last_nonzero + 1);
+    let end = last_nonzero + 1;
+    if last_sign != 0 && line[end].abs_diff(line[start]) as u32 > threshold {
+        spans[k] = (start, end);
+        k += 1;
     }
-    starts
+    spans.truncate(k);
+    spans
 }
 
 /// The end `x_{i+1}` of the declivity that starts at `start`, given the
 /// start `next` of the following one (or the last declivity's end): the
 /// first pixel of the flat run that ends at `next`.
+#[inline]
 pub fn end_before(line: &[u8], start: usize, next: usize) -> usize {
     let mut e = next;
     while e > start + 1 && line[e - 1] == line[e] {
@@ -137,27 +143,34 @@ pub fn end_before(line: &[u8], start: usize, next: usize) -> usize {
 }
 
 /// The bounds `(x_i, x_{i+1})` of every declivity of `line`, left to right:
-/// the same as [`declivity_bounds_reference`], from [`declivity_starts`].
+/// the same as [`declivity_bounds_reference`], from [`declivity_spans`]
+/// (every declivity has `|a_i| ≥ 1 > 0`).
 pub fn declivity_bounds(line: &[u8]) -> Vec<(usize, usize)> {
-    declivity_starts(line)
-        .windows(2)
-        .map(|w| (w[0], end_before(line, w[0], w[1])))
-        .collect()
+    declivity_spans(line, 0).into_iter().map(|(s, next)| (s, end_before(line, s, next))).collect()
+}
+
+/// The amplitude threshold of [`declivity_spans`] equivalent to `|a_i| > d_t`:
+/// amplitudes are integers, so `|a| > d_t ⇔ |a| > ⌊d_t⌋` for `d_t ≥ 0`.
+pub fn integer_threshold(dt: f64) -> u32 {
+    dt.max(0.0).floor().min(u32::MAX as f64) as u32
 }
 
 /// Amplitude `a_i = I(x_{i+1}) - I(x_i)` of the declivity `(start, end)`.
+#[inline]
 pub fn amplitude(line: &[u8], start: usize, end: usize) -> i32 {
     line[end] as i32 - line[start] as i32
 }
 
 /// A declivity is characteristic when its amplitude exceeds the line's
 /// threshold: `|a_i| > d_t` (paper §II, with `d_t` of eq. 2).
+#[inline]
 pub fn is_characteristic(amplitude: i32, dt: f64) -> bool {
     amplitude.unsigned_abs() as f64 > dt
 }
 
 /// The two sums of eq. 3 over `x = start … end-1`, exact in integers:
 /// `(Σ g(x)², Σ g(x)²·(2x+1))`. The second is twice `Σ g²(x + 0.5)`.
+#[inline]
 pub fn position_sums(line: &[u8], start: usize, end: usize) -> (u64, u64) {
     let mut s0 = 0u64;
     let mut s1 = 0u64;
@@ -173,6 +186,7 @@ pub fn position_sums(line: &[u8], start: usize, end: usize) -> (u64, u64) {
 /// Eq. 3: `X_i = Σ g(x)² (x + 0.5) / Σ g(x)²` over `x = x_i … x_{i+1}-1`,
 /// `g(x) = I(x+1) - I(x)`. Every declivity has a non-zero gradient, so the
 /// denominator is positive.
+#[inline]
 pub fn position(line: &[u8], start: usize, end: usize) -> f64 {
     let (s0, s1) = position_sums(line, start, end);
     debug_assert!(s0 > 0, "a declivity has a non-zero gradient");
@@ -181,6 +195,7 @@ pub fn position(line: &[u8], start: usize, end: usize) -> f64 {
 
 /// The attributes of paper §III: the grey levels `I(x_i - k)` and
 /// `I(x_{i+1} + k)` for k = 0, 1, 2, clamped at the line's ends.
+#[inline]
 pub fn neighbour_levels(line: &[u8], start: usize, end: usize) -> ([u8; 3], [u8; 3]) {
     let last = line.len() - 1;
     let left = [0, 1, 2].map(|k| line[start.saturating_sub(k)]);
@@ -190,6 +205,7 @@ pub fn neighbour_levels(line: &[u8], start: usize, end: usize) -> ([u8; 3], [u8;
 
 /// The declivity `(start, end)` of `line` with its amplitude, eq. 3 position
 /// and attributes.
+#[inline]
 pub fn describe(line: &[u8], start: usize, end: usize) -> Declivity {
     let (left, right) = neighbour_levels(line, start, end);
     Declivity {
@@ -208,21 +224,13 @@ pub fn all_declivities(line: &[u8]) -> Vec<Declivity> {
 }
 
 /// The characteristic declivities of a line for the threshold `dt`, left to
-/// right, with positions and attributes.
-///
-/// The amplitude test runs on every declivity without a branch; only the
-/// characteristic ones are bounded and described.
+/// right, with positions and attributes. The amplitude test `|a_i| > d_t`
+/// runs inside the extrema pass ([`declivity_spans`]); only the kept
+/// declivities are bounded and described.
 pub fn characteristic_declivities(line: &[u8], dt: f64) -> Vec<Declivity> {
-    let starts = declivity_starts(line);
-    let mut kept = vec![0usize; starts.len()];
-    let mut n = 0usize;
-    for (k, w) in starts.windows(2).enumerate() {
-        kept[n] = k;
-        n += is_characteristic(line[w[1]] as i32 - line[w[0]] as i32, dt) as usize;
-    }
-    kept[..n]
-        .iter()
-        .map(|&k| describe(line, starts[k], end_before(line, starts[k], starts[k + 1])))
+    declivity_spans(line, integer_threshold(dt))
+        .into_iter()
+        .map(|(s, next)| describe(line, s, end_before(line, s, next)))
         .collect()
 }
 
@@ -239,6 +247,16 @@ mod tests {
     }
 
     #[test]
+    fn integer_threshold_is_the_characteristic_test() {
+        for dt10 in 0..3000 {
+            let dt = dt10 as f64 / 10.0;
+            for a in -300i32..=300 {
+                assert_eq!(is_characteristic(a, dt), a.unsigned_abs() > integer_threshold(dt), "a {a}, dt {dt}");
+            }
+        }
+    }
+
+    #[test]
     fn fast_bounds_equal_reference_bounds_on_random_lines_with_plateaus() {
         let mut st = 0x9e37_79b9_7f4a_7c15u64;
         for case in 0..3000 {
@@ -249,6 +267,15 @@ mod tests {
             let fast = declivity_bounds(&line);
             let reference: Vec<_> = declivity_bounds_reference(&line).collect();
             assert_eq!(fast, reference, "case {case}, line {line:?}");
+            // The amplitude test inside the pass keeps exactly the declivities
+            // the reference walk finds characteristic.
+            let dt = (next(&mut st) % 2000) as f64 / 10.0;
+            let kept: Vec<_> = reference
+                .iter()
+                .filter(|&&(s, e)| is_characteristic(amplitude(&line, s, e), dt))
+                .map(|&(s, e)| describe(&line, s, e))
+                .collect();
+            assert_eq!(characteristic_declivities(&line, dt), kept, "case {case}, dt {dt}, line {line:?}");
         }
     }
 }

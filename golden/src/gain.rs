@@ -52,30 +52,19 @@ pub fn gmax(dt_ref: f64, dt_other: f64) -> f64 {
 /// one-sided case gives `gain = gmax - lpd - rpd ≤ 0`, so such a node never
 /// improves a path: the paper's "partially masked" case never fires.
 pub fn f_gmax(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
-    let f = f_gmax_or_reject(lpd, rpd, gmax, mode);
-    (f != REJECTED).then_some(f)
-}
-
-/// The value standing for a rejected node: `-∞`, which no gain beats and
-/// which stays `-∞` whatever is added to it (the DP's "no node").
-pub const REJECTED: f64 = f64::NEG_INFINITY;
-
-/// [`f_gmax`] as a plain number, [`REJECTED`] for a rejected node, computed
-/// with selects rather than branches (the frame pipeline's hot path).
-#[inline]
-pub fn f_gmax_or_reject(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> f64 {
     match mode {
-        Mode::Paper => {
-            let (l, r) = (lpd < gmax, rpd < gmax);
-            let f = if l & r { 3.0 * gmax } else { gmax };
-            if l | r {
-                f
-            } else {
-                REJECTED
-            }
-        }
+        Mode::Paper => match (lpd < gmax, rpd < gmax) {
+            (true, true) => Some(3.0 * gmax),
+            (true, false) | (false, true) => Some(gmax),
+            (false, false) => None,
+        },
     }
 }
+
+/// The value standing for a rejected node in the hot path ([`LineGain`]):
+/// `-∞`, which no gain beats and which stays `-∞` whatever is added to it
+/// (the DP's "no node").
+pub const REJECTED: f64 = f64::NEG_INFINITY;
 
 /// Eq. 7: `gain = f(gmax) - lpd - rpd`, or `None` when the node is rejected.
 pub fn local_gain(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
@@ -92,26 +81,87 @@ pub fn node_gain(
     ref_view: RefView,
     mode: Mode,
 ) -> Option<f64> {
-    let g = node_gain_or_reject(reference, other, gmax, dispmax, ref_view, mode);
-    (g != REJECTED).then_some(g)
+    let d = pair_disparity(reference.position, other.position, ref_view);
+    if !in_search_area(d, dispmax) {
+        return None;
+    }
+    local_gain(lpd(reference, other) as f64, rpd(reference, other) as f64, gmax, mode)
 }
 
-/// [`node_gain`] as a plain number, [`REJECTED`] where there is no node.
-#[inline]
-pub fn node_gain_or_reject(
-    reference: &Declivity,
-    other: &Declivity,
-    gmax: f64,
-    dispmax: f64,
-    ref_view: RefView,
-    mode: Mode,
-) -> f64 {
-    let d = pair_disparity(reference.position, other.position, ref_view);
-    let (l, r) = (lpd(reference, other) as f64, rpd(reference, other) as f64);
-    let g = f_gmax_or_reject(l, r, gmax, mode) - l - r;
-    if in_search_area(d, dispmax) {
-        g
-    } else {
-        REJECTED
+/// The local gain of eq. 4–8 for the nodes of one pair of lines, with what
+/// depends only on the lines computed once: the frame pipeline's hot path.
+///
+/// The photometric distances are integers, so `lpd < gmax ⇔ lpd < ⌈gmax⌉`
+/// (for every real `gmax ≥ 0`): the tests of eq. 7 run on integers. The
+/// search area (eq. 6) is not tested here: the caller passes only pairs
+/// inside it (the bands of [`crate::line::search_bands`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineGain {
+    /// `⌈gmax⌉`: a distance is "below gmax" when it is below this.
+    below: u32,
+    /// `f(gmax)` when both distances are below `gmax`.
+    f_both: f64,
+    /// `f(gmax)` when exactly one is.
+    f_one: f64,
+}
+
+impl LineGain {
+    /// The gain rule of `mode` for two lines with thresholds `dt_ref`,
+    /// `dt_other` (eq. 8).
+    pub fn new(dt_ref: f64, dt_other: f64, mode: Mode) -> Self {
+        let g = gmax(dt_ref, dt_other);
+        match mode {
+            Mode::Paper => LineGain { below: g.ceil() as u32, f_both: 3.0 * g, f_one: g },
+        }
+    }
+
+    /// Eq. 7 for a node inside the search area: `f(gmax) - lpd - rpd`, or
+    /// [`REJECTED`]; equal to [`node_gain`] there.
+    #[inline]
+    pub fn gain(&self, reference: &Declivity, other: &Declivity) -> f64 {
+        let (l, r) = (lpd(reference, other), rpd(reference, other));
+        let (lb, rb) = (l < self.below, r < self.below);
+        let f = if lb & rb { self.f_both } else { self.f_one };
+        let g = f - (l + r) as f64;
+        if lb | rb {
+            g
+        } else {
+            REJECTED
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn decl(position: f64, left: [u8; 3], right: [u8; 3]) -> Declivity {
+        Declivity { start: 0, end: 1, amplitude: 10, position, left, right }
+    }
+
+    #[test]
+    fn line_gain_equals_node_gain_inside_the_search_area() {
+        // xorshift64*, seeded: failures replay.
+        let mut st = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            st ^= st >> 12;
+            st ^= st << 25;
+            st ^= st >> 27;
+            st.wrapping_mul(0x2545_f491_4f6c_dd1d)
+        };
+        let mut rejected = 0;
+        for _ in 0..20_000 {
+            let mut px = || [0, 1, 2].map(|_| (next() % 64) as u8 + 100);
+            let r = decl(50.0, px(), px());
+            let o = decl(45.5, px(), px());
+            // Thresholds on and off integers, small and large.
+            let dt = |v: u64| if v % 3 == 0 { (v % 40) as f64 } else { (v % 4000) as f64 / 37.0 };
+            let (dr, dl) = (dt(next()), dt(next()));
+            let want = node_gain(&r, &o, gmax(dr, dl), 10.0, RefView::Left, Mode::Paper);
+            let got = LineGain::new(dr, dl, Mode::Paper).gain(&r, &o);
+            assert_eq!(want.unwrap_or(REJECTED), got, "dt {dr} {dl}, {r:?} {o:?}");
+            rejected += want.is_none() as usize;
+        }
+        assert!(rejected > 1000 && rejected < 19_000, "both outcomes drawn: {rejected} rejected");
     }
 }

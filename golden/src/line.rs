@@ -7,7 +7,7 @@ use crate::disparity::Anchor;
 use crate::dp::{banded_dp_with, BandedGains, GainTable};
 #[cfg(doc)]
 use crate::dp::banded_dp;
-use crate::gain::{gmax, node_gain, node_gain_or_reject, pair_disparity};
+use crate::gain::{gmax, node_gain, pair_disparity, LineGain};
 use crate::noise::{noise_sigma, threshold};
 use crate::params::{Params, RefView};
 
@@ -142,10 +142,8 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
     let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
     let others: Vec<f64> = other.declivities.iter().map(|d| d.position).collect();
     let bands = search_bands(&refs, &others, params);
-    let g = gmax(reference.dt, other.dt);
-    let gain = |i: usize, j: usize| {
-        node_gain_or_reject(&reference.declivities[i], &other.declivities[j], g, params.dispmax, params.ref_view, params.mode)
-    };
+    let rule = LineGain::new(reference.dt, other.dt, params.mode);
+    let gain = |i: usize, j: usize| rule.gain(&reference.declivities[i], &other.declivities[j]);
     let path = banded_dp_with(others.len(), &bands, gain);
     let matches = path
         .nodes
