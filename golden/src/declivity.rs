@@ -91,15 +91,14 @@ pub fn declivity_bounds_reference(line: &[u8]) -> DeclivityBounds<'_> {
     DeclivityBounds { line, x: 0 }
 }
 
-/// The declivities of `line` whose amplitude exceeds `threshold` in absolute
-/// value, left to right, as `(x_i, next)` where `next` is the start of the
-/// following declivity (or, for the last, its end): one branch-free pass over
-/// the gradient signs, the way the streaming detector sees the line.
+/// The bounds `(x_i, x_{i+1})` of the declivities of `line` whose amplitude
+/// exceeds `threshold` in absolute value, left to right: one branch-free pass
+/// over the gradient signs, the way the streaming detector sees the line.
 ///
 /// A declivity starts at every non-zero gradient whose sign differs from the
-/// last non-zero sign, and is closed there. The flat run between its end and
-/// `next` has its end's level, so its amplitude is `I(next) - I(x_i)`, known
-/// when it is closed; its end is found from `next` by [`end_before`].
+/// last non-zero sign and is closed there; it ends one pixel after the last
+/// non-zero gradient before that. The flat run after its end keeps its end's
+/// level, so its amplitude is known when it is closed.
 pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
     let n = line.len();
     if n < 2 {
@@ -110,18 +109,17 @@ pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
     let mut k = 0usize;
     let mut start = 0usize;
     let mut last_sign = 0i32;
-    let mut last_nonzero = 0usize;
+    let mut end = 0usize; // one past the last non-zero gradient
     for x in 0..n - 1 {
         let s = (line[x + 1] as i32 - line[x] as i32).signum();
         let new = (s != 0) & (s != last_sign);
         let amplitude = line[x].abs_diff(line[start]) as u32;
-        spans[k] = (start, x);
+        spans[k] = (start, end);
         k += (new & (last_sign != 0) & (amplitude > threshold)) as usize;
         start = if new { x } else { start };
         last_sign = if s != 0 { s } else { last_sign };
-        last_nonzero = if s != 0 { x } else { last_nonzero };
+        end = if s != 0 { x + 1 } else { end };
     }
-    let end = last_nonzero + 1;
     if last_sign != 0 && line[end].abs_diff(line[start]) as u32 > threshold {
         spans[k] = (start, end);
         k += 1;
@@ -130,23 +128,11 @@ pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
     spans
 }
 
-/// The end `x_{i+1}` of the declivity that starts at `start`, given the
-/// start `next` of the following one (or the last declivity's end): the
-/// first pixel of the flat run that ends at `next`.
-#[inline]
-pub fn end_before(line: &[u8], start: usize, next: usize) -> usize {
-    let mut e = next;
-    while e > start + 1 && line[e - 1] == line[e] {
-        e -= 1;
-    }
-    e
-}
-
 /// The bounds `(x_i, x_{i+1})` of every declivity of `line`, left to right:
 /// the same as [`declivity_bounds_reference`], from [`declivity_spans`]
 /// (every declivity has `|a_i| ≥ 1 > 0`).
 pub fn declivity_bounds(line: &[u8]) -> Vec<(usize, usize)> {
-    declivity_spans(line, 0).into_iter().map(|(s, next)| (s, end_before(line, s, next))).collect()
+    declivity_spans(line, 0)
 }
 
 /// The amplitude threshold of [`declivity_spans`] equivalent to `|a_i| > d_t`:
@@ -228,10 +214,7 @@ pub fn all_declivities(line: &[u8]) -> Vec<Declivity> {
 /// runs inside the extrema pass ([`declivity_spans`]); only the kept
 /// declivities are bounded and described.
 pub fn characteristic_declivities(line: &[u8], dt: f64) -> Vec<Declivity> {
-    declivity_spans(line, integer_threshold(dt))
-        .into_iter()
-        .map(|(s, next)| describe(line, s, end_before(line, s, next)))
-        .collect()
+    declivity_spans(line, integer_threshold(dt)).into_iter().map(|(s, e)| describe(line, s, e)).collect()
 }
 
 #[cfg(test)]

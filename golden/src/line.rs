@@ -7,7 +7,7 @@ use crate::disparity::Anchor;
 use crate::dp::{banded_dp_with, BandedGains, GainTable};
 #[cfg(doc)]
 use crate::dp::banded_dp;
-use crate::gain::{gmax, node_gain, pair_disparity, LineGain};
+use crate::gain::{gmax, node_gain, pair_disparity, LineGain, Neighbours};
 use crate::noise::{noise_sigma, threshold};
 use crate::params::{Params, RefView};
 
@@ -143,7 +143,11 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
     let others: Vec<f64> = other.declivities.iter().map(|d| d.position).collect();
     let bands = search_bands(&refs, &others, params);
     let rule = LineGain::new(reference.dt, other.dt, params.mode);
-    let gain = |i: usize, j: usize| rule.gain(&reference.declivities[i], &other.declivities[j]);
+    let (rn, on): (Vec<Neighbours>, Vec<Neighbours>) = (
+        reference.declivities.iter().map(Neighbours::from).collect(),
+        other.declivities.iter().map(Neighbours::from).collect(),
+    );
+    let gain = |i: usize, j: usize| rule.gain(&rn[i], &on[j]);
     let path = banded_dp_with(others.len(), &bands, gain);
     let matches = path
         .nodes
