@@ -34,32 +34,34 @@ pub fn interpolate_line(anchors: &[Anchor], width: usize, ends: EndRule) -> Vec<
 
 /// [`interpolate_line`] into an existing row buffer (its length is the width).
 pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, out: &mut [f64]) {
-    out.fill(NO_DISPARITY);
     let (Some(first), Some(last)) = (anchors.first(), anchors.last()) else {
+        out.fill(NO_DISPARITY);
         return;
     };
-    // Pixels x (centres) in [x_a, x_b) for consecutive anchors a, b, as
-    // index ranges of `out`.
     let width = out.len();
+    // The first pixel centre at or after x, as an index of `out`.
     let first_at_or_after = |x: f64| (x.max(0.0).ceil() as usize).min(width);
+    let (held_first, held_last) = match ends {
+        EndRule::Hold => (first.d, last.d),
+        EndRule::Empty => (NO_DISPARITY, NO_DISPARITY),
+    };
+    // Every pixel is written once: before the first anchor, between
+    // consecutive anchors a and b (centres in [x_a, x_b)), then from the
+    // last anchor on (its own value at x = x_last, held or empty beyond).
     let begin = first_at_or_after(first.x);
-    if ends == EndRule::Hold {
-        out[..begin].fill(first.d);
-    }
+    out[..begin].fill(held_first);
     for w in anchors.windows(2) {
         let (a, b) = (w[0], w[1]);
         let slope = (b.d - a.d) / (b.x - a.x);
-        for x in first_at_or_after(a.x)..first_at_or_after(b.x) {
-            out[x] = a.d + slope * (x as f64 - a.x);
+        let (from, to) = (first_at_or_after(a.x), first_at_or_after(b.x));
+        for (x, v) in out[from..to].iter_mut().enumerate() {
+            *v = a.d + slope * ((from + x) as f64 - a.x);
         }
     }
-    // x >= last.x: the last anchor's value at x = last.x, held beyond.
-    let end = first_at_or_after(last.x);
-    if end < width && end as f64 == last.x {
-        out[end] = last.d;
+    let mut tail = first_at_or_after(last.x);
+    if tail < width && tail as f64 == last.x {
+        out[tail] = last.d;
+        tail += 1;
     }
-    let tail = if end < width && end as f64 == last.x { end + 1 } else { end };
-    if ends == EndRule::Hold {
-        out[tail..].fill(last.d);
-    }
+    out[tail..].fill(held_last);
 }
