@@ -13,7 +13,7 @@
 
 use std::time::Instant;
 
-use golden::{process_frame, FrameResult, Params, RefView, Threads};
+use golden::{process_frame, Declivity, FrameResult, LineResult, Params, RefView, Threads};
 use serde::Serialize;
 
 use crate::error::SimError;
@@ -271,15 +271,72 @@ pub struct Diagnosis {
     pub bad2_between_correct: f64,
 }
 
+/// What became of one reference declivity, judged against the ground truth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Fate {
+    /// No valid ground truth at its (rounded) position.
+    NoTruth,
+    /// Matched, within 1 px of the ground truth.
+    Correct,
+    /// Matched, more than 1 px off.
+    Wrong,
+    /// Unmatched although it has a true partner (an other-view declivity of
+    /// the same polarity within 1 px of where the ground truth puts it).
+    Missed,
+    /// Unmatched, and no true partner exists (occluded, or not detected in
+    /// the other view).
+    NoPartner,
+}
+
+/// Ground truth at a sub-pixel position of row `y`, if valid.
+fn truth_at(gt: &[f64], w: usize, y: usize, x: f64) -> Option<f64> {
+    let xr = x.round();
+    (xr >= 0.0 && xr < w as f64).then(|| gt[y * w + xr as usize]).filter(|&g| g > 0.0 && g.is_finite())
+}
+
+/// The true partner of reference declivity `rd` with ground truth `d`: the
+/// other-view declivity of the same polarity nearest to where `d` puts it,
+/// if within 1 px.
+fn true_partner<'a>(line: &'a LineResult, rd: &Declivity, d: f64, ref_view: RefView) -> Option<(usize, &'a Declivity)> {
+    let target = match ref_view {
+        RefView::Left => rd.position - d,
+        RefView::Right => rd.position + d,
+    };
+    line.other
+        .declivities
+        .iter()
+        .enumerate()
+        .filter(|(_, od)| od.polarity() == rd.polarity())
+        .min_by(|a, b| (a.1.position - target).abs().total_cmp(&(b.1.position - target).abs()))
+        .filter(|(_, od)| (od.position - target).abs() <= 1.0)
+}
+
+/// The fate of every reference declivity of row `y`, in order.
+pub fn fates(frame: &FrameResult, gt: &[f64], y: usize) -> Vec<Fate> {
+    let line = &frame.lines[y];
+    let mut matched = vec![None; line.reference.declivities.len()];
+    for m in &line.matches {
+        matched[m.ref_index] = Some(m.disparity);
+    }
+    line.reference
+        .declivities
+        .iter()
+        .zip(matched)
+        .map(|(rd, m)| match (truth_at(gt, frame.width, y, rd.position), m) {
+            (None, _) => Fate::NoTruth,
+            (Some(g), Some(d)) if (d - g).abs() <= 1.0 => Fate::Correct,
+            (Some(_), Some(_)) => Fate::Wrong,
+            (Some(g), None) if true_partner(line, rd, g, frame.params.ref_view).is_some() => Fate::Missed,
+            (Some(_), None) => Fate::NoPartner,
+        })
+        .collect()
+}
+
 /// Counts the causes of failure of `frame` against the reference view's
 /// ground truth `gt` (see [`Diagnosis`]).
 pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
     use golden::gain::{gmax, lpd, rpd};
     let w = frame.width;
-    let gt_at = |y: usize, x: f64| -> Option<f64> {
-        let xr = x.round();
-        (xr >= 0.0 && xr < w as f64).then(|| gt[y * w + xr as usize]).filter(|&g| g > 0.0 && g.is_finite())
-    };
     let (mut rows_with, mut rows_none) = (0usize, 0usize);
     let (mut n_ref, mut partners, mut both, mut one, mut matched) = (0usize, 0usize, 0usize, 0usize, 0usize);
     let mut offset_sum = 0.0;
@@ -294,34 +351,22 @@ pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
         ratios.push(r.dt.max(o.dt) / r.dt.min(o.dt));
         let g = gmax(r.dt, o.dt);
         for (i, rd) in r.declivities.iter().enumerate() {
-            let Some(d) = gt_at(y, rd.position) else { continue };
+            let Some(d) = truth_at(gt, w, y, rd.position) else { continue };
             n_ref += 1;
-            // The other view's position the ground truth predicts.
-            let target = match frame.params.ref_view {
-                golden::RefView::Left => rd.position - d,
-                golden::RefView::Right => rd.position + d,
-            };
-            let partner = o
-                .declivities
-                .iter()
-                .enumerate()
-                .filter(|(_, od)| od.polarity() == rd.polarity())
-                .min_by(|a, b| (a.1.position - target).abs().total_cmp(&(b.1.position - target).abs()))
-                .filter(|(_, od)| (od.position - target).abs() <= 1.0);
-            let Some((j, od)) = partner else { continue };
+            let Some((j, od)) = true_partner(line, rd, d, frame.params.ref_view) else { continue };
             partners += 1;
             let (l, rr) = (lpd(rd, od) as f64, rpd(rd, od) as f64);
             both += (l < g && rr < g) as usize;
             one += ((l < g) != (rr < g)) as usize;
             matched += line.matches.iter().any(|m| m.ref_index == i && m.other_index == j) as usize;
-            let mean = |dcl: &golden::Declivity| dcl.left.iter().chain(&dcl.right).map(|&v| v as f64).sum::<f64>() / 6.0;
+            let mean = |dcl: &Declivity| dcl.left.iter().chain(&dcl.right).map(|&v| v as f64).sum::<f64>() / 6.0;
             offset_sum += (mean(rd) - mean(od)).abs();
         }
         // Bad pixels between two correct matches.
         let anchors: Vec<(f64, bool)> = line
             .matches
             .iter()
-            .map(|m| (m.x_ref, gt_at(y, m.x_ref).is_some_and(|g| (m.disparity - g).abs() <= 1.0)))
+            .map(|m| (m.x_ref, truth_at(gt, w, y, m.x_ref).is_some_and(|g| (m.disparity - g).abs() <= 1.0)))
             .collect();
         for x in 0..w {
             let gv = gt[y * w + x];
@@ -349,6 +394,66 @@ pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
         dt_ratio_median: ratios.get(ratios.len() / 2).copied().unwrap_or(1.0),
         bad2_between_correct: pct(bad_between, bad),
     }
+}
+
+/// Colours of [`error_picture`].
+pub mod colours {
+    /// No ground truth.
+    pub const NO_TRUTH: [u8; 3] = [40, 40, 40];
+    /// Ground truth but no disparity.
+    pub const NO_OUTPUT: [u8; 3] = [20, 40, 150];
+    /// `|d - gt| ≤ 1`.
+    pub const GOOD: [u8; 3] = [30, 130, 50];
+    /// `1 < |d - gt| ≤ 2`.
+    pub const NEAR: [u8; 3] = [190, 170, 40];
+    /// `|d - gt| > 2`.
+    pub const BAD: [u8; 3] = [200, 30, 30];
+    /// A matched declivity within 1 px.
+    pub const DECL_CORRECT: [u8; 3] = [255, 255, 255];
+    /// A matched declivity more than 1 px off.
+    pub const DECL_WRONG: [u8; 3] = [255, 0, 255];
+    /// An unmatched declivity that has a true partner.
+    pub const DECL_MISSED: [u8; 3] = [0, 255, 255];
+}
+
+/// Where the method fails, in one picture: every pixel coloured by its
+/// dense error (grey: no ground truth, blue: no disparity, green ≤ 1 px,
+/// yellow ≤ 2 px, red > 2 px), and every reference declivity with ground
+/// truth marked at its rounded position: white when matched correctly,
+/// magenta when matched wrongly, cyan when unmatched although its true
+/// partner exists (the photometric test of eq. 7 rejected it, or the path
+/// went elsewhere). Unmatched declivities without a partner are not marked.
+pub fn error_picture(frame: &FrameResult, gt: &[f64]) -> image::RgbImage {
+    let w = frame.width;
+    let mut img = image::RgbImage::from_fn(w as u32, frame.height as u32, |x, y| {
+        let k = y as usize * w + x as usize;
+        let (g, d) = (gt[k], frame.disparity[k]);
+        image::Rgb(if !(g > 0.0 && g.is_finite()) {
+            colours::NO_TRUTH
+        } else if d <= 0.0 {
+            colours::NO_OUTPUT
+        } else if (d - g).abs() <= 1.0 {
+            colours::GOOD
+        } else if (d - g).abs() <= 2.0 {
+            colours::NEAR
+        } else {
+            colours::BAD
+        })
+    });
+    for y in 0..frame.height {
+        let decls = &frame.lines[y].reference.declivities;
+        for (rd, fate) in decls.iter().zip(fates(frame, gt, y)) {
+            let colour = match fate {
+                Fate::Correct => colours::DECL_CORRECT,
+                Fate::Wrong => colours::DECL_WRONG,
+                Fate::Missed => colours::DECL_MISSED,
+                Fate::NoTruth | Fate::NoPartner => continue,
+            };
+            let x = rd.position.round().clamp(0.0, (w - 1) as f64) as u32;
+            img.put_pixel(x, y as u32, image::Rgb(colour));
+        }
+    }
+    img
 }
 
 /// The diagnoses as a Markdown table.

@@ -11,7 +11,7 @@ use sim::depth::{run_depth, DepthJob, DepthSummary};
 use sim::error::SimError;
 use sim::eval::{evaluate_pair, markdown_table};
 use sim::io::{expand_pair_dirs, load_grey, load_pair_dir};
-use sim::{bundled, eval};
+use sim::{bundled, eval, pictures};
 
 const ABOUT: &str = "Declivity stereo: depth maps by the method of Bensrhair, Miché and Debrie \
 (self-adaptive declivity segmentation + dynamic-programming matching of scanlines)";
@@ -112,6 +112,11 @@ struct EvalArgs {
     /// partner fails the photometric test (eq. 7), interpolation across depth edges.
     #[arg(long)]
     diagnose: bool,
+    /// Also write, per pair, PAIR_disparity.png and PAIR_truth.png (near is bright, same
+    /// scale) and PAIR_errors.png (green <= 1 px, yellow <= 2, red > 2, blue: no disparity;
+    /// declivities: white matched right, magenta matched wrong, cyan missed with a true partner).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
     #[command(flatten)]
     method: MethodArgs,
 }
@@ -253,6 +258,20 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
     Ok(())
 }
 
+/// The pictures of `eval --out`: disparity and ground truth on one scale, and
+/// the error map with the declivities' fates.
+fn write_eval_pictures(out: &std::path::Path, pair: &str, frame: &golden::FrameResult, gt: &[f64]) -> Result<(), SimError> {
+    std::fs::create_dir_all(out).map_err(|source| SimError::Io { path: out.to_path_buf(), source })?;
+    let scale = frame.params.dispmax;
+    pictures::save_png(&pictures::disparity_visual(frame, scale), &out.join(format!("{pair}_disparity.png")))?;
+    pictures::save_png(
+        &pictures::disparity_visual_of(gt, frame.width, frame.height, scale),
+        &out.join(format!("{pair}_truth.png")),
+    )?;
+    pictures::save_png(&eval::error_picture(frame, gt), &out.join(format!("{pair}_errors.png")))?;
+    Ok(())
+}
+
 fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
     let params = a.method.params(2.0)?;
     let dirs = expand_pair_dirs(&a.pairs)?;
@@ -268,8 +287,12 @@ fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
             bar.suspend(|| eprintln!("note: {n}"));
         }
         let (report, frame) = evaluate_pair(&pair, &params, a.runs)?;
+        let gt = eval::reference_gt(&pair, params.ref_view)?;
         if a.diagnose {
-            diagnoses.push((report.pair.clone(), eval::diagnose(&frame, eval::reference_gt(&pair, params.ref_view)?)));
+            diagnoses.push((report.pair.clone(), eval::diagnose(&frame, gt)));
+        }
+        if let Some(out) = &a.out {
+            write_eval_pictures(out, &report.pair, &frame, gt)?;
         }
         if a.json {
             bar.suspend(|| println!("{}", serde_json::to_string(&report).expect("report serializes")));
