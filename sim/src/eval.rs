@@ -478,3 +478,75 @@ pub fn diagnosis_table(rows: &[(String, Diagnosis)]) -> String {
     }
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use golden::GreyImage;
+
+    #[test]
+    fn dense_scores_on_a_hand_case() {
+        // 6 pixels; gt 0 = unknown at k = 5. Output 0 = none at k = 1.
+        // k:     0    1    2    3    4    5
+        // gt:   10   10   10   10   10    0
+        // d:    10    0   11.5 12.5 13    9
+        // E = {0..4} (5 px). Errors: 0, none, 1.5, 2.5, 3.
+        // bad1: none + 1.5 + 2.5 + 3 -> 4/5 = 80 %; bad2: none + 2.5 + 3 -> 60 %.
+        // With output: {0,2,3,4}: bad1v 3/4 = 75 %, bad2v 2/4 = 50 %.
+        // density: 5 of 6 pixels have output -> 83.33 %.
+        let s = dense_scores(&[10.0, 0.0, 11.5, 12.5, 13.0, 9.0], &[10.0, 10.0, 10.0, 10.0, 10.0, 0.0], None);
+        assert_eq!(s.n_eval, 5);
+        assert!((s.bad1 - 80.0).abs() < 1e-9 && (s.bad2 - 60.0).abs() < 1e-9, "{s:?}");
+        assert!((s.bad1v - 75.0).abs() < 1e-9 && (s.bad2v - 50.0).abs() < 1e-9, "{s:?}");
+        assert!((s.density - 500.0 / 6.0).abs() < 1e-9, "{s:?}");
+        // A mask keeping k = 0 and 3 only: errors 0 and 2.5 -> bad2 50 %.
+        let m = [true, false, false, true, false, true];
+        let s = dense_scores(&[10.0, 0.0, 11.5, 12.5, 13.0, 9.0], &[10.0, 10.0, 10.0, 10.0, 10.0, 0.0], Some(&m));
+        assert_eq!(s.n_eval, 2);
+        assert!((s.bad2 - 50.0).abs() < 1e-9, "{s:?}");
+    }
+
+    /// A textured pair where the right view is the left shifted by `d`.
+    fn shifted(w: usize, h: usize, d: usize) -> (GreyImage, GreyImage) {
+        let tex = |x: usize, y: usize| (40 + ((x / 6 * 37 + y / 5 * 11) % 7) * 30) as u8;
+        let l = (0..h).flat_map(|y| (0..w).map(move |x| tex(x, y))).collect();
+        let r = (0..h).flat_map(|y| (0..w).map(move |x| tex(x + d, y))).collect();
+        (GreyImage::new(w, h, l).unwrap(), GreyImage::new(w, h, r).unwrap())
+    }
+
+    #[test]
+    fn fates_and_sparse_accuracy_follow_the_ground_truth() {
+        let (l, r) = shifted(120, 6, 5);
+        let frame = process_frame(&l, &r, &Params::new(9.0).unwrap(), Threads::One).unwrap();
+        assert!(frame.matches() > 10, "the shifted pair matches");
+        // True ground truth: every matched declivity is correct.
+        let gt = vec![5.0; 120 * 6];
+        let (ok, n) = sparse_counts(&frame, &gt);
+        assert_eq!((ok, n), (frame.matches(), frame.matches()));
+        assert!(fates(&frame, &gt, 2).iter().all(|f| matches!(f, Fate::Correct | Fate::NoPartner | Fate::Missed)));
+        // Ground truth 3 px off: every match is wrong; nothing is evaluated
+        // where the truth is unknown.
+        let off = vec![8.0; 120 * 6];
+        assert_eq!(sparse_counts(&frame, &off).0, 0);
+        assert!(fates(&frame, &off, 2).contains(&Fate::Wrong));
+        assert_eq!(sparse_counts(&frame, &vec![0.0; 120 * 6]), (0, 0));
+        assert!(fates(&frame, &vec![0.0; 120 * 6], 2).iter().all(|f| *f == Fate::NoTruth));
+    }
+
+    #[test]
+    fn error_picture_colours_pixels_by_error_and_marks_declivities() {
+        let (l, r) = shifted(120, 6, 5);
+        let frame = process_frame(&l, &r, &Params::new(9.0).unwrap(), Threads::One).unwrap();
+        let mut gt = vec![5.0; 120 * 6];
+        gt[0] = 0.0;
+        let img = error_picture(&frame, &gt);
+        assert_eq!(img.get_pixel(0, 0).0, colours::NO_TRUTH);
+        // Away from the border the dense map is exact.
+        assert_eq!(img.get_pixel(60, 3).0, colours::GOOD);
+        let m = frame.lines[3].matches[2];
+        assert_eq!(img.get_pixel(m.x_ref.round() as u32, 3).0, colours::DECL_CORRECT);
+        let wrong = error_picture(&frame, &vec![9.0; 120 * 6]);
+        assert_eq!(wrong.get_pixel(60, 3).0, colours::BAD);
+        assert_eq!(wrong.get_pixel(m.x_ref.round() as u32, 3).0, colours::DECL_WRONG);
+    }
+}
