@@ -153,13 +153,17 @@ pub fn disparity_visual_of(disparity: &[f64], width: usize, height: usize, dispm
     let data = disparity
         .iter()
         .map(|&d| {
-            if !(d > 0.0) {
-                0
-            } else if !(scale > 0.0) {
-                255
+            // NaN and `d <= 0` are "none"; a NaN or zero scale makes every
+            // valid pixel white.
+            if d > 0.0 {
+                if scale > 0.0 {
+                    let t = (d / scale).min(1.0);
+                    1 + (254.0 * t).round() as u8
+                } else {
+                    255
+                }
             } else {
-                let t = (d / scale).min(1.0);
-                1 + (254.0 * t).round() as u8
+                0
             }
         })
         .collect();
