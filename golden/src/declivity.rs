@@ -254,7 +254,7 @@ pub fn neighbour_levels(line: &[u8], start: usize, end: usize) -> ([u8; 3], [u8;
 
 /// The declivity `(start, end)` of `line` with its amplitude, eq. 3 position
 /// and attributes.
-#[inline]
+#[inline(always)]
 pub fn describe(line: &[u8], start: usize, end: usize) -> Declivity {
     let (left, right) = neighbour_levels(line, start, end);
     Declivity {
