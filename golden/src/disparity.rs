@@ -39,8 +39,13 @@ pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, out: &mut [f64]) {
         return;
     };
     let width = out.len();
-    // The first pixel centre at or after x, as an index of `out`.
-    let first_at_or_after = |x: f64| (x.max(0.0).ceil() as usize).min(width);
+    // The first pixel centre at or after x, as an index of `out` (a ceiling
+    // without a call to libm's `ceil`).
+    let first_at_or_after = |x: f64| {
+        let x = x.max(0.0);
+        let t = x as usize;
+        (t + ((t as f64) < x) as usize).min(width)
+    };
     let (held_first, held_last) = match ends {
         EndRule::Hold => (first.d, last.d),
         EndRule::Empty => (NO_DISPARITY, NO_DISPARITY),

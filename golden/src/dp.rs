@@ -388,29 +388,48 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(u
         tails.push(tail);
     }
 
-    // Outside the bands, the choices follow from the tails: right of row i's
-    // band, P(i,j) = T_i and P(i-1,j) = T_{i-1}; left of it,
-    // P(i,j) = P(i-1,j). The tie-break of `cell_step` with no node gives
-    // start when P = 0, else up when P(i-1,j) = P(i,j), else left. Left of
-    // the band the walk goes up without looking at P: from a cell with
-    // P = 0 every cell the walk can reach has P = 0 and holds no node, so
-    // the path's nodes are those of `prefix_max_dp`'s traceback.
-    let choice_at = |i: usize, j: usize| -> Choice {
+    // The traceback of `traceback`, with the choices outside the bands
+    // derived from the tails and runs of equal moves taken at once. Right of
+    // row i's band, P(i,j) = T_i and P(i-1,j) = T_{i-1}: the tie-break of
+    // `cell_step` with no node gives start when T_i = 0, up when
+    // T_{i-1} = T_i, and otherwise left all the way to the band. Left of the
+    // band P(i,j) = P(i-1,j), so the walk goes up until a band reaches j; it
+    // does so without looking at P: from a cell with P = 0 every cell the
+    // walk can reach has P = 0 and holds no node, so the path's nodes are
+    // those of `prefix_max_dp`'s traceback.
+    let mut nodes = Vec::new();
+    let (mut i, mut j) = (n, m);
+    while i > 0 && j > 0 {
         let (lo0, hi0) = bands[i - 1];
         if j <= lo0 {
-            return Choice::Up;
+            i -= 1;
+            while i > 0 && j <= bands[i - 1].0 {
+                i -= 1;
+            }
+        } else if j > hi0 {
+            let t = tails[i - 1];
+            let t_prev = if i >= 2 { tails[i - 2] } else { 0.0 };
+            if t <= 0.0 {
+                break;
+            } else if t == t_prev {
+                i -= 1;
+            } else {
+                j = hi0;
+            }
+        } else {
+            match band_c[offs[i - 1] + j - 1 - lo0] {
+                Choice::Start => break,
+                Choice::Node => {
+                    nodes.push((i - 1, j - 1));
+                    i -= 1;
+                    j -= 1;
+                }
+                Choice::Up => i -= 1,
+                Choice::Left => j -= 1,
+            }
         }
-        if j <= hi0 {
-            return band_c[offs[i - 1] + j - 1 - lo0];
-        }
-        let t_prev = if i >= 2 { tails[i - 2] } else { 0.0 };
-        match tails[i - 1] {
-            t if t <= 0.0 => Choice::Start,
-            t if t == t_prev => Choice::Up,
-            _ => Choice::Left,
-        }
-    };
-    let nodes = traceback(n, m, choice_at);
+    }
+    nodes.reverse();
     // P(N,M) = T_N: no column lies right of the last one.
     Path { gain: tails.last().copied().unwrap_or(0.0), nodes }
 }

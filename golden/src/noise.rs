@@ -29,15 +29,11 @@ pub const THRESHOLD_FACTOR: f64 = 5.6;
 /// Histogram of the absolute differences `|I(x+1) - I(x)|`, `x = 0 … W-2`.
 /// A line of fewer than two pixels gives an empty histogram.
 pub fn abs_diff_histogram(line: &[u8]) -> [u32; HIST_BINS] {
-    // Two interleaved histograms, summed at the end: consecutive increments
-    // of the same bin (frequent: noise is small) then do not wait on each
-    // other.
-    let mut h = [[0u32; HIST_BINS]; 2];
-    let diffs = line.windows(2).map(|w| w[0].abs_diff(w[1]) as usize);
-    for (k, d) in diffs.enumerate() {
-        h[k & 1][d] += 1;
+    let mut hist = [0u32; HIST_BINS];
+    for w in line.windows(2) {
+        hist[w[0].abs_diff(w[1]) as usize] += 1;
     }
-    std::array::from_fn(|v| h[0][v] + h[1][v])
+    hist
 }
 
 /// Median of an integer-valued histogram with linear interpolation inside
@@ -50,36 +46,60 @@ pub fn abs_diff_histogram(line: &[u8]) -> [u32; HIST_BINS] {
 /// `lower(v) + width(v) · (n/2 - c) / h`.
 pub fn interpolated_median(hist: &[u32; HIST_BINS]) -> Option<f64> {
     let n: u64 = hist.iter().map(|&h| h as u64).sum();
+    interpolated_median_of(n, |v| hist[v] as u64)
+}
+
+/// [`interpolated_median`] of `n` samples whose histogram is given bin by
+/// bin by `count` (scanned from bin 0 up to the median bin only).
+pub fn interpolated_median_of(n: u64, count: impl Fn(usize) -> u64) -> Option<f64> {
     if n == 0 {
         return None;
     }
     let half = n as f64 / 2.0;
     let mut below = 0u64;
-    for (v, &h) in hist.iter().enumerate() {
-        if h > 0 && (below + h as u64) as f64 >= half {
+    for v in 0..HIST_BINS {
+        let h = count(v);
+        if h > 0 && (below + h) as f64 >= half {
             let (lower, width) = if v == 0 { (0.0, 0.5) } else { (v as f64 - 0.5, 1.0) };
             return Some(lower + width * (half - below as f64) / h as f64);
         }
-        below += h as u64;
+        below += h;
     }
-    unreachable!("the cumulative count reaches n")
+    unreachable!("the counts add up to n")
+}
+
+/// σ from a median `m` of |ΔI| (DESIGN §2.1): `max(m / (0.6745·√2), 1/√12)`;
+/// no median (fewer than two pixels) gives the floor.
+pub fn sigma_from_median(m: Option<f64>) -> f64 {
+    match m {
+        Some(m) => (m / (MAD_NORMAL * std::f64::consts::SQRT_2)).max(SIGMA_FLOOR),
+        None => SIGMA_FLOOR,
+    }
 }
 
 /// σ of the line's noise (DESIGN §2.1): `max(m / (0.6745·√2), 1/√12)` with
 /// `m` the interpolated median of |ΔI|. A line of fewer than two pixels has
 /// no differences and gets the floor.
 pub fn noise_sigma(line: &[u8]) -> f64 {
-    let hist = abs_diff_histogram(line);
-    sigma_from_histogram(&hist)
+    // The histogram of `abs_diff_histogram`, kept as two interleaved halves
+    // of 16-bit counts (consecutive increments of one bin, frequent as noise
+    // is small, then do not wait on each other; lines of 65 536 pixels or
+    // more take the 32-bit path), and read only up to its median bin.
+    let n = line.len().saturating_sub(1);
+    if n >= u16::MAX as usize {
+        return sigma_from_histogram(&abs_diff_histogram(line));
+    }
+    let mut h = [[0u16; HIST_BINS]; 2];
+    for (k, w) in line.windows(2).enumerate() {
+        h[k & 1][w[0].abs_diff(w[1]) as usize] += 1;
+    }
+    sigma_from_median(interpolated_median_of(n as u64, |v| h[0][v] as u64 + h[1][v] as u64))
 }
 
 /// σ from an already built |ΔI| histogram (the hardware builds it while the
 /// line streams in).
 pub fn sigma_from_histogram(hist: &[u32; HIST_BINS]) -> f64 {
-    match interpolated_median(hist) {
-        Some(m) => (m / (MAD_NORMAL * std::f64::consts::SQRT_2)).max(SIGMA_FLOOR),
-        None => SIGMA_FLOOR,
-    }
+    sigma_from_median(interpolated_median(hist))
 }
 
 /// Eq. 2: the self-adaptive declivity threshold `d_t = 5.6 σ`.
@@ -90,4 +110,28 @@ pub fn threshold(sigma: f64) -> f64 {
 /// Eq. 2 on a line: `d_t` from the line's own noise estimate.
 pub fn line_threshold(line: &[u8]) -> f64 {
     threshold(noise_sigma(line))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn noise_sigma_equals_sigma_of_the_histogram() {
+        // xorshift64*, seeded.
+        let mut st = 0x1234_5678_9abc_def1u64;
+        let mut next = move || {
+            st ^= st >> 12;
+            st ^= st << 25;
+            st ^= st >> 27;
+            st.wrapping_mul(0x2545_f491_4f6c_dd1d)
+        };
+        for _ in 0..5000 {
+            let n = (next() % 600) as usize;
+            let spread = 1 + next() % 255;
+            let base = (next() % 256) as i64;
+            let line: Vec<u8> = (0..n).map(|_| (base + (next() % spread) as i64 - spread as i64 / 2).clamp(0, 255) as u8).collect();
+            assert_eq!(noise_sigma(&line), sigma_from_histogram(&abs_diff_histogram(&line)), "{line:?}");
+        }
+    }
 }
