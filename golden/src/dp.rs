@@ -141,18 +141,19 @@ pub fn cell_step(g: Option<f64>, up: f64, left: f64) -> (f64, Choice) {
 /// [`cell_step`] with "no node" as `G = -∞`.
 #[inline]
 fn cell_step_g(g: f64, up: f64, left: f64) -> (f64, Choice) {
-    // Written as selects rather than branches: the outcome is data-dependent
-    // and would be mispredicted often.
+    // Selects rather than branches: the outcome is data-dependent and a
+    // branch would be mispredicted often.
+    use std::hint::select_unpredictable as pick;
     let (mut best, mut choice) = (0.0, Choice::Start);
     let take = g > best;
-    best = if take { g } else { best };
-    choice = if take { Choice::Node } else { choice };
+    best = pick(take, g, best);
+    choice = pick(take, Choice::Node, choice);
     let take = up > best;
-    best = if take { up } else { best };
-    choice = if take { Choice::Up } else { choice };
+    best = pick(take, up, best);
+    choice = pick(take, Choice::Up, choice);
     let take = left > best;
-    best = if take { left } else { best };
-    choice = if take { Choice::Left } else { choice };
+    best = pick(take, left, best);
+    choice = pick(take, Choice::Left, choice);
     (best, choice)
 }
 

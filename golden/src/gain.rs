@@ -106,15 +106,6 @@ impl From<&Declivity> for Neighbours {
     }
 }
 
-/// `if cond { a } else { b }` on the bits, so that it compiles to no branch:
-/// the outcome of the photometric test is data-dependent and a branch on it
-/// would be mispredicted often.
-#[inline]
-fn select(cond: bool, a: f64, b: f64) -> f64 {
-    let mask = (cond as u64).wrapping_neg();
-    f64::from_bits((a.to_bits() & mask) | (b.to_bits() & !mask))
-}
-
 /// `Σ |a_k - b_k|` over 8 bytes (one `psadbw` on x86-64).
 #[inline]
 fn sum_abs_diff8(a: &[u8; 8], b: &[u8; 8]) -> u32 {
@@ -136,10 +127,10 @@ fn sum_abs_diff8(a: &[u8; 8], b: &[u8; 8]) -> u32 {
 pub struct LineGain {
     /// `⌈gmax⌉`: a distance is "below gmax" when it is below this.
     below: u32,
-    /// `f(gmax)` when both distances are below `gmax`.
-    f_both: f64,
-    /// `f(gmax)` when exactly one is.
-    f_one: f64,
+    /// `f(gmax)` by the number of distances below `gmax`: none (rejected:
+    /// [`REJECTED`]), one, both. A table rather than a choice, so that the
+    /// data-dependent outcome costs no branch.
+    f: [f64; 3],
 }
 
 impl LineGain {
@@ -148,7 +139,7 @@ impl LineGain {
     pub fn new(dt_ref: f64, dt_other: f64, mode: Mode) -> Self {
         let g = gmax(dt_ref, dt_other);
         match mode {
-            Mode::Paper => LineGain { below: g.ceil() as u32, f_both: 3.0 * g, f_one: g },
+            Mode::Paper => LineGain { below: g.ceil() as u32, f: [REJECTED, g, 3.0 * g] },
         }
     }
 
@@ -157,9 +148,8 @@ impl LineGain {
     #[inline]
     pub fn gain(&self, reference: &Neighbours, other: &Neighbours) -> f64 {
         let (l, r) = (sum_abs_diff8(&reference.left, &other.left), sum_abs_diff8(&reference.right, &other.right));
-        let (lb, rb) = (l < self.below, r < self.below);
-        let f = select(lb & rb, self.f_both, self.f_one);
-        select(lb | rb, f - (l + r) as f64, REJECTED)
+        let similar = (l < self.below) as usize + (r < self.below) as usize;
+        self.f[similar] - (l + r) as f64
     }
 }
 
