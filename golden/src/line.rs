@@ -175,3 +175,45 @@ pub fn process_line(left: &[u8], right: &[u8], params: &Params) -> LineResult {
     let (matches, path_gain) = match_lines(&reference, &other, params);
     LineResult { reference, other, matches, path_gain }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gain::in_search_area;
+
+    #[test]
+    fn search_bands_are_exactly_the_columns_inside_the_search_area() {
+        // xorshift64*, seeded.
+        let mut st = 0x0bad_5eed_1234_5678u64;
+        let mut next = move || {
+            st ^= st >> 12;
+            st ^= st << 25;
+            st ^= st >> 27;
+            st.wrapping_mul(0x2545_f491_4f6c_dd1d)
+        };
+        for case in 0..4000 {
+            let mut sorted = |len: u64| {
+                let mut v: Vec<f64> = (0..next() % len).map(|_| (next() % 4000) as f64 / 8.0).collect();
+                v.sort_by(f64::total_cmp);
+                v.dedup();
+                v
+            };
+            let (refs, others) = (sorted(40), sorted(40));
+            let dispmax = 1.0 + (next() % 400) as f64 / 4.0;
+            for ref_view in [RefView::Left, RefView::Right] {
+                let params = Params { dispmax, ref_view, ..Params::new(2.0).unwrap() };
+                let bands = search_bands(&refs, &others, &params);
+                assert_eq!(bands.len(), refs.len());
+                assert!(bands.windows(2).all(|w| w[0].0 <= w[1].0 && w[0].1 <= w[1].1), "case {case}: bands move right");
+                for (i, &(lo, hi)) in bands.iter().enumerate() {
+                    let inside: Vec<usize> = (0..others.len())
+                        .filter(|&j| in_search_area(pair_disparity(refs[i], others[j], ref_view), dispmax))
+                        .collect();
+                    let want = inside.first().map_or((lo, lo), |&f| (f, inside.last().unwrap() + 1));
+                    assert_eq!(inside.len(), want.1 - want.0, "case {case}: the area is contiguous");
+                    assert_eq!((lo, hi), want, "case {case}, row {i}, {ref_view:?}, dispmax {dispmax}");
+                }
+            }
+        }
+    }
+}
