@@ -284,13 +284,6 @@ pub fn characteristic_declivities(line: &[u8], dt: f64) -> Vec<Declivity> {
 mod tests {
     use super::*;
 
-    /// xorshift64*: a seeded generator, so failures replay.
-    fn next(state: &mut u64) -> u64 {
-        *state ^= *state >> 12;
-        *state ^= *state << 25;
-        *state ^= *state >> 27;
-        state.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
 
     #[test]
     fn integer_threshold_is_the_characteristic_test() {
@@ -304,18 +297,19 @@ mod tests {
 
     #[test]
     fn fast_bounds_equal_reference_bounds_on_random_lines_with_plateaus() {
-        let mut st = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rng = crate::test_rng::TestRng::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = move || rng.next();
         for case in 0..3000 {
-            let n = (next(&mut st) % 300) as usize;
+            let n = (next() % 300) as usize;
             // Few levels make plateaus and repeated values frequent.
-            let levels = 1 + next(&mut st) % 6;
-            let line: Vec<u8> = (0..n).map(|_| (next(&mut st) % levels) as u8 * 40).collect();
+            let levels = 1 + next() % 6;
+            let line: Vec<u8> = (0..n).map(|_| (next() % levels) as u8 * 40).collect();
             let fast = declivity_bounds(&line);
             let reference: Vec<_> = declivity_bounds_reference(&line).collect();
             assert_eq!(fast, reference, "case {case}, line {line:?}");
             // The amplitude test inside the pass keeps exactly the declivities
             // the reference walk finds characteristic.
-            let dt = (next(&mut st) % 2000) as f64 / 10.0;
+            let dt = (next() % 2000) as f64 / 10.0;
             let kept: Vec<_> = reference
                 .iter()
                 .filter(|&&(s, e)| is_characteristic(amplitude(&line, s, e), dt))

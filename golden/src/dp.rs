@@ -215,20 +215,26 @@ pub fn prefix_max_dp(t: &GainTable) -> PrefixMaxTables {
 pub fn traceback(n: usize, m: usize, choice_at: impl Fn(usize, usize) -> Choice) -> Vec<(usize, usize)> {
     let (mut i, mut j) = (n, m);
     let mut nodes = Vec::new();
-    while i > 0 && j > 0 {
-        match choice_at(i, j) {
-            Choice::Start => break,
-            Choice::Node => {
-                nodes.push((i - 1, j - 1));
-                i -= 1;
-                j -= 1;
-            }
-            Choice::Up => i -= 1,
-            Choice::Left => j -= 1,
-        }
-    }
+    while i > 0 && j > 0 && step_back(choice_at(i, j), &mut i, &mut j, &mut nodes) {}
     nodes.reverse();
     nodes
+}
+
+/// One move of the traceback from `(i, j)` (1-based) by `choice`, pushing
+/// the node it takes (0-based); `false` when the path starts here.
+#[inline]
+fn step_back(choice: Choice, i: &mut usize, j: &mut usize, nodes: &mut Vec<(usize, usize)>) -> bool {
+    match choice {
+        Choice::Start => return false,
+        Choice::Node => {
+            nodes.push((*i - 1, *j - 1));
+            *i -= 1;
+            *j -= 1;
+        }
+        Choice::Up => *i -= 1,
+        Choice::Left => *j -= 1,
+    }
+    true
 }
 
 /// The best path by the full prefix-max recurrence and its traceback.
@@ -417,17 +423,8 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(u
             } else {
                 j = hi0;
             }
-        } else {
-            match band_c[offs[i - 1] + j - 1 - lo0] {
-                Choice::Start => break,
-                Choice::Node => {
-                    nodes.push((i - 1, j - 1));
-                    i -= 1;
-                    j -= 1;
-                }
-                Choice::Up => i -= 1,
-                Choice::Left => j -= 1,
-            }
+        } else if !step_back(band_c[offs[i - 1] + j - 1 - lo0], &mut i, &mut j, &mut nodes) {
+            break;
         }
     }
     nodes.reverse();

@@ -163,14 +163,8 @@ mod tests {
 
     #[test]
     fn line_gain_equals_node_gain_inside_the_search_area() {
-        // xorshift64*, seeded: failures replay.
-        let mut st = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            st ^= st >> 12;
-            st ^= st << 25;
-            st ^= st >> 27;
-            st.wrapping_mul(0x2545_f491_4f6c_dd1d)
-        };
+        let mut rng = crate::test_rng::TestRng::new(0x2545_f491_4f6c_dd1du64);
+        let mut next = move || rng.next();
         let mut rejected = 0;
         for _ in 0..20_000 {
             let mut px = || [0, 1, 2].map(|_| (next() % 64) as u8 + 100);

@@ -31,6 +31,9 @@ pub mod noise;
 pub mod params;
 pub mod reconstruct;
 
+#[cfg(test)]
+mod test_rng;
+
 pub use declivity::Declivity;
 pub use error::GoldenError;
 pub use frame::{process_frame, FrameResult, GreyImage, Threads};

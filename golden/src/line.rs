@@ -183,14 +183,8 @@ mod tests {
 
     #[test]
     fn search_bands_are_exactly_the_columns_inside_the_search_area() {
-        // xorshift64*, seeded.
-        let mut st = 0x0bad_5eed_1234_5678u64;
-        let mut next = move || {
-            st ^= st >> 12;
-            st ^= st << 25;
-            st ^= st >> 27;
-            st.wrapping_mul(0x2545_f491_4f6c_dd1d)
-        };
+        let mut rng = crate::test_rng::TestRng::new(0x0bad_5eed_1234_5678u64);
+        let mut next = move || rng.next();
         for case in 0..4000 {
             let mut sorted = |len: u64| {
                 let mut v: Vec<f64> = (0..next() % len).map(|_| (next() % 4000) as f64 / 8.0).collect();

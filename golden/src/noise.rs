@@ -118,14 +118,8 @@ mod tests {
 
     #[test]
     fn noise_sigma_equals_sigma_of_the_histogram() {
-        // xorshift64*, seeded.
-        let mut st = 0x1234_5678_9abc_def1u64;
-        let mut next = move || {
-            st ^= st >> 12;
-            st ^= st << 25;
-            st ^= st >> 27;
-            st.wrapping_mul(0x2545_f491_4f6c_dd1d)
-        };
+        let mut rng = crate::test_rng::TestRng::new(0x1234_5678_9abc_def1u64);
+        let mut next = move || rng.next();
         for _ in 0..5000 {
             let n = (next() % 600) as usize;
             let spread = 1 + next() % 255;
