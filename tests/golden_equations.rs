@@ -847,7 +847,7 @@ fn process_line_hand_pair_matches_the_shifted_edges() {
     //   (1,0) d = 10.5 = dispmax ✗; (1,1) d = 4 ✓ gain 3·gmax;
     //   every other pair has d <= 0 ✗.
     // Path (0,0), (1,1); gain 6·gmax = 10.689 76; both disparities 4.
-    let mut params = Params::new(10.5).unwrap();
+    let mut params = Params::paper(10.5).unwrap();
     let res = process_line(&left, &right, &params);
     assert_close!(res.reference.sigma, 0.2875 / MAD_SQRT2);
     assert_close!(res.reference.dt, 1.687_86, 1e-5);
@@ -887,7 +887,7 @@ fn process_line_hand_pair_with_right_reference() {
     // = left: 6.0, 12.5. d = X_left - X_right: (0,0) 4 ✓; (0,1) 10.5 =
     // dispmax ✗; (1,1) 4 ✓; the rest have d <= 0 ✗.
     // Matches: right 0 <-> left 0, right 1 <-> left 1, both at d = 4.
-    let mut params = Params::new(10.5).unwrap();
+    let mut params = Params::paper(10.5).unwrap();
     params.ref_view = RefView::Right;
     let res = process_line(&hand_left(), &hand_right(), &params);
     let pairs: Vec<(usize, usize)> = res.matches.iter().map(|m| (m.ref_index, m.other_index)).collect();
@@ -905,7 +905,7 @@ fn process_frame_one_row_dense_disparity_of_the_hand_pair() {
     // 4 on x = 6..12 and 0 elsewhere.
     let l = GreyImage::new(24, 1, hand_left()).unwrap();
     let r = GreyImage::new(24, 1, hand_right()).unwrap();
-    let mut params = Params::new(10.5).unwrap();
+    let mut params = Params::paper(10.5).unwrap();
     let res = process_frame(&l, &r, &params, Threads::One).unwrap();
     assert_eq!(res.matches(), 2);
     assert_eq!(res.reference_declivities(), 2);
@@ -919,13 +919,13 @@ fn process_frame_one_row_dense_disparity_of_the_hand_pair() {
 #[test]
 fn params_and_frame_inputs_are_validated() {
     // eq. 6 needs room for 0 < d < dispmax: dispmax must exceed 1.
-    assert!(Params::new(1.0).is_err());
-    assert!(Params::new(f64::NAN).is_err());
-    assert!(Params::new(f64::INFINITY).is_err());
-    assert!(Params::new(1.5).is_ok());
+    assert!(Params::paper(1.0).is_err());
+    assert!(Params::paper(f64::NAN).is_err());
+    assert!(Params::paper(f64::INFINITY).is_err());
+    assert!(Params::paper(1.5).is_ok());
     assert!(GreyImage::new(3, 2, vec![0; 5]).is_err());
     assert!(GreyImage::new(0, 0, vec![]).is_err());
     let a = GreyImage::new(3, 2, vec![0; 6]).unwrap();
     let b = GreyImage::new(2, 3, vec![0; 6]).unwrap();
-    assert!(process_frame(&a, &b, &Params::new(5.0).unwrap(), Threads::One).is_err());
+    assert!(process_frame(&a, &b, &Params::paper(5.0).unwrap(), Threads::One).is_err());
 }

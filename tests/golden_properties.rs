@@ -220,7 +220,7 @@ proptest! {
 
 fn any_params() -> impl Strategy<Value = Params> {
     (1.5f64..80.0, any::<bool>()).prop_map(|(dispmax, right)| {
-        let mut p = Params::new(dispmax).unwrap();
+        let mut p = Params::paper(dispmax).unwrap();
         if right {
             p.ref_view = RefView::Right;
         }
@@ -293,7 +293,7 @@ proptest! {
         let mut rng = seeded(seed);
         let left = block_line(&mut rng, width);
         let right = shift_left_to_right(&left, d);
-        let mut params = Params::new(d as f64 + extra).unwrap();
+        let mut params = Params::paper(d as f64 + extra).unwrap();
         if right_ref {
             params.ref_view = RefView::Right;
         }
@@ -421,7 +421,7 @@ proptest! {
         }
         let left = GreyImage::new(width, height, l).unwrap();
         let right = GreyImage::new(width, height, r).unwrap();
-        let mut params = Params::new(dispmax).unwrap();
+        let mut params = Params::paper(dispmax).unwrap();
         if right_ref {
             params.ref_view = RefView::Right;
         }

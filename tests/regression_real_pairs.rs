@@ -15,7 +15,7 @@ fn pair(name: &str) -> PairData {
 #[test]
 fn paper_mode_on_tsukuba_keeps_its_measured_accuracy() {
     let p = pair("tsukuba");
-    let params = Params { mode: Mode::Paper, ..Params::new(2.0).unwrap() };
+    let params = Params { mode: Mode::Paper, ..Params::paper(2.0).unwrap() };
     let (r, _) = evaluate_pair(&p, &params, 1).unwrap();
     // Measured: 12047 reference declivities, 5042 matches, sparse_acc1 95.7 %,
     // bad2 16.0 %, bad2v 16.0 %, density 99.3 %, nonocc bad2 14.8 %.
@@ -33,7 +33,7 @@ fn paper_mode_on_tsukuba_keeps_its_measured_accuracy() {
 #[test]
 fn paper_mode_on_cones_keeps_its_measured_accuracy() {
     let p = pair("cones");
-    let params = Params::new(2.0).unwrap();
+    let params = Params::paper(2.0).unwrap();
     let (r, _) = evaluate_pair(&p, &params, 1).unwrap();
     // Measured: 19131 reference declivities, 7681 matches, sparse_acc1 88.9 %,
     // bad2 30.3 %, density 99.5 %, nonocc bad2 25.2 %.
@@ -46,7 +46,7 @@ fn paper_mode_on_cones_keeps_its_measured_accuracy() {
 #[test]
 fn frame_on_all_cores_equals_frame_on_one_thread_on_a_real_pair() {
     let p = pair("venus");
-    let params = Params::new(p.dispmax + 1.0).unwrap();
+    let params = Params::paper(p.dispmax + 1.0).unwrap();
     let one = process_frame(&p.left, &p.right, &params, Threads::One).unwrap();
     let all = process_frame(&p.left, &p.right, &params, Threads::All).unwrap();
     assert!(one.matches() > 1000, "a real pair gives matches");

@@ -39,13 +39,7 @@ pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, out: &mut [f64]) {
         return;
     };
     let width = out.len();
-    // The first pixel centre at or after x, as an index of `out` (a ceiling
-    // without a call to libm's `ceil`).
-    let first_at_or_after = |x: f64| {
-        let x = x.max(0.0);
-        let t = x as usize;
-        (t + ((t as f64) < x) as usize).min(width)
-    };
+    let first_at_or_after = |x: f64| first_at_or_after(x, width);
     let (held_first, held_last) = match ends {
         EndRule::Hold => (first.d, last.d),
         EndRule::Empty => (NO_DISPARITY, NO_DISPARITY),
@@ -69,4 +63,113 @@ pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, out: &mut [f64]) {
         tail += 1;
     }
     out[tail..].fill(held_last);
+}
+
+/// The first pixel centre at or after `x`, as an index of a row of `width`
+/// pixels (a ceiling without a call to libm's `ceil`).
+fn first_at_or_after(x: f64, width: usize) -> usize {
+    let x = x.max(0.0);
+    let t = x as usize;
+    (t + ((t as f64) < x) as usize).min(width)
+}
+
+/// Interpolation that does not bridge depth discontinuities
+/// ([`crate::Features::edge_jump`]): between consecutive anchors whose
+/// disparities differ by more than `jump`, the pixels (centres in
+/// `[x_a, x_b)`) take the smaller disparity instead of the linear ramp. A
+/// jump is a depth edge, and declivities lie on edges: the pixels between a
+/// background and a foreground match belong to the background (the nearer
+/// object's edge is at its own match), whichever side it is on.
+pub fn hold_background_across_jumps(anchors: &[Anchor], jump: f64, out: &mut [f64]) {
+    let width = out.len();
+    for w in anchors.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if (a.d - b.d).abs() > jump {
+            out[first_at_or_after(a.x, width)..first_at_or_after(b.x, width)].fill(a.d.min(b.d));
+        }
+    }
+}
+
+/// The vertical median of a dense map over `rows` rows (1, 3 or 5) centred
+/// on row `y`, written into `out_row`; rows beyond the image repeat its top
+/// or bottom row. Pixels without disparity take part as `0`.
+///
+/// Branch-free min/max networks, so that the loop over a row vectorizes: the
+/// median of three is `max(min(a, b), min(max(a, b), c))`; for five, the two
+/// middle values of four (`max(min(a,b), min(c,d))` and
+/// `min(max(a,b), max(c,d))`, in either order) bracket the median with the
+/// fifth value.
+pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &mut [f64], y: usize) {
+    let height = disparity.len() / width;
+    let row = |dy: isize| {
+        let yy = (y as isize + dy).clamp(0, height as isize - 1) as usize;
+        &disparity[yy * width..(yy + 1) * width]
+    };
+    let min = |a: f64, b: f64| if a < b { a } else { b };
+    let max = |a: f64, b: f64| if a < b { b } else { a };
+    let median3 = |a: f64, b: f64, c: f64| max(min(a, b), min(max(a, b), c));
+    match rows {
+        1 => out_row.copy_from_slice(row(0)),
+        3 => {
+            let (r0, r1, r2) = (row(-1), row(0), row(1));
+            for (x, v) in out_row.iter_mut().enumerate() {
+                *v = median3(r0[x], r1[x], r2[x]);
+            }
+        }
+        5 => {
+            let (r0, r1, r2, r3, r4) = (row(-2), row(-1), row(0), row(1), row(2));
+            for (x, v) in out_row.iter_mut().enumerate() {
+                let (a, b, c, d) = (r0[x], r1[x], r3[x], r4[x]);
+                let (lo, hi) = (max(min(a, b), min(c, d)), min(max(a, b), max(c, d)));
+                *v = median3(lo, hi, r2[x]);
+            }
+        }
+        _ => panic!("vertical median over {rows} rows: 1, 3 or 5 are supported"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The median by sorting, with the same edge rule.
+    fn median_by_sorting(map: &[f64], width: usize, rows: usize, x: usize, y: usize) -> f64 {
+        let height = map.len() / width;
+        let half = (rows / 2) as isize;
+        let mut v: Vec<f64> = (-half..=half).map(|dy| map[(y as isize + dy).clamp(0, height as isize - 1) as usize * width + x]).collect();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    }
+
+    #[test]
+    fn vertical_median_networks_equal_sorting() {
+        let mut rng = crate::test_rng::TestRng::new(0xfeed_beef_0000_0001);
+        for _ in 0..300 {
+            let (w, h) = (1 + (rng.next() % 9) as usize, 1 + (rng.next() % 9) as usize);
+            // Few distinct values: ties everywhere; 0 = no disparity.
+            let map: Vec<f64> = (0..w * h).map(|_| (rng.next() % 5) as f64 * 1.5).collect();
+            for rows in [1, 3, 5] {
+                for y in 0..h {
+                    let mut out = vec![-1.0; w];
+                    vertical_median(&map, w, rows, &mut out, y);
+                    for (x, &got) in out.iter().enumerate() {
+                        assert_eq!(got, median_by_sorting(&map, w, rows, x, y), "rows {rows}, ({x}, {y}) of {map:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn jumps_hold_the_background_and_small_steps_stay_linear() {
+        // Anchors at x = 2 (d 10), 6 (d 20: a jump of 10), 8 (d 21: a step of 1).
+        let a = [Anchor { x: 2.0, d: 10.0 }, Anchor { x: 6.0, d: 20.0 }, Anchor { x: 8.0, d: 21.0 }];
+        let mut out = interpolate_line(&a, 10, EndRule::Hold);
+        hold_background_across_jumps(&a, 4.0, &mut out);
+        // x = 2..5 between the jump's anchors: the smaller disparity, 10.
+        assert_eq!(&out[2..6], &[10.0; 4]);
+        // x = 6, 7: linear from 20 to 21 (20, 20.5); 8, 9: 21 (held).
+        assert_eq!(&out[6..], &[20.0, 20.5, 21.0, 21.0]);
+        assert_eq!(&out[..2], &[10.0, 10.0]);
+    }
 }

@@ -2,10 +2,10 @@
 
 use rayon::prelude::*;
 
-use crate::disparity::{interpolate_into, Anchor};
+use crate::disparity::{hold_background_across_jumps, interpolate_into, vertical_median, Anchor};
 use crate::error::GoldenError;
 use crate::line::{process_line, LineResult};
-use crate::params::Params;
+use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
 
 /// An 8-bit grey image, row-major.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -86,8 +86,34 @@ impl FrameResult {
     }
 }
 
+/// Which matches of row `y` a neighbouring row confirms
+/// ([`crate::Features::consistent`]): a match within [`CONSISTENT_DX`] px in
+/// the row above or below whose disparity differs by at most
+/// [`CONSISTENT_DD`] px. Matches are sorted by position, so one merge per
+/// neighbour finds the candidates.
+pub fn confirmed_matches(lines: &[LineResult], y: usize) -> Vec<bool> {
+    let mine = &lines[y].matches;
+    let mut keep = vec![false; mine.len()];
+    let neighbours = [y.checked_sub(1), (y + 1 < lines.len()).then_some(y + 1)];
+    for other in neighbours.into_iter().flatten().map(|yy| &lines[yy].matches) {
+        let mut lo = 0usize;
+        for (k, m) in mine.iter().enumerate() {
+            while lo < other.len() && other[lo].x_ref < m.x_ref - CONSISTENT_DX {
+                lo += 1;
+            }
+            keep[k] |= other[lo..]
+                .iter()
+                .take_while(|n| n.x_ref <= m.x_ref + CONSISTENT_DX)
+                .any(|n| (n.disparity - m.disparity).abs() <= CONSISTENT_DD);
+        }
+    }
+    keep
+}
+
 /// Runs the method on a rectified pair: every row of `left` with the same
-/// row of `right`, then interpolation along each reference row.
+/// row of `right`, then (as the mode asks) the check of matches against the
+/// neighbouring rows, interpolation along each reference row, and a
+/// vertical median.
 pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threads: Threads) -> Result<FrameResult, GoldenError> {
     params.validate()?;
     if left.width != right.width || left.height != right.height {
@@ -99,16 +125,46 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
         });
     }
     let (w, h) = (left.width, left.height);
+    let features = params.mode.features();
+    let rows = |n: usize| 0..n;
+    // 1. Every pair of lines, independently.
+    let mut lines: Vec<LineResult> = match threads {
+        Threads::One => rows(h).map(|y| process_line(left.row(y), right.row(y), params)).collect(),
+        Threads::All => rows(h).into_par_iter().map(|y| process_line(left.row(y), right.row(y), params)).collect(),
+    };
+    // 2. Matches confirmed by a neighbouring row.
+    if features.consistent {
+        let keep = |y: usize| confirmed_matches(&lines, y);
+        let kept: Vec<Vec<bool>> = match threads {
+            Threads::One => rows(h).map(keep).collect(),
+            Threads::All => rows(h).into_par_iter().map(keep).collect(),
+        };
+        for (line, kept) in lines.iter_mut().zip(kept) {
+            let mut k = kept.into_iter();
+            line.matches.retain(|_| k.next().unwrap_or(false));
+        }
+    }
+    // 3. Interpolation along each reference row.
     let mut disparity = vec![0.0; w * h];
-    let one_row = |(y, out): (usize, &mut [f64])| -> LineResult {
-        let res = process_line(left.row(y), right.row(y), params);
-        let anchors: Vec<Anchor> = res.matches.iter().map(|m| m.anchor()).collect();
+    let interpolate = |(line, out): (&LineResult, &mut [f64])| {
+        let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
         interpolate_into(&anchors, params.ends, out);
-        res
+        if let Some(jump) = features.edge_jump {
+            hold_background_across_jumps(&anchors, jump, out);
+        }
     };
-    let lines: Vec<LineResult> = match threads {
-        Threads::One => disparity.chunks_mut(w).enumerate().map(one_row).collect(),
-        Threads::All => disparity.par_chunks_mut(w).enumerate().map(one_row).collect(),
-    };
+    match threads {
+        Threads::One => lines.iter().zip(disparity.chunks_mut(w)).for_each(interpolate),
+        Threads::All => lines.par_iter().zip(disparity.par_chunks_mut(w)).for_each(interpolate),
+    }
+    // 4. Vertical median of the dense map.
+    if features.median_rows > 1 {
+        let src = disparity.clone();
+        let median = |(y, out): (usize, &mut [f64])| vertical_median(&src, w, features.median_rows, out, y);
+        match threads {
+            Threads::One => disparity.chunks_mut(w).enumerate().for_each(median),
+            Threads::All => disparity.par_chunks_mut(w).enumerate().for_each(median),
+        }
+    }
     Ok(FrameResult { width: w, height: h, params: *params, lines, disparity })
 }

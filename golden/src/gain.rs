@@ -39,6 +39,37 @@ fn sum_abs_diff(a: &[u8; 3], b: &[u8; 3]) -> u32 {
     a.iter().zip(b).map(|(&p, &q)| p.abs_diff(q) as u32).sum()
 }
 
+/// The mean of a declivity's two end levels, `(I(x_i) + I(x_{i+1})) / 2`.
+pub fn mid_level(d: &Declivity) -> f64 {
+    0.5 * (d.left[0] as f64 + d.right[0] as f64)
+}
+
+/// Eq. 4 offset-compensated ([`crate::Features::relative`]): the other
+/// declivity's levels shifted by `δ = m_ref - m_other` (the difference of the
+/// end-level means) before comparing,
+/// `Σ_{k=0..2} |I_ref(x_i - k) - I_other(x_j - k) - δ|`.
+pub fn lpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
+    let delta = mid_level(reference) - mid_level(other);
+    (0..3).map(|k| (reference.left[k] as f64 - other.left[k] as f64 - delta).abs()).sum()
+}
+
+/// Eq. 5 offset-compensated, as [`lpd_relative`] on the right neighbours.
+pub fn rpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
+    let delta = mid_level(reference) - mid_level(other);
+    (0..3).map(|k| (reference.right[k] as f64 - other.right[k] as f64 - delta).abs()).sum()
+}
+
+/// The photometric distances `(lpd, rpd)` of a node in `mode`: eq. 4–5, or
+/// their offset-compensated form; `None` when the mode compares only
+/// declivities of one polarity and these differ.
+pub fn photometric_distances(reference: &Declivity, other: &Declivity, mode: Mode) -> Option<(f64, f64)> {
+    if mode.features().relative {
+        (reference.polarity() == other.polarity()).then(|| (lpd_relative(reference, other), rpd_relative(reference, other)))
+    } else {
+        Some((lpd(reference, other) as f64, rpd(reference, other) as f64))
+    }
+}
+
 /// Eq. 8: `gmax = 0.5 (d_t,ref + d_t,other)`, the self-adaptive gain scale
 /// from the two lines' thresholds.
 pub fn gmax(dt_ref: f64, dt_other: f64) -> f64 {
@@ -50,14 +81,29 @@ pub fn gmax(dt_ref: f64, dt_other: f64) -> f64 {
 /// `Paper`: `3·gmax` when `lpd < gmax` and `rpd < gmax`; `gmax` when exactly
 /// one of them is below `gmax`; rejected when neither is. Read literally, the
 /// one-sided case gives `gain = gmax - lpd - rpd ≤ 0`, so such a node never
-/// improves a path: the paper's "partially masked" case never fires.
+/// improves a path: the paper's "partially masked" case never fires. With
+/// [`crate::Features::one_sided`], a one-sided node gets `gmax` plus its
+/// dissimilar side's distance, so that `gain = gmax - d_similar > 0`.
 pub fn f_gmax(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
-    match mode {
-        Mode::Paper => match (lpd < gmax, rpd < gmax) {
-            (true, true) => Some(3.0 * gmax),
-            (true, false) | (false, true) => Some(gmax),
-            (false, false) => None,
-        },
+    let one_sided = mode.features().one_sided;
+    match (lpd < gmax, rpd < gmax) {
+        (true, true) => Some(3.0 * gmax),
+        (true, false) => Some(if one_sided { gmax + rpd } else { gmax }),
+        (false, true) => Some(if one_sided { gmax + lpd } else { gmax }),
+        (false, false) => None,
+    }
+}
+
+/// Eq. 7: `gain = f(gmax) - (lpd + rpd)`, or `None` when the node is
+/// rejected.
+pub fn local_gain(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
+    let one_sided = mode.features().one_sided;
+    match (lpd < gmax, rpd < gmax) {
+        (true, true) => Some(3.0 * gmax - (lpd + rpd)),
+        (true, false) if one_sided => Some(gmax - lpd),
+        (false, true) if one_sided => Some(gmax - rpd),
+        (false, false) => None,
+        _ => Some(gmax - (lpd + rpd)),
     }
 }
 
@@ -65,11 +111,6 @@ pub fn f_gmax(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
 /// `-∞`, which no gain beats and which stays `-∞` whatever is added to it
 /// (the DP's "no node").
 pub const REJECTED: f64 = f64::NEG_INFINITY;
-
-/// Eq. 7: `gain = f(gmax) - lpd - rpd`, or `None` when the node is rejected.
-pub fn local_gain(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
-    f_gmax(lpd, rpd, gmax, mode).map(|f| f - lpd - rpd)
-}
 
 /// The node `(i, j)` for a reference and an other-view declivity: its gain
 /// (eq. 4–8) when it lies in the search area (eq. 6) and is not rejected.
@@ -85,23 +126,33 @@ pub fn node_gain(
     if !in_search_area(d, dispmax) {
         return None;
     }
-    local_gain(lpd(reference, other) as f64, rpd(reference, other) as f64, gmax, mode)
+    let (l, r) = photometric_distances(reference, other, mode)?;
+    local_gain(l, r, gmax, mode)
 }
 
 /// A declivity's attributes for eq. 4–5 laid out for speed: the three left
 /// and three right neighbour levels, each padded with zeros to 8 bytes (the
-/// padding adds `|0 - 0| = 0` to the distances).
+/// padding adds `|0 - 0| = 0` to the distances), the same levels relative to
+/// the end-level mean and doubled (integers: `2·I - (I(x_i) + I(x_{i+1}))`),
+/// and the polarity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Neighbours {
     left: [u8; 8],
     right: [u8; 8],
+    relative: [i16; 6],
+    rising: bool,
 }
 
 impl From<&Declivity> for Neighbours {
     fn from(d: &Declivity) -> Self {
-        let mut n = Neighbours::default();
+        let mut n = Neighbours { rising: d.amplitude > 0, ..Neighbours::default() };
         n.left[..3].copy_from_slice(&d.left);
         n.right[..3].copy_from_slice(&d.right);
+        let ends = d.left[0] as i16 + d.right[0] as i16;
+        for k in 0..3 {
+            n.relative[k] = 2 * d.left[k] as i16 - ends;
+            n.relative[3 + k] = 2 * d.right[k] as i16 - ends;
+        }
         n
     }
 }
@@ -119,18 +170,21 @@ fn sum_abs_diff8(a: &[u8; 8], b: &[u8; 8]) -> u32 {
 /// The local gain of eq. 4–8 for the nodes of one pair of lines, with what
 /// depends only on the lines computed once: the frame pipeline's hot path.
 ///
-/// The photometric distances are integers, so `lpd < gmax ⇔ lpd < ⌈gmax⌉`
-/// (for every real `gmax ≥ 0`): the tests of eq. 7 run on integers. The
-/// search area (eq. 6) is not tested here: the caller passes only pairs
-/// inside it (the bands of [`crate::line::search_bands`]).
+/// Distances are kept doubled, as integers (the offset-compensated ones are
+/// half-integers), so `d < gmax ⇔ 2d < ⌈2·gmax⌉` (for every real
+/// `gmax ≥ 0`): the tests of eq. 7 run on integers. The search area (eq. 6)
+/// is not tested here: the caller passes only pairs inside it (the bands of
+/// [`crate::line::search_bands`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LineGain {
-    /// `⌈gmax⌉`: a distance is "below gmax" when it is below this.
-    below: u32,
+    /// `⌈2·gmax⌉`: a doubled distance is "below gmax" when it is below this.
+    below2: u32,
     /// `f(gmax)` by the number of distances below `gmax`: none (rejected:
     /// [`REJECTED`]), one, both. A table rather than a choice, so that the
     /// data-dependent outcome costs no branch.
     f: [f64; 3],
+    relative: bool,
+    one_sided: bool,
 }
 
 impl LineGain {
@@ -138,18 +192,32 @@ impl LineGain {
     /// `dt_other` (eq. 8).
     pub fn new(dt_ref: f64, dt_other: f64, mode: Mode) -> Self {
         let g = gmax(dt_ref, dt_other);
-        match mode {
-            Mode::Paper => LineGain { below: g.ceil() as u32, f: [REJECTED, g, 3.0 * g] },
+        let features = mode.features();
+        LineGain {
+            below2: (2.0 * g).ceil() as u32,
+            f: [REJECTED, g, 3.0 * g],
+            relative: features.relative,
+            one_sided: features.one_sided,
         }
     }
 
-    /// Eq. 7 for a node inside the search area: `f(gmax) - lpd - rpd`, or
-    /// [`REJECTED`]; equal to [`node_gain`] there.
+    /// Eq. 7 for a node inside the search area: `f(gmax) - (lpd + rpd)` (or
+    /// the similar side's distance alone for a one-sided node when the mode
+    /// scores them), or [`REJECTED`]; equal to [`node_gain`] there.
     #[inline]
     pub fn gain(&self, reference: &Neighbours, other: &Neighbours) -> f64 {
-        let (l, r) = (sum_abs_diff8(&reference.left, &other.left), sum_abs_diff8(&reference.right, &other.right));
-        let similar = (l < self.below) as usize + (r < self.below) as usize;
-        self.f[similar] - (l + r) as f64
+        let (l2, r2, same) = if self.relative {
+            let d = |k: usize| reference.relative[k].abs_diff(other.relative[k]) as u32;
+            (d(0) + d(1) + d(2), d(3) + d(4) + d(5), reference.rising == other.rising)
+        } else {
+            (2 * sum_abs_diff8(&reference.left, &other.left), 2 * sum_abs_diff8(&reference.right, &other.right), true)
+        };
+        let (lb, rb) = (l2 < self.below2, r2 < self.below2);
+        let similar = (lb as usize + rb as usize) * same as usize;
+        // A dissimilar side counts unless one-sided nodes are scored on
+        // their similar side alone.
+        let (lw, rw) = ((lb | !self.one_sided) as u32, (rb | !self.one_sided) as u32);
+        self.f[similar] - (l2 * lw + r2 * rw) as f64 / 2.0
     }
 }
 
@@ -157,8 +225,8 @@ impl LineGain {
 mod tests {
     use super::*;
 
-    fn decl(position: f64, left: [u8; 3], right: [u8; 3]) -> Declivity {
-        Declivity { start: 0, end: 1, amplitude: 10, position, left, right }
+    fn decl(position: f64, amplitude: i32, left: [u8; 3], right: [u8; 3]) -> Declivity {
+        Declivity { start: 0, end: 1, amplitude, position, left, right }
     }
 
     #[test]
@@ -167,17 +235,21 @@ mod tests {
         let mut next = move || rng.next();
         let mut rejected = 0;
         for _ in 0..20_000 {
+            let (pr, po) = (next() % 4 == 0, next() % 4 == 0);
             let mut px = || [0, 1, 2].map(|_| (next() % 64) as u8 + 100);
-            let r = decl(50.0, px(), px());
-            let o = decl(45.5, px(), px());
+            // Mostly rising, sometimes falling: polarities agree and differ.
+            let r = decl(50.0, if pr { -10 } else { 10 }, px(), px());
+            let o = decl(45.5, if po { -10 } else { 10 }, px(), px());
             // Thresholds on and off integers, small and large.
             let dt = |v: u64| if v % 3 == 0 { (v % 40) as f64 } else { (v % 4000) as f64 / 37.0 };
             let (dr, dl) = (dt(next()), dt(next()));
-            let want = node_gain(&r, &o, gmax(dr, dl), 10.0, RefView::Left, Mode::Paper);
-            let got = LineGain::new(dr, dl, Mode::Paper).gain(&(&r).into(), &(&o).into());
-            assert_eq!(want.unwrap_or(REJECTED), got, "dt {dr} {dl}, {r:?} {o:?}");
-            rejected += want.is_none() as usize;
+            for mode in Mode::ALL {
+                let want = node_gain(&r, &o, gmax(dr, dl), 10.0, RefView::Left, mode);
+                let got = LineGain::new(dr, dl, mode).gain(&(&r).into(), &(&o).into());
+                assert_eq!(want.unwrap_or(REJECTED), got, "{mode:?}: dt {dr} {dl}, {r:?} {o:?}");
+                rejected += want.is_none() as usize;
+            }
         }
-        assert!(rejected > 1000 && rejected < 19_000, "both outcomes drawn: {rejected} rejected");
+        assert!(rejected > 7 * 1000 && rejected < 7 * 19_000, "both outcomes drawn: {rejected} rejected");
     }
 }

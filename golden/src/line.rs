@@ -195,7 +195,7 @@ mod tests {
             let (refs, others) = (sorted(40), sorted(40));
             let dispmax = 1.0 + (next() % 400) as f64 / 4.0;
             for ref_view in [RefView::Left, RefView::Right] {
-                let params = Params { dispmax, ref_view, ..Params::new(2.0).unwrap() };
+                let params = Params { dispmax, ref_view, ..Params::paper(2.0).unwrap() };
                 let bands = search_bands(&refs, &others, &params);
                 assert_eq!(bands.len(), refs.len());
                 assert!(bands.windows(2).all(|w| w[0].0 <= w[1].0 && w[0].1 <= w[1].1), "case {case}: bands move right");

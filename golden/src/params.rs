@@ -3,27 +3,123 @@
 
 use crate::error::GoldenError;
 
-/// Which local-gain rule the matcher uses.
-///
-/// `Paper` is the paper's method exactly as `DESIGN.md` §2 settles it
-/// (eq. 7–8 read literally). Other modes are added, each justified by a
-/// measurement, by the issue "Accuracy beyond the paper".
+/// Which variant of the method runs: the paper's, or the paper's with
+/// changes that each fix a measured failure (README, "Accuracy beyond the
+/// paper"). Every change runs in the streaming hardware at one pixel per
+/// clock with bounded memory; its cost is given with it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Mode {
-    /// Eq. 7–8 literally: `f = 3·gmax` when both photometric distances are
-    /// below `gmax`, `f = gmax` when exactly one is, rejection otherwise.
-    #[default]
+    /// The paper's method exactly as `DESIGN.md` §2 settles it: eq. 4–8
+    /// read literally (`f = 3·gmax` when both photometric distances are below
+    /// `gmax`, `gmax` when exactly one is, rejection otherwise), linear
+    /// interpolation along the line.
     Paper,
+    /// Paper + offset-compensated photometric distances
+    /// ([`Features::relative`]).
+    Relative,
+    /// Paper + one-sided nodes scored on their similar side
+    /// ([`Features::one_sided`]).
+    OneSided,
+    /// Paper + matches confirmed by a neighbouring row
+    /// ([`Features::consistent`]).
+    Consistent,
+    /// Paper + interpolation that does not bridge disparity jumps
+    /// ([`Features::edge_jump`]).
+    Edges,
+    /// Paper + a vertical median over five rows of the dense map
+    /// ([`Features::median_rows`]).
+    Median,
+    /// All of the above: the default, the best measured combination.
+    #[default]
+    Robust,
 }
+
+/// The changes to the paper's method that a [`Mode`] switches on.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Features {
+    /// Photometric distances (eq. 4–5) after removing the brightness offset
+    /// between the two declivities, `δ = (m_ref - m_other)` with `m` the mean
+    /// of a declivity's two end levels, and nodes only between declivities of
+    /// one polarity. A brightness offset between the cameras then no longer
+    /// pushes true pairs over `gmax`.
+    /// Hardware: the detector emits the six neighbour levels relative to the
+    /// end-level mean (6 subtractors, 10-bit); each PE compares 10-bit instead
+    /// of 8-bit levels and the two polarity bits (1 XOR). No added latency.
+    pub relative: bool,
+    /// A node similar on one side only (the paper's "partially masked"
+    /// case) gets `gmax - d_similar` instead of `gmax - lpd - rpd ≤ 0`, so it
+    /// can join the path: occluded edges get matched.
+    /// Hardware: per PE one multiplexer selecting which distances are
+    /// subtracted. No added latency.
+    pub one_sided: bool,
+    /// A match is kept only if the row above or the row below has a match
+    /// within [`CONSISTENT_DX`] px of it whose disparity differs by at most
+    /// [`CONSISTENT_DD`] px: isolated wrong matches are dropped.
+    /// Hardware: the matches of the previous and next lines in two buffers
+    /// of `N_MAX` (position, disparity) entries; matches are sorted, so each
+    /// is checked by a merge with 2 comparators per neighbour line. Latency:
+    /// one line period.
+    pub consistent: bool,
+    /// Between consecutive matches whose disparities differ by more than
+    /// this (px), the interpolation holds the smaller disparity (the
+    /// background) instead of bridging the depth discontinuity.
+    /// Hardware: one comparator and one multiplexer in the interpolator. No
+    /// added latency.
+    pub edge_jump: Option<f64>,
+    /// Rows of a vertical median of the dense disparity map (1 = none):
+    /// streaks of a single wrong line disappear.
+    /// Hardware: `median_rows - 1` line buffers of `W_MAX` 16-bit
+    /// disparities and a median network (7 compare-exchange units for 5
+    /// rows) per pixel. Latency: `median_rows / 2` lines.
+    pub median_rows: usize,
+}
+
+/// [`Features::consistent`]: largest position difference (px) of a
+/// confirming match in a neighbouring row.
+pub const CONSISTENT_DX: f64 = 2.0;
+/// [`Features::consistent`]: largest disparity difference (px) of a
+/// confirming match.
+pub const CONSISTENT_DD: f64 = 1.0;
+/// [`Features::edge_jump`] of the modes that use it (px), the best of 1, 2
+/// and 4 px measured on the eight pairs.
+pub const EDGE_JUMP: f64 = 4.0;
+/// [`Features::median_rows`] of the modes that use it.
+pub const MEDIAN_ROWS: usize = 5;
 
 impl Mode {
     /// Every mode, in the order the CLI lists them.
-    pub const ALL: [Mode; 1] = [Mode::Paper];
+    pub const ALL: [Mode; 7] = [Mode::Paper, Mode::Relative, Mode::OneSided, Mode::Consistent, Mode::Edges, Mode::Median, Mode::Robust];
 
     /// The name used on the command line and in reports.
     pub fn name(self) -> &'static str {
         match self {
             Mode::Paper => "paper",
+            Mode::Relative => "relative",
+            Mode::OneSided => "one-sided",
+            Mode::Consistent => "consistent",
+            Mode::Edges => "edges",
+            Mode::Median => "median",
+            Mode::Robust => "robust",
+        }
+    }
+
+    /// The changes this mode makes to the paper's method.
+    pub fn features(self) -> Features {
+        let none = Features { median_rows: 1, ..Features::default() };
+        match self {
+            Mode::Paper => none,
+            Mode::Relative => Features { relative: true, ..none },
+            Mode::OneSided => Features { one_sided: true, ..none },
+            Mode::Consistent => Features { consistent: true, ..none },
+            Mode::Edges => Features { edge_jump: Some(EDGE_JUMP), ..none },
+            Mode::Median => Features { median_rows: MEDIAN_ROWS, ..none },
+            Mode::Robust => Features {
+                relative: true,
+                one_sided: true,
+                consistent: true,
+                edge_jump: Some(EDGE_JUMP),
+                median_rows: MEDIAN_ROWS,
+            },
         }
     }
 }
@@ -65,14 +161,21 @@ pub struct Params {
 }
 
 impl Params {
-    /// Paper mode, left reference, holding ends, with the given search bound.
+    /// The default mode, left reference, holding ends, with the given search
+    /// bound.
     pub fn new(dispmax: f64) -> Result<Self, GoldenError> {
-        let p = Params {
-            mode: Mode::Paper,
-            dispmax,
-            ref_view: RefView::Left,
-            ends: EndRule::Hold,
-        };
+        Self::with_mode(Mode::default(), dispmax)
+    }
+
+    /// The paper's method, left reference, holding ends, with the given
+    /// search bound.
+    pub fn paper(dispmax: f64) -> Result<Self, GoldenError> {
+        Self::with_mode(Mode::Paper, dispmax)
+    }
+
+    /// `mode`, left reference, holding ends, with the given search bound.
+    pub fn with_mode(mode: Mode, dispmax: f64) -> Result<Self, GoldenError> {
+        let p = Params { mode, dispmax, ref_view: RefView::Left, ends: EndRule::Hold };
         p.validate()?;
         Ok(p)
     }

@@ -9,7 +9,7 @@ use sim::io::{load_pair_dir, shared_stereo_dir};
 fn frame(c: &mut Criterion) {
     let dir = shared_stereo_dir().join("cones");
     let pair = load_pair_dir(&dir).unwrap_or_else(|e| panic!("bench needs the cones pair: {e}"));
-    let params = Params::new(pair.dispmax + 1.0).expect("valid search bound");
+    let params = Params::paper(pair.dispmax + 1.0).expect("valid search bound");
     let mut g = c.benchmark_group("golden_frame_cones");
     g.sample_size(30);
     g.bench_function("one_thread", |b| b.iter(|| process_frame(&pair.left, &pair.right, &params, Threads::One).unwrap()));

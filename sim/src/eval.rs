@@ -517,7 +517,7 @@ mod tests {
     #[test]
     fn fates_and_sparse_accuracy_follow_the_ground_truth() {
         let (l, r) = shifted(120, 6, 5);
-        let frame = process_frame(&l, &r, &Params::new(9.0).unwrap(), Threads::One).unwrap();
+        let frame = process_frame(&l, &r, &Params::paper(9.0).unwrap(), Threads::One).unwrap();
         assert!(frame.matches() > 10, "the shifted pair matches");
         // True ground truth: every matched declivity is correct.
         let gt = vec![5.0; 120 * 6];
@@ -536,7 +536,7 @@ mod tests {
     #[test]
     fn error_picture_colours_pixels_by_error_and_marks_declivities() {
         let (l, r) = shifted(120, 6, 5);
-        let frame = process_frame(&l, &r, &Params::new(9.0).unwrap(), Threads::One).unwrap();
+        let frame = process_frame(&l, &r, &Params::paper(9.0).unwrap(), Threads::One).unwrap();
         let mut gt = vec![5.0; 120 * 6];
         gt[0] = 0.0;
         let img = error_picture(&frame, &gt);

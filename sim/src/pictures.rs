@@ -636,7 +636,7 @@ mod tests {
     use golden::{process_frame, EndRule, Threads};
 
     fn params(dispmax: f64) -> Params {
-        Params::new(dispmax).unwrap()
+        Params::paper(dispmax).unwrap()
     }
 
     /// A frame of the given size and dense map, with no line results.

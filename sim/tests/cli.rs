@@ -131,17 +131,18 @@ fn eval_json_has_the_documented_keys_per_pair() {
         assert!(v.get(k).is_some(), "key {k} in {v}");
     }
     assert_eq!(v["pair"], "tsukuba");
-    assert_eq!(v["mode"], "paper");
+    assert_eq!(v["mode"], "robust", "the default mode");
     assert!(v["nonocc_bad2"].is_number(), "tsukuba has a mask");
 }
 
 #[test]
 fn eval_json_gives_null_nonocc_without_a_mask() {
-    let o = declivity(&["eval", "--json", "--runs", "1", stereo().join("map").to_str().unwrap()], Path::new("."));
+    let o = declivity(&["eval", "--json", "--runs", "1", "--mode", "paper", stereo().join("map").to_str().unwrap()], Path::new("."));
     let (out, err) = text(&o);
     assert!(o.status.success(), "stderr {err}");
     let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
     assert!(v["nonocc_bad2"].is_null(), "{v}");
+    assert_eq!(v["mode"], "paper");
 }
 
 #[test]
