@@ -96,15 +96,17 @@ pub fn confirmed_matches(lines: &[LineResult], y: usize) -> Vec<bool> {
     let mut keep = vec![false; mine.len()];
     let neighbours = [y.checked_sub(1), (y + 1 < lines.len()).then_some(y + 1)];
     for other in neighbours.into_iter().flatten().map(|yy| &lines[yy].matches) {
+        // other[lo..] are the matches not left of the window of m.
         let mut lo = 0usize;
         for (k, m) in mine.iter().enumerate() {
             while lo < other.len() && other[lo].x_ref < m.x_ref - CONSISTENT_DX {
                 lo += 1;
             }
-            keep[k] |= other[lo..]
-                .iter()
-                .take_while(|n| n.x_ref <= m.x_ref + CONSISTENT_DX)
-                .any(|n| (n.disparity - m.disparity).abs() <= CONSISTENT_DD);
+            let mut j = lo;
+            while j < other.len() && other[j].x_ref <= m.x_ref + CONSISTENT_DX {
+                keep[k] |= (other[j].disparity - m.disparity).abs() <= CONSISTENT_DD;
+                j += 1;
+            }
         }
     }
     keep
@@ -159,7 +161,7 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
     }
     // 4. Vertical median of the dense map.
     if features.median_rows > 1 {
-        let src = disparity.clone();
+        let src = std::mem::replace(&mut disparity, vec![0.0; w * h]);
         let median = |(y, out): (usize, &mut [f64])| vertical_median(&src, w, features.median_rows, out, y);
         match threads {
             Threads::One => disparity.chunks_mut(w).enumerate().for_each(median),

@@ -139,7 +139,8 @@ pub fn node_gain(
 pub struct Neighbours {
     left: [u8; 8],
     right: [u8; 8],
-    relative: [i16; 6],
+    /// Left levels in lanes 0–2, right levels in lanes 4–6, lanes 3 and 7 zero.
+    relative: [i16; 8],
     rising: bool,
 }
 
@@ -151,7 +152,7 @@ impl From<&Declivity> for Neighbours {
         let ends = d.left[0] as i16 + d.right[0] as i16;
         for k in 0..3 {
             n.relative[k] = 2 * d.left[k] as i16 - ends;
-            n.relative[3 + k] = 2 * d.right[k] as i16 - ends;
+            n.relative[4 + k] = 2 * d.right[k] as i16 - ends;
         }
         n
     }
@@ -207,8 +208,13 @@ impl LineGain {
     #[inline]
     pub fn gain(&self, reference: &Neighbours, other: &Neighbours) -> f64 {
         let (l2, r2, same) = if self.relative {
-            let d = |k: usize| reference.relative[k].abs_diff(other.relative[k]) as u32;
-            (d(0) + d(1) + d(2), d(3) + d(4) + d(5), reference.rising == other.rising)
+            // Eight lanes at once (the padding lanes are 0 on both sides).
+            let mut d = [0u16; 8];
+            for k in 0..8 {
+                d[k] = reference.relative[k].abs_diff(other.relative[k]);
+            }
+            let side = |k: usize| d[k] as u32 + d[k + 1] as u32 + d[k + 2] as u32 + d[k + 3] as u32;
+            (side(0), side(4), reference.rising == other.rising)
         } else {
             (2 * sum_abs_diff8(&reference.left, &other.left), 2 * sum_abs_diff8(&reference.right, &other.right), true)
         };

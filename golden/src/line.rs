@@ -71,29 +71,38 @@ pub struct LineResult {
 /// `others`, one pair per position of `refs` (sorted too). Both bounds are
 /// non-decreasing, so one sweep finds them all.
 pub fn search_bands(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
+    let mut padded = Vec::with_capacity(others.len() + 1);
+    padded.extend_from_slice(others);
+    padded.push(f64::INFINITY);
+    search_bands_padded(refs, &padded, params)
+}
+
+/// [`search_bands`] on `others` followed by a `+∞` sentinel, which no bound
+/// passes in either view (its disparity is `-∞` or `+∞`): each bound takes
+/// two steps without a branch, then loops only when it moves further.
+fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
+    debug_assert_eq!(others.last(), Some(&f64::INFINITY));
+    let dispmax = params.dispmax;
     let (mut lo, mut hi) = (0usize, 0usize);
     refs.iter()
         .map(|&x_ref| {
             let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
-            match params.ref_view {
-                // d falls as x_other grows: skip d >= dispmax, keep d > 0.
-                RefView::Left => {
-                    while lo < others.len() && d(lo) >= params.dispmax {
-                        lo += 1;
-                    }
-                    while hi < others.len() && d(hi) > 0.0 {
-                        hi += 1;
-                    }
-                }
-                // d grows with x_other: skip d <= 0, keep d < dispmax.
-                RefView::Right => {
-                    while lo < others.len() && d(lo) <= 0.0 {
-                        lo += 1;
-                    }
-                    while hi < others.len() && d(hi) < params.dispmax {
-                        hi += 1;
-                    }
-                }
+            // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
+            let (before_band, before_end): (&dyn Fn(usize) -> bool, &dyn Fn(usize) -> bool) = match params.ref_view {
+                // d falls as x_other grows.
+                RefView::Left => (&|j| d(j) >= dispmax, &|j| d(j) > 0.0),
+                // d grows with x_other.
+                RefView::Right => (&|j| d(j) <= 0.0, &|j| d(j) < dispmax),
+            };
+            lo += before_band(lo) as usize;
+            lo += before_band(lo) as usize;
+            while before_band(lo) {
+                lo += 1;
+            }
+            hi += before_end(hi) as usize;
+            hi += before_end(hi) as usize;
+            while before_end(hi) {
+                hi += 1;
             }
             (lo, hi.max(lo))
         })
@@ -140,8 +149,11 @@ pub fn gain_table(reference: &LineFeatures, other: &LineFeatures, params: &Param
 /// [`banded_gains`], with the gains computed as the DP sweeps them.)
 pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
     let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
-    let others: Vec<f64> = other.declivities.iter().map(|d| d.position).collect();
-    let bands = search_bands(&refs, &others, params);
+    let mut others: Vec<f64> = Vec::with_capacity(other.declivities.len() + 1);
+    others.extend(other.declivities.iter().map(|d| d.position));
+    others.push(f64::INFINITY);
+    let bands = search_bands_padded(&refs, &others, params);
+    others.pop();
     let rule = LineGain::new(reference.dt, other.dt, params.mode);
     let (rn, on): (Vec<Neighbours>, Vec<Neighbours>) = (
         reference.declivities.iter().map(Neighbours::from).collect(),
