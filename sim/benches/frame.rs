@@ -1,19 +1,25 @@
 //! One full frame of the golden model on Middlebury "cones" (450x375,
-//! search bound 56), on one thread and on all cores. Compare with OpenCV
+//! search bound 56), paper and robust modes, on one thread and on all cores. Compare with OpenCV
 //! StereoBM in the same run: `scripts/bench-vs-opencv.sh`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use golden::{process_frame, Params, Threads};
+use golden::{process_frame, Mode, Params, Threads};
 use sim::io::{load_pair_dir, shared_stereo_dir};
 
 fn frame(c: &mut Criterion) {
     let dir = shared_stereo_dir().join("cones");
     let pair = load_pair_dir(&dir).unwrap_or_else(|e| panic!("bench needs the cones pair: {e}"));
-    let params = Params::paper(pair.dispmax + 1.0).expect("valid search bound");
     let mut g = c.benchmark_group("golden_frame_cones");
     g.sample_size(30);
-    g.bench_function("one_thread", |b| b.iter(|| process_frame(&pair.left, &pair.right, &params, Threads::One).unwrap()));
-    g.bench_function("all_cores", |b| b.iter(|| process_frame(&pair.left, &pair.right, &params, Threads::All).unwrap()));
+    for mode in [Mode::Paper, Mode::Robust] {
+        let params = Params::with_mode(mode, pair.dispmax + 1.0).expect("valid search bound");
+        g.bench_function(format!("{}_one_thread", mode.name()), |b| {
+            b.iter(|| process_frame(&pair.left, &pair.right, &params, Threads::One).unwrap())
+        });
+        g.bench_function(format!("{}_all_cores", mode.name()), |b| {
+            b.iter(|| process_frame(&pair.left, &pair.right, &params, Threads::All).unwrap())
+        });
+    }
     g.finish();
 }
 
