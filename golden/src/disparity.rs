@@ -110,18 +110,19 @@ pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &m
     let median3 = |a: f64, b: f64, c: f64| max(min(a, b), min(max(a, b), c));
     match rows {
         1 => out_row.copy_from_slice(row(0)),
+        // Zipped rows rather than indices: no bounds checks, so the loops
+        // vectorize.
         3 => {
-            let (r0, r1, r2) = (row(-1), row(0), row(1));
-            for (x, v) in out_row.iter_mut().enumerate() {
-                *v = median3(r0[x], r1[x], r2[x]);
+            let rows = row(-1).iter().zip(row(0)).zip(row(1));
+            for (v, ((&a, &b), &c)) in out_row.iter_mut().zip(rows) {
+                *v = median3(a, b, c);
             }
         }
         5 => {
-            let (r0, r1, r2, r3, r4) = (row(-2), row(-1), row(0), row(1), row(2));
-            for (x, v) in out_row.iter_mut().enumerate() {
-                let (a, b, c, d) = (r0[x], r1[x], r3[x], r4[x]);
+            let rows = row(-2).iter().zip(row(-1)).zip(row(0)).zip(row(1)).zip(row(2));
+            for (v, ((((&a, &b), &e), &c), &d)) in out_row.iter_mut().zip(rows) {
                 let (lo, hi) = (max(min(a, b), min(c, d)), min(max(a, b), max(c, d)));
-                *v = median3(lo, hi, r2[x]);
+                *v = median3(lo, hi, e);
             }
         }
         _ => panic!("vertical median over {rows} rows: 1, 3 or 5 are supported"),
