@@ -86,25 +86,28 @@ impl FrameResult {
     }
 }
 
-/// Which matches of row `y` a neighbouring row confirms
-/// ([`crate::Features::consistent`]): a match within [`CONSISTENT_DX`] px in
+/// Which matches a neighbouring row confirms ([`crate::Features::consistent`]),
+/// row by row: a match is confirmed by a match within [`CONSISTENT_DX`] px in
 /// the row above or below whose disparity differs by at most
-/// [`CONSISTENT_DD`] px. Matches are sorted by position, so one merge per
-/// neighbour finds the candidates.
-pub fn confirmed_matches(lines: &[LineResult], y: usize) -> Vec<bool> {
-    let mine = &lines[y].matches;
-    let mut keep = vec![false; mine.len()];
-    let neighbours = [y.checked_sub(1), (y + 1 < lines.len()).then_some(y + 1)];
-    for other in neighbours.into_iter().flatten().map(|yy| &lines[yy].matches) {
-        // other[lo..] are the matches not left of the window of m.
+/// [`CONSISTENT_DD`] px. Confirmation is mutual, so each pair of adjacent
+/// rows is merged once (matches are sorted by position) and marks both.
+pub fn confirmed_matches(lines: &[LineResult]) -> Vec<Vec<bool>> {
+    let mut keep: Vec<Vec<bool>> = lines.iter().map(|l| vec![false; l.matches.len()]).collect();
+    for y in 1..lines.len() {
+        let (above, below) = keep.split_at_mut(y);
+        let (ka, kb) = (&mut above[y - 1], &mut below[0]);
+        let (a, b) = (&lines[y - 1].matches, &lines[y].matches);
+        // b[lo..] are the matches not left of the window of a[i].
         let mut lo = 0usize;
-        for (k, m) in mine.iter().enumerate() {
-            while lo < other.len() && other[lo].x_ref < m.x_ref - CONSISTENT_DX {
+        for (i, m) in a.iter().enumerate() {
+            while lo < b.len() && b[lo].x_ref < m.x_ref - CONSISTENT_DX {
                 lo += 1;
             }
             let mut j = lo;
-            while j < other.len() && other[j].x_ref <= m.x_ref + CONSISTENT_DX {
-                keep[k] |= (other[j].disparity - m.disparity).abs() <= CONSISTENT_DD;
+            while j < b.len() && b[j].x_ref <= m.x_ref + CONSISTENT_DX {
+                let close = (b[j].disparity - m.disparity).abs() <= CONSISTENT_DD;
+                ka[i] |= close;
+                kb[j] |= close;
                 j += 1;
             }
         }
@@ -136,11 +139,7 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
     };
     // 2. Matches confirmed by a neighbouring row.
     if features.consistent {
-        let keep = |y: usize| confirmed_matches(&lines, y);
-        let kept: Vec<Vec<bool>> = match threads {
-            Threads::One => rows(h).map(keep).collect(),
-            Threads::All => rows(h).into_par_iter().map(keep).collect(),
-        };
+        let kept = confirmed_matches(&lines);
         for (line, kept) in lines.iter_mut().zip(kept) {
             let mut k = kept.into_iter();
             line.matches.retain(|_| k.next().unwrap_or(false));
@@ -169,4 +168,36 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
         }
     }
     Ok(FrameResult { width: w, height: h, params: *params, lines, disparity })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::line::{LineFeatures, Match};
+
+    fn line(matches: &[(f64, f64)]) -> LineResult {
+        let empty = LineFeatures { sigma: 1.0, dt: 5.6, declivities: vec![] };
+        let matches = matches
+            .iter()
+            .map(|&(x, d)| Match { ref_index: 0, other_index: 0, x_ref: x, x_other: x - d, disparity: d, gain: 1.0 })
+            .collect();
+        LineResult { reference: empty.clone(), other: empty, matches, path_gain: 0.0 }
+    }
+
+    #[test]
+    fn matches_are_kept_when_a_neighbouring_row_confirms_them() {
+        let lines = [
+            // Row 0: x 10 d 5 is confirmed by row 1's (11.5, 5.8): |Δx| 1.5 <= 2, |Δd| 0.8 <= 1.
+            line(&[(10.0, 5.0), (30.0, 9.0)]),
+            // Row 1: (11.5, 5.8) confirmed by row 0; (30.0, 7.5) has |Δd| 1.5 from row 0's and
+            // |Δx| 2.5 from row 2's (32.5, 7.5): not confirmed.
+            line(&[(11.5, 5.8), (30.0, 7.5), (50.0, 3.0)]),
+            // Row 2: (52.0, 4.0) confirms row 1's (50, 3): |Δx| 2, |Δd| 1 (bounds included).
+            line(&[(32.5, 7.5), (52.0, 4.0)]),
+        ];
+        let keep = confirmed_matches(&lines);
+        assert_eq!(keep, vec![vec![true, false], vec![true, false, true], vec![false, true]]);
+        // A single row confirms nothing.
+        assert_eq!(confirmed_matches(&lines[..1]), vec![vec![false, false]]);
+    }
 }

@@ -83,26 +83,32 @@ pub fn search_bands(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize
 fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
     debug_assert_eq!(others.last(), Some(&f64::INFINITY));
     let dispmax = params.dispmax;
+    // Moves a bound past the columns `before` holds for: two steps without a
+    // branch, then a loop only when it moves further.
+    fn advance(mut k: usize, before: impl Fn(usize) -> bool) -> usize {
+        k += before(k) as usize;
+        k += before(k) as usize;
+        while before(k) {
+            k += 1;
+        }
+        k
+    }
     let (mut lo, mut hi) = (0usize, 0usize);
     refs.iter()
         .map(|&x_ref| {
             let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
             // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
-            let (before_band, before_end): (&dyn Fn(usize) -> bool, &dyn Fn(usize) -> bool) = match params.ref_view {
+            match params.ref_view {
                 // d falls as x_other grows.
-                RefView::Left => (&|j| d(j) >= dispmax, &|j| d(j) > 0.0),
+                RefView::Left => {
+                    lo = advance(lo, |j| d(j) >= dispmax);
+                    hi = advance(hi, |j| d(j) > 0.0);
+                }
                 // d grows with x_other.
-                RefView::Right => (&|j| d(j) <= 0.0, &|j| d(j) < dispmax),
-            };
-            lo += before_band(lo) as usize;
-            lo += before_band(lo) as usize;
-            while before_band(lo) {
-                lo += 1;
-            }
-            hi += before_end(hi) as usize;
-            hi += before_end(hi) as usize;
-            while before_end(hi) {
-                hi += 1;
+                RefView::Right => {
+                    lo = advance(lo, |j| d(j) <= 0.0);
+                    hi = advance(hi, |j| d(j) < dispmax);
+                }
             }
             (lo, hi.max(lo))
         })
