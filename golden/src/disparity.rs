@@ -28,12 +28,19 @@ pub struct Anchor {
 /// at every pixel centre `x = 0 … width-1`; see the module doc for the ends.
 pub fn interpolate_line(anchors: &[Anchor], width: usize, ends: EndRule) -> Vec<f64> {
     let mut out = vec![NO_DISPARITY; width];
-    interpolate_into(anchors, ends, &mut out);
+    interpolate_into(anchors, ends, None, &mut out);
     out
 }
 
-/// [`interpolate_line`] into an existing row buffer (its length is the width).
-pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, out: &mut [f64]) {
+/// [`interpolate_line`] into an existing row buffer (its length is the
+/// width). With `jump = Some(j)`, the interpolation does not bridge depth
+/// discontinuities ([`crate::Features::edge_jump`]): between consecutive
+/// anchors whose disparities differ by more than `j`, the pixels take the
+/// smaller disparity instead of the linear ramp. A jump is a depth edge, and
+/// declivities lie on edges: the pixels between a background and a
+/// foreground match belong to the background (the nearer object's edge is at
+/// its own match), whichever side it is on.
+pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, jump: Option<f64>, out: &mut [f64]) {
     let (Some(first), Some(last)) = (anchors.first(), anchors.last()) else {
         out.fill(NO_DISPARITY);
         return;
@@ -51,9 +58,14 @@ pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, out: &mut [f64]) {
     out[..begin].fill(held_first);
     for w in anchors.windows(2) {
         let (a, b) = (w[0], w[1]);
+        let segment = &mut out[first_at_or_after(a.x)..first_at_or_after(b.x)];
+        if jump.is_some_and(|j| (a.d - b.d).abs() > j) {
+            segment.fill(a.d.min(b.d));
+            continue;
+        }
         let slope = (b.d - a.d) / (b.x - a.x);
-        let (from, to) = (first_at_or_after(a.x), first_at_or_after(b.x));
-        for (x, v) in out[from..to].iter_mut().enumerate() {
+        let from = first_at_or_after(a.x);
+        for (x, v) in segment.iter_mut().enumerate() {
             *v = a.d + slope * ((from + x) as f64 - a.x);
         }
     }
@@ -71,23 +83,6 @@ fn first_at_or_after(x: f64, width: usize) -> usize {
     let x = x.max(0.0);
     let t = x as usize;
     (t + ((t as f64) < x) as usize).min(width)
-}
-
-/// Interpolation that does not bridge depth discontinuities
-/// ([`crate::Features::edge_jump`]): between consecutive anchors whose
-/// disparities differ by more than `jump`, the pixels (centres in
-/// `[x_a, x_b)`) take the smaller disparity instead of the linear ramp. A
-/// jump is a depth edge, and declivities lie on edges: the pixels between a
-/// background and a foreground match belong to the background (the nearer
-/// object's edge is at its own match), whichever side it is on.
-pub fn hold_background_across_jumps(anchors: &[Anchor], jump: f64, out: &mut [f64]) {
-    let width = out.len();
-    for w in anchors.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        if (a.d - b.d).abs() > jump {
-            out[first_at_or_after(a.x, width)..first_at_or_after(b.x, width)].fill(a.d.min(b.d));
-        }
-    }
 }
 
 /// The vertical median of a dense map over `rows` rows (1, 3 or 5) centred
@@ -165,8 +160,8 @@ mod tests {
     fn jumps_hold_the_background_and_small_steps_stay_linear() {
         // Anchors at x = 2 (d 10), 6 (d 20: a jump of 10), 8 (d 21: a step of 1).
         let a = [Anchor { x: 2.0, d: 10.0 }, Anchor { x: 6.0, d: 20.0 }, Anchor { x: 8.0, d: 21.0 }];
-        let mut out = interpolate_line(&a, 10, EndRule::Hold);
-        hold_background_across_jumps(&a, 4.0, &mut out);
+        let mut out = vec![0.0; 10];
+        interpolate_into(&a, EndRule::Hold, Some(4.0), &mut out);
         // x = 2..5 between the jump's anchors: the smaller disparity, 10.
         assert_eq!(&out[2..6], &[10.0; 4]);
         // x = 6, 7: linear from 20 to 21 (20, 20.5); 8, 9: 21 (held).

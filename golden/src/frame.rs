@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use crate::disparity::{hold_background_across_jumps, interpolate_into, vertical_median, Anchor};
+use crate::disparity::{interpolate_into, vertical_median, Anchor};
 use crate::error::GoldenError;
 use crate::line::{process_line, LineResult};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
@@ -149,10 +149,7 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
     let mut disparity = vec![0.0; w * h];
     let interpolate = |(line, out): (&LineResult, &mut [f64])| {
         let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
-        interpolate_into(&anchors, params.ends, out);
-        if let Some(jump) = features.edge_jump {
-            hold_background_across_jumps(&anchors, jump, out);
-        }
+        interpolate_into(&anchors, params.ends, features.edge_jump, out);
     };
     match threads {
         Threads::One => lines.iter().zip(disparity.chunks_mut(w)).for_each(interpolate),
