@@ -3,6 +3,11 @@
 //! StereoBM in the same run: `scripts/bench-vs-opencv.sh`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+
+// The allocator of the `declivity` binary, so that the bench measures what
+// `declivity eval` reports.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use golden::{process_frame, Mode, Params, Threads};
 use sim::io::{load_pair_dir, shared_stereo_dir};
 

@@ -1,6 +1,11 @@
 //! `declivity`: the declivity stereo method of Bensrhair, Miché and Debrie,
 //! as a golden model today and streaming hardware tomorrow.
 
+// golden allocates many small per-line vectors; mimalloc serves them about 5 %
+// faster than the system allocator (perf stat, tsukuba).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
