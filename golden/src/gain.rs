@@ -210,8 +210,8 @@ impl LineGain {
         let (l2, r2, same) = if self.relative {
             // Eight lanes at once (the padding lanes are 0 on both sides).
             let mut d = [0u16; 8];
-            for k in 0..8 {
-                d[k] = reference.relative[k].abs_diff(other.relative[k]);
+            for (dk, (a, b)) in d.iter_mut().zip(reference.relative.iter().zip(&other.relative)) {
+                *dk = a.abs_diff(*b);
             }
             let side = |k: usize| d[k] as u32 + d[k + 1] as u32 + d[k + 2] as u32 + d[k + 3] as u32;
             (side(0), side(4), reference.rising == other.rising)
@@ -247,7 +247,7 @@ mod tests {
             let r = decl(50.0, if pr { -10 } else { 10 }, px(), px());
             let o = decl(45.5, if po { -10 } else { 10 }, px(), px());
             // Thresholds on and off integers, small and large.
-            let dt = |v: u64| if v % 3 == 0 { (v % 40) as f64 } else { (v % 4000) as f64 / 37.0 };
+            let dt = |v: u64| if v.is_multiple_of(3) { (v % 40) as f64 } else { (v % 4000) as f64 / 37.0 };
             let (dr, dl) = (dt(next()), dt(next()));
             for mode in Mode::ALL {
                 let want = node_gain(&r, &o, gmax(dr, dl), 10.0, RefView::Left, mode);

@@ -182,7 +182,7 @@ impl Params {
 
     /// Checks the search bound: eq. 6 needs room for a positive disparity.
     pub fn validate(&self) -> Result<(), GoldenError> {
-        if !(self.dispmax > 1.0) || !self.dispmax.is_finite() {
+        if self.dispmax.is_nan() || self.dispmax <= 1.0 || self.dispmax.is_infinite() {
             return Err(GoldenError::InvalidDispmax(self.dispmax));
         }
         Ok(())

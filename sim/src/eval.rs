@@ -142,7 +142,7 @@ pub struct EvalReport {
 
 /// The ground truth for the reference view, or an error when the folder has
 /// none for it.
-pub fn reference_gt<'a>(pair: &'a PairData, ref_view: RefView) -> Result<&'a [f64], SimError> {
+pub fn reference_gt(pair: &PairData, ref_view: RefView) -> Result<&[f64], SimError> {
     match ref_view {
         RefView::Left => Ok(&pair.gt_left),
         RefView::Right => pair.gt_right.as_deref().ok_or_else(|| SimError::PairDir {
