@@ -64,7 +64,7 @@ ms = golden time per frame on one thread, loading excluded, median of --runs run
 #[derive(Args, Debug, Clone)]
 struct MethodArgs {
     /// Variant of the method: `paper` is the paper's exactly; `robust` (the default) adds every
-    /// measured improvement; the others add one each (README, "Accuracy beyond the paper").
+    /// measured improvement; the others add one each (README, "Beyond the paper").
     #[arg(long, value_enum, default_value_t = CliMode::Robust)]
     mode: CliMode,
     /// Reference view: its declivities get disparities and its pixels form the map.
@@ -222,7 +222,7 @@ fn print_summary(s: &DepthSummary) {
         s.ms
     );
     for (p, what) in &s.files {
-        println!("  {:<40} {what}", p.display());
+        println!("  {:<44} {what}", p.display());
     }
     if let Some(n) = s.points {
         println!("  ({n} points in the cloud)");
@@ -235,7 +235,7 @@ fn main_job() -> Result<(), SimError> {
     let pair = bundled::tsukuba()?;
     let params = MethodArgs { mode: CliMode::Robust, ref_view: CliRef::Left, ends: CliEnds::Hold }.params(pair.dispmax + 1.0)?;
     let out_dir = PathBuf::from("declivity-out").join("tsukuba");
-    println!("declivity: depth map of the bundled pair (search bound {})", params.dispmax);
+    println!("declivity: depth map of the bundled pair ({} mode, search bound {})", params.mode.name(), params.dispmax);
     println!("  {}", bundled::CITATION);
     let job = DepthJob { out_dir: out_dir.clone(), graph_line: None, camera: None, threads: Threads::All };
     let summary = run_depth(&pair.left, &pair.right, &params, &job)?;
