@@ -131,11 +131,11 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
     }
     let (w, h) = (left.width, left.height);
     let features = params.mode.features();
-    let rows = |n: usize| 0..n;
     // 1. Every pair of lines, independently.
+    let one_line = |y: usize| process_line(left.row(y), right.row(y), params);
     let mut lines: Vec<LineResult> = match threads {
-        Threads::One => rows(h).map(|y| process_line(left.row(y), right.row(y), params)).collect(),
-        Threads::All => rows(h).into_par_iter().map(|y| process_line(left.row(y), right.row(y), params)).collect(),
+        Threads::One => (0..h).map(one_line).collect(),
+        Threads::All => (0..h).into_par_iter().map(one_line).collect(),
     };
     // 2. Matches confirmed by a neighbouring row.
     if features.consistent {

@@ -60,7 +60,9 @@ pub struct LineResult {
     pub reference: LineFeatures,
     /// Segmentation of the other view's line.
     pub other: LineFeatures,
-    /// Matches along the optimal path, in reference order.
+    /// Matches along the optimal path, in reference order (after
+    /// [`crate::frame::process_frame`] in a mode with row confirmation, only
+    /// the confirmed ones).
     pub matches: Vec<Match>,
     /// Gain of the optimal path (sum of its nodes' gains).
     pub path_gain: f64,
