@@ -44,11 +44,13 @@ fn paper_mode_on_cones_keeps_its_measured_accuracy() {
 }
 
 #[test]
-fn frame_on_all_cores_equals_frame_on_one_thread_on_a_real_pair() {
+fn frame_on_all_cores_equals_frame_on_one_thread_on_a_real_pair_in_every_mode() {
     let p = pair("venus");
-    let params = Params::paper(p.dispmax + 1.0).unwrap();
-    let one = process_frame(&p.left, &p.right, &params, Threads::One).unwrap();
-    let all = process_frame(&p.left, &p.right, &params, Threads::All).unwrap();
-    assert!(one.matches() > 1000, "a real pair gives matches");
-    assert_eq!(one, all);
+    for mode in Mode::ALL {
+        let params = Params::with_mode(mode, p.dispmax + 1.0).unwrap();
+        let one = process_frame(&p.left, &p.right, &params, Threads::One).unwrap();
+        let all = process_frame(&p.left, &p.right, &params, Threads::All).unwrap();
+        assert!(one.matches() > 1000, "{mode:?}: a real pair gives matches");
+        assert_eq!(one, all, "{mode:?}");
+    }
 }
