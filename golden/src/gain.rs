@@ -49,14 +49,17 @@ pub fn mid_level(d: &Declivity) -> f64 {
 /// end-level means) before comparing,
 /// `Σ_{k=0..2} |I_ref(x_i - k) - I_other(x_j - k) - δ|`.
 pub fn lpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
-    let delta = mid_level(reference) - mid_level(other);
-    (0..3).map(|k| (reference.left[k] as f64 - other.left[k] as f64 - delta).abs()).sum()
+    shifted_distance(&reference.left, &other.left, mid_level(reference) - mid_level(other))
 }
 
 /// Eq. 5 offset-compensated, as [`lpd_relative`] on the right neighbours.
 pub fn rpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
-    let delta = mid_level(reference) - mid_level(other);
-    (0..3).map(|k| (reference.right[k] as f64 - other.right[k] as f64 - delta).abs()).sum()
+    shifted_distance(&reference.right, &other.right, mid_level(reference) - mid_level(other))
+}
+
+/// `Σ_k |a_k - b_k - δ|`.
+fn shifted_distance(a: &[u8; 3], b: &[u8; 3], delta: f64) -> f64 {
+    a.iter().zip(b).map(|(&p, &q)| (p as f64 - q as f64 - delta).abs()).sum()
 }
 
 /// The photometric distances `(lpd, rpd)` of a node in `mode`: eq. 4–5, or
