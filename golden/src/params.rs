@@ -103,6 +103,19 @@ impl Mode {
         }
     }
 
+    /// One line saying what the mode is (for `--help`).
+    pub fn summary(self) -> &'static str {
+        match self {
+            Mode::Paper => "The paper's method exactly (DESIGN.md section 2)",
+            Mode::Relative => "Paper + photometric distances with the brightness offset between the declivities removed",
+            Mode::OneSided => "Paper + one-sided nodes (similar on one side only) scored on their similar side",
+            Mode::Consistent => "Paper + matches kept only when a neighbouring row confirms them",
+            Mode::Edges => "Paper + interpolation holding the background across disparity jumps",
+            Mode::Median => "Paper + a vertical median over five rows of the dense map",
+            Mode::Robust => "All of the above (the best measured combination)",
+        }
+    }
+
     /// The changes this mode makes to the paper's method.
     pub fn features(self) -> Features {
         let none = Features { median_rows: 1, ..Features::default() };

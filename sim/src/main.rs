@@ -65,7 +65,7 @@ ms = golden time per frame on one thread, loading excluded, median of --runs run
 struct MethodArgs {
     /// Variant of the method: `paper` is the paper's exactly; `robust` (the default) adds every
     /// measured improvement; the others add one each (README, "Beyond the paper").
-    #[arg(long, value_enum, default_value_t = CliMode::Robust)]
+    #[arg(long, value_enum, default_value_t = CliMode(Mode::default()))]
     mode: CliMode,
     /// Reference view: its declivities get disparities and its pixels form the map.
     #[arg(long, value_enum, default_value_t = CliRef::Left)]
@@ -127,22 +127,27 @@ struct EvalArgs {
     method: MethodArgs,
 }
 
-#[derive(ValueEnum, Debug, Clone, Copy)]
-enum CliMode {
-    /// The paper's method exactly (DESIGN.md section 2).
-    Paper,
-    /// Paper + photometric distances with the brightness offset between the declivities removed.
-    Relative,
-    /// Paper + one-sided nodes (similar on one side only) scored on their similar side.
-    OneSided,
-    /// Paper + matches kept only when a neighbouring row confirms them.
-    Consistent,
-    /// Paper + interpolation holding the background across disparity jumps.
-    Edges,
-    /// Paper + a vertical median over five rows of the dense map.
-    Median,
-    /// All of the above (the best measured combination).
-    Robust,
+/// A [`Mode`] on the command line: its names and summaries come from golden.
+#[derive(Debug, Clone, Copy)]
+struct CliMode(Mode);
+
+impl ValueEnum for CliMode {
+    fn value_variants<'a>() -> &'a [Self] {
+        const ALL: [CliMode; Mode::ALL.len()] = {
+            let mut all = [CliMode(Mode::Paper); Mode::ALL.len()];
+            let mut k = 0;
+            while k < all.len() {
+                all[k] = CliMode(Mode::ALL[k]);
+                k += 1;
+            }
+            all
+        };
+        &ALL
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.summary()))
+    }
 }
 
 #[derive(ValueEnum, Debug, Clone, Copy)]
@@ -164,15 +169,7 @@ enum CliEnds {
 impl MethodArgs {
     fn params(&self, dispmax: f64) -> Result<Params, SimError> {
         let p = Params {
-            mode: match self.mode {
-                CliMode::Paper => Mode::Paper,
-                CliMode::Relative => Mode::Relative,
-                CliMode::OneSided => Mode::OneSided,
-                CliMode::Consistent => Mode::Consistent,
-                CliMode::Edges => Mode::Edges,
-                CliMode::Median => Mode::Median,
-                CliMode::Robust => Mode::Robust,
-            },
+            mode: self.mode.0,
             dispmax,
             ref_view: match self.ref_view {
                 CliRef::Left => RefView::Left,
@@ -233,7 +230,7 @@ fn print_summary(s: &DepthSummary) {
 /// and its scores against the bundled ground truth.
 fn main_job() -> Result<(), SimError> {
     let pair = bundled::tsukuba()?;
-    let params = MethodArgs { mode: CliMode::Robust, ref_view: CliRef::Left, ends: CliEnds::Hold }.params(pair.dispmax + 1.0)?;
+    let params = MethodArgs { mode: CliMode(Mode::default()), ref_view: CliRef::Left, ends: CliEnds::Hold }.params(pair.dispmax + 1.0)?;
     let out_dir = PathBuf::from("declivity-out").join("tsukuba");
     println!("declivity: depth map of the bundled pair ({} mode, search bound {})", params.mode.name(), params.dispmax);
     println!("  {}", bundled::CITATION);
