@@ -93,7 +93,9 @@ fn first_at_or_after(x: f64, width: usize) -> usize {
 /// median of three is `max(min(a, b), min(max(a, b), c))`; for five, the two
 /// middle values of four (`max(min(a,b), min(c,d))` and
 /// `min(max(a,b), max(c,d))`, in either order) bracket the median with the
-/// fifth value.
+/// fifth value. (Nine rows lowered the mean bad2 of the robust mode from
+/// 18.9 to 18.1 but cost as much time as the rest of the method on this
+/// machine without SIMD intrinsics; five were kept.)
 pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &mut [f64], y: usize) {
     let height = disparity.len() / width;
     let row = |dy: isize| {

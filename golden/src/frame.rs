@@ -183,14 +183,16 @@ mod tests {
 
     #[test]
     fn matches_are_kept_when_a_neighbouring_row_confirms_them() {
+        // The cases below are worked for these bounds.
+        assert_eq!((CONSISTENT_DX, CONSISTENT_DD), (3.0, 1.0));
         let lines = [
-            // Row 0: x 10 d 5 is confirmed by row 1's (11.5, 5.8): |Δx| 1.5 <= 2, |Δd| 0.8 <= 1.
+            // Row 0: x 10 d 5 is confirmed by row 1's (11.5, 5.8): |Δx| 1.5 <= 3, |Δd| 0.8 <= 1.
             line(&[(10.0, 5.0), (30.0, 9.0)]),
             // Row 1: (11.5, 5.8) confirmed by row 0; (30.0, 7.5) has |Δd| 1.5 from row 0's and
-            // |Δx| 2.5 from row 2's (32.5, 7.5): not confirmed.
+            // |Δx| 3.5 > 3 from row 2's (33.5, 7.5): not confirmed.
             line(&[(11.5, 5.8), (30.0, 7.5), (50.0, 3.0)]),
-            // Row 2: (52.0, 4.0) confirms row 1's (50, 3): |Δx| 2, |Δd| 1 (bounds included).
-            line(&[(32.5, 7.5), (52.0, 4.0)]),
+            // Row 2: (53.0, 4.0) confirms row 1's (50, 3): |Δx| 3, |Δd| 1 (bounds included).
+            line(&[(33.5, 7.5), (53.0, 4.0)]),
         ];
         let keep = confirmed_matches(&lines);
         assert_eq!(keep, vec![vec![true, false], vec![true, false, true], vec![false, true]]);
