@@ -4,7 +4,7 @@ use rayon::prelude::*;
 
 use crate::disparity::{interpolate_into, vertical_median, Anchor};
 use crate::error::GoldenError;
-use crate::line::{process_line, LineResult};
+use crate::line::{process_line, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
 
 /// An 8-bit grey image, row-major.
@@ -80,9 +80,15 @@ impl FrameResult {
         self.lines.iter().map(|l| l.reference.declivities.len()).sum()
     }
 
-    /// Matched reference declivities.
+    /// Matched reference declivities (reported matches: those flagged as
+    /// depth-edge matches are not counted).
     pub fn matches(&self) -> usize {
-        self.lines.iter().map(|l| l.matches.len()).sum()
+        self.lines.iter().map(|l| l.matches.iter().filter(|m| !m.edge).count()).sum()
+    }
+
+    /// Matches flagged as lying next to a depth edge.
+    pub fn edge_matches(&self) -> usize {
+        self.lines.iter().map(|l| l.matches.iter().filter(|m| m.edge).count()).sum()
     }
 }
 
@@ -115,10 +121,21 @@ pub fn confirmed_matches(lines: &[LineResult]) -> Vec<Vec<bool>> {
     keep
 }
 
+/// Flags the matches of a row whose disparity differs by more than `jump`
+/// from that of the previous or the next match ([`crate::Features::edge_flag`]).
+pub fn flag_edge_matches(matches: &mut [Match], jump: f64) {
+    let d: Vec<f64> = matches.iter().map(|m| m.disparity).collect();
+    for (k, m) in matches.iter_mut().enumerate() {
+        let before = k > 0 && (d[k] - d[k - 1]).abs() > jump;
+        let after = k + 1 < d.len() && (d[k] - d[k + 1]).abs() > jump;
+        m.edge = before || after;
+    }
+}
+
 /// Runs the method on a rectified pair: every row of `left` with the same
 /// row of `right`, then (as the mode asks) the check of matches against the
-/// neighbouring rows, interpolation along each reference row, and a
-/// vertical median.
+/// neighbouring rows, the flag on matches next to a depth edge,
+/// interpolation along each reference row, and a vertical median.
 pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threads: Threads) -> Result<FrameResult, GoldenError> {
     params.validate()?;
     if left.width != right.width || left.height != right.height {
@@ -145,7 +162,13 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
             line.matches.retain(|_| k.next().unwrap_or(false));
         }
     }
-    // 3. Interpolation along each reference row.
+    // 3. Matches next to a disparity jump flagged.
+    if let Some(jump) = features.edge_flag {
+        for line in &mut lines {
+            flag_edge_matches(&mut line.matches, jump);
+        }
+    }
+    // 4. Interpolation along each reference row (every match anchors it).
     let mut disparity = vec![0.0; w * h];
     let interpolate = |(line, out): (&LineResult, &mut [f64])| {
         let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
@@ -155,7 +178,7 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
         Threads::One => lines.iter().zip(disparity.chunks_mut(w)).for_each(interpolate),
         Threads::All => lines.par_iter().zip(disparity.par_chunks_mut(w)).for_each(interpolate),
     }
-    // 4. Vertical median of the dense map.
+    // 5. Vertical median of the dense map.
     if features.median_rows > 1 {
         let src = std::mem::replace(&mut disparity, vec![0.0; w * h]);
         let median = |(y, out): (usize, &mut [f64])| vertical_median(&src, w, features.median_rows, out, y);
@@ -170,13 +193,13 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::line::{LineFeatures, Match};
+    use crate::line::LineFeatures;
 
     fn line(matches: &[(f64, f64)]) -> LineResult {
         let empty = LineFeatures { sigma: 1.0, dt: 5.6, declivities: vec![] };
         let matches = matches
             .iter()
-            .map(|&(x, d)| Match { ref_index: 0, other_index: 0, x_ref: x, x_other: x - d, disparity: d, gain: 1.0 })
+            .map(|&(x, d)| Match { ref_index: 0, other_index: 0, x_ref: x, x_other: x - d, disparity: d, gain: 1.0, edge: false })
             .collect();
         LineResult { reference: empty.clone(), other: empty, matches, path_gain: 0.0 }
     }
@@ -198,5 +221,15 @@ mod tests {
         assert_eq!(keep, vec![vec![true, false], vec![true, false, true], vec![false, true]]);
         // A single row confirms nothing.
         assert_eq!(confirmed_matches(&lines[..1]), vec![vec![false, false]]);
+    }
+
+    #[test]
+    fn matches_next_to_a_disparity_jump_are_flagged() {
+        // Disparities 5, 5.5, 9 (a jump of 3.5 > 2), 9.5, 9.5: the two sides of
+        // the jump are flagged, the others not; a step of exactly 2 is no jump.
+        let mut l = line(&[(10.0, 5.0), (20.0, 5.5), (30.0, 9.0), (40.0, 9.5), (50.0, 11.5)]);
+        flag_edge_matches(&mut l.matches, 2.0);
+        let flags: Vec<bool> = l.matches.iter().map(|m| m.edge).collect();
+        assert_eq!(flags, vec![false, true, true, false, false]);
     }
 }

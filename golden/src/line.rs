@@ -44,6 +44,9 @@ pub struct Match {
     pub disparity: f64,
     /// Local gain of the node (eq. 7).
     pub gain: f64,
+    /// Flagged as lying next to a depth edge ([`crate::Features::edge_flag`]):
+    /// it anchors the interpolation but is not reported as a match.
+    pub edge: bool,
 }
 
 impl Match {
@@ -179,6 +182,7 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
             x_other: others[j],
             disparity: pair_disparity(refs[i], others[j], params.ref_view),
             gain: gain(i, j),
+            edge: false,
         })
         .collect();
     (matches, path.gain)

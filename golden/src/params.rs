@@ -29,6 +29,9 @@ pub enum Mode {
     /// Paper + a vertical median over five rows of the dense map
     /// ([`Features::median_rows`]).
     Median,
+    /// Paper + matches next to a depth edge flagged and not reported
+    /// ([`Features::edge_flag`]).
+    EdgeFlag,
     /// All of the above: the default, the best measured combination.
     #[default]
     Robust,
@@ -72,6 +75,15 @@ pub struct Features {
     /// disparities and a median network per pixel (7 compare-exchange
     /// units for 5 rows). Latency: `median_rows / 2` lines.
     pub median_rows: usize,
+    /// Matches whose disparity differs by more than this (px) from that of
+    /// the previous or the next match of their row sit on a depth edge: the
+    /// declivity separates two surfaces, and which one its pixel belongs to
+    /// is undecided. They stay anchors of the interpolation (which holds the
+    /// background across the jump) but are flagged and not reported as
+    /// matches.
+    /// Hardware: one match of look-ahead in the traceback's output (2
+    /// comparators and a flag bit per match). Latency: one match.
+    pub edge_flag: Option<f64>,
 }
 
 /// [`Features::consistent`]: largest position difference (px) of a
@@ -85,12 +97,17 @@ pub const CONSISTENT_DD: f64 = 1.0;
 /// and 8 px, 6 gave the lowest mean bad2 on the eight pairs with the other
 /// changes on.
 pub const EDGE_JUMP: f64 = 6.0;
+/// [`Features::edge_flag`] of the modes that use it (px): of 1, 1.5, 2, 2.5,
+/// 3 and 4 px, the smallest that keeps `match_frac` at or above the paper
+/// mode's on every pair.
+pub const EDGE_FLAG_JUMP: f64 = 2.0;
 /// [`Features::median_rows`] of the modes that use it.
 pub const MEDIAN_ROWS: usize = 5;
 
 impl Mode {
     /// Every mode, in the order the CLI lists them.
-    pub const ALL: [Mode; 7] = [Mode::Paper, Mode::Relative, Mode::OneSided, Mode::Consistent, Mode::Edges, Mode::Median, Mode::Robust];
+    pub const ALL: [Mode; 8] =
+        [Mode::Paper, Mode::Relative, Mode::OneSided, Mode::Consistent, Mode::Edges, Mode::Median, Mode::EdgeFlag, Mode::Robust];
 
     /// The name used on the command line and in reports.
     pub fn name(self) -> &'static str {
@@ -101,6 +118,7 @@ impl Mode {
             Mode::Consistent => "consistent",
             Mode::Edges => "edges",
             Mode::Median => "median",
+            Mode::EdgeFlag => "edge-flag",
             Mode::Robust => "robust",
         }
     }
@@ -114,6 +132,7 @@ impl Mode {
             Mode::Consistent => "Paper + matches kept only when a neighbouring row confirms them",
             Mode::Edges => "Paper + interpolation holding the background across disparity jumps",
             Mode::Median => "Paper + a vertical median over five rows of the dense map",
+            Mode::EdgeFlag => "Paper + matches next to a disparity jump flagged as depth-edge matches, not reported",
             Mode::Robust => "All of the above (the best measured combination)",
         }
     }
@@ -128,12 +147,14 @@ impl Mode {
             Mode::Consistent => Features { consistent: true, ..none },
             Mode::Edges => Features { edge_jump: Some(EDGE_JUMP), ..none },
             Mode::Median => Features { median_rows: MEDIAN_ROWS, ..none },
+            Mode::EdgeFlag => Features { edge_flag: Some(EDGE_FLAG_JUMP), ..none },
             Mode::Robust => Features {
                 relative: true,
                 one_sided: true,
                 consistent: true,
                 edge_jump: Some(EDGE_JUMP),
                 median_rows: MEDIAN_ROWS,
+                edge_flag: Some(EDGE_FLAG_JUMP),
             },
         }
     }

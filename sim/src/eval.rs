@@ -82,7 +82,7 @@ pub fn sparse_counts(frame: &FrameResult, gt: &[f64]) -> (usize, usize) {
     let w = frame.width;
     let (mut ok, mut n) = (0, 0);
     for (y, line) in frame.lines.iter().enumerate() {
-        for m in &line.matches {
+        for m in line.matches.iter().filter(|m| !m.edge) {
             let x = m.x_ref.round();
             if x < 0.0 || x >= w as f64 {
                 continue;
@@ -117,8 +117,11 @@ pub struct EvalReport {
     pub search_bound: f64,
     /// Characteristic declivities of the reference view.
     pub declivities: usize,
-    /// Matched reference declivities.
+    /// Matched reference declivities (reported; depth-edge matches apart).
     pub matches: usize,
+    /// Matches flagged as lying next to a depth edge (anchors of the
+    /// interpolation, not reported).
+    pub edge_matches: usize,
     /// `matches / declivities`.
     pub match_frac: f64,
     /// % of matched reference declivities at valid-GT pixels within 1 px.
@@ -197,6 +200,7 @@ pub fn evaluate_pair(pair: &PairData, params: &Params, runs: usize) -> Result<(E
         search_bound: params.dispmax,
         declivities,
         matches,
+        edge_matches: frame.edge_matches(),
         match_frac: matches as f64 / declivities.max(1) as f64,
         sparse_acc1: pct(ok, n),
         sparse_n: n,
@@ -285,6 +289,8 @@ pub enum Fate {
     Correct,
     /// Matched, more than 1 px off.
     Wrong,
+    /// Matched but flagged as lying next to a depth edge (not reported).
+    Edge,
     /// Unmatched although it has a true partner (an other-view declivity of
     /// the same polarity within 1 px of where the ground truth puts it).
     Missed,
@@ -321,7 +327,7 @@ pub fn fates(frame: &FrameResult, gt: &[f64], y: usize) -> Vec<Fate> {
     let line = &frame.lines[y];
     let mut matched = vec![None; line.reference.declivities.len()];
     for m in &line.matches {
-        matched[m.ref_index] = Some(m.disparity);
+        matched[m.ref_index] = Some((m.disparity, m.edge));
     }
     line.reference
         .declivities
@@ -329,7 +335,8 @@ pub fn fates(frame: &FrameResult, gt: &[f64], y: usize) -> Vec<Fate> {
         .zip(matched)
         .map(|(rd, m)| match (truth_at(gt, frame.width, y, rd.position), m) {
             (None, _) => Fate::NoTruth,
-            (Some(g), Some(d)) if (d - g).abs() <= 1.0 => Fate::Correct,
+            (Some(_), Some((_, true))) => Fate::Edge,
+            (Some(g), Some((d, false))) if (d - g).abs() <= 1.0 => Fate::Correct,
             (Some(_), Some(_)) => Fate::Wrong,
             (Some(g), None) if true_partner(line, rd, g, frame.params.ref_view).is_some() => Fate::Missed,
             (Some(_), None) => Fate::NoPartner,
@@ -432,14 +439,16 @@ pub mod colours {
     pub const DECL_WRONG: [u8; 3] = [255, 0, 255];
     /// An unmatched declivity that has a true partner.
     pub const DECL_MISSED: [u8; 3] = [0, 255, 255];
+    /// A match flagged as lying next to a depth edge.
+    pub const DECL_EDGE: [u8; 3] = [255, 150, 0];
 }
 
 /// Where the method fails, in one picture: every pixel coloured by its
 /// dense error (grey: no ground truth, blue: no disparity, green ≤ 1 px,
 /// yellow ≤ 2 px, red > 2 px), and every reference declivity with ground
 /// truth marked at its rounded position: white when matched correctly,
-/// magenta when matched wrongly, cyan when unmatched although its true
-/// partner exists (the photometric test of eq. 7 rejected it, or the path
+/// magenta when matched wrongly, orange when its match is flagged as lying
+/// next to a depth edge, cyan when unmatched although its true partner exists (the photometric test of eq. 7 rejected it, or the path
 /// went elsewhere). Unmatched declivities without a partner are not marked.
 pub fn error_picture(frame: &FrameResult, gt: &[f64]) -> image::RgbImage {
     let w = frame.width;
@@ -465,6 +474,7 @@ pub fn error_picture(frame: &FrameResult, gt: &[f64]) -> image::RgbImage {
                 Fate::Correct => colours::DECL_CORRECT,
                 Fate::Wrong => colours::DECL_WRONG,
                 Fate::Missed => colours::DECL_MISSED,
+                Fate::Edge => colours::DECL_EDGE,
                 Fate::NoTruth | Fate::NoPartner => continue,
             };
             let x = rd.position.round().clamp(0.0, (w - 1) as f64) as u32;

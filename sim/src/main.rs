@@ -120,7 +120,8 @@ struct EvalArgs {
     diagnose: bool,
     /// Also write, per pair, PAIR_disparity.png and PAIR_truth.png (near is bright, same
     /// scale) and PAIR_errors.png (green <= 1 px, yellow <= 2, red > 2, blue: no disparity;
-    /// declivities: white matched right, magenta matched wrong, cyan missed with a true partner).
+    /// declivities: white matched right, magenta matched wrong, orange flagged at a depth edge,
+    /// cyan missed with a true partner).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     #[command(flatten)]
@@ -209,12 +210,13 @@ fn main() -> ExitCode {
 fn print_summary(s: &DepthSummary) {
     let f = &s.frame;
     println!(
-        "{}x{}: {} reference declivities, {} matched ({:.1} %), {:.1} % of pixels with a disparity, {:.1} ms",
+        "{}x{}: {} reference declivities, {} matched ({:.1} %; {} more flagged at depth edges), {:.1} % of pixels with a disparity, {:.1} ms",
         f.width,
         f.height,
         f.reference_declivities(),
         f.matches(),
         100.0 * f.matches() as f64 / f.reference_declivities().max(1) as f64,
+        f.edge_matches(),
         100.0 * f.disparity.iter().filter(|&&d| d > 0.0).count() as f64 / f.disparity.len() as f64,
         s.ms
     );
