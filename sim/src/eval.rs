@@ -356,7 +356,7 @@ pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
     let (mut bad, mut bad_between) = (0usize, 0usize);
     let (mut tolerant_ok, mut evaluated) = (0usize, 0usize);
     for (y, line) in frame.lines.iter().enumerate() {
-        for m in &line.matches {
+        for m in line.matches.iter().filter(|m| !m.edge) {
             if truth_at(gt, w, y, m.x_ref).is_none() {
                 continue;
             }
