@@ -16,7 +16,7 @@
 //! | path → disparities → dense line | [`disparity`] | §IV |
 //! | disparity → 3-D point | [`reconstruct`] | eq. 1 |
 //!
-//! [`line`] chains these for one pair of epipolar lines and [`frame`] for a
+//! [`line`](mod@line) chains these for one pair of epipolar lines and [`frame`] for a
 //! whole image pair, over all cores with `rayon` (results identical to one
 //! thread).
 
