@@ -210,7 +210,8 @@ fn main() -> ExitCode {
 fn print_summary(s: &DepthSummary) {
     let f = &s.frame;
     println!(
-        "{}x{}: {} reference declivities, {} matched ({:.1} %; {} more flagged at depth edges), {:.1} % of pixels with a disparity, {:.1} ms",
+        "{} mode, {}x{}: {} reference declivities, {} matched ({:.1} %; {} more flagged at depth edges), {:.1} % of pixels with a disparity, {:.1} ms",
+        f.params.mode.name(),
         f.width,
         f.height,
         f.reference_declivities(),
