@@ -33,6 +33,9 @@ pub enum SimError {
         want_w: usize,
         want_h: usize,
     },
+    /// A command-line argument that does not fit the inputs.
+    #[error("{0}")]
+    Argument(String),
     /// The golden model refused its inputs.
     #[error(transparent)]
     Golden(#[from] golden::GoldenError),

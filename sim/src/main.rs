@@ -233,7 +233,7 @@ fn print_summary(s: &DepthSummary) {
 /// and its scores against the bundled ground truth.
 fn main_job() -> Result<(), SimError> {
     let pair = bundled::tsukuba()?;
-    let params = MethodArgs { mode: CliMode(Mode::default()), ref_view: CliRef::Left, ends: CliEnds::Hold }.params(pair.dispmax + 1.0)?;
+    let params = Params::new(pair.dispmax + 1.0)?;
     let out_dir = PathBuf::from("declivity-out").join("tsukuba");
     println!("declivity: depth map of the bundled pair ({} mode, search bound {})", params.mode.name(), params.dispmax);
     println!("  {}", bundled::CITATION);
@@ -264,10 +264,11 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
     }
     if let Some(y) = a.graph_line {
         if y >= left.image.height() {
-            return Err(SimError::PairDir {
-                path: a.left.clone(),
-                msg: format!("--graph-line {y} is outside the image (height {})", left.image.height()),
-            });
+            return Err(SimError::Argument(format!(
+                "--graph-line {y} is outside the image ({} has {} rows)",
+                a.left.display(),
+                left.image.height()
+            )));
         }
     }
     let job = DepthJob {
