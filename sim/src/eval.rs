@@ -40,12 +40,17 @@ fn pct(num: usize, den: usize) -> f64 {
     100.0 * num as f64 / den.max(1) as f64
 }
 
+/// A ground-truth value that counts: known (`> 0`) and finite.
+fn is_truth(g: f64) -> bool {
+    g > 0.0 && g.is_finite()
+}
+
 /// Dense scores of `disp` (0 = none) against `gt` (0 = unknown) over the
 /// pixels where `mask` holds (all pixels without a mask).
 pub fn dense_scores(disp: &[f64], gt: &[f64], mask: Option<&[bool]>) -> DenseScores {
     let (mut n_eval, mut n_valid, mut miss, mut b1, mut b2, mut b1v, mut b2v) = (0, 0, 0, 0, 0, 0, 0);
     for (k, (&d, &g)) in disp.iter().zip(gt).enumerate() {
-        if g <= 0.0 || !g.is_finite() || mask.is_some_and(|m| !m[k]) {
+        if !is_truth(g) || mask.is_some_and(|m| !m[k]) {
             continue;
         }
         n_eval += 1;
@@ -83,14 +88,7 @@ pub fn sparse_counts(frame: &FrameResult, gt: &[f64]) -> (usize, usize) {
     let (mut ok, mut n) = (0, 0);
     for (y, line) in frame.lines.iter().enumerate() {
         for m in line.matches.iter().filter(|m| !m.edge) {
-            let x = m.x_ref.round();
-            if x < 0.0 || x >= w as f64 {
-                continue;
-            }
-            let g = gt[y * w + x as usize];
-            if g <= 0.0 || !g.is_finite() {
-                continue;
-            }
+            let Some(g) = truth_at(gt, w, y, m.x_ref) else { continue };
             n += 1;
             if (m.disparity - g).abs() <= 1.0 {
                 ok += 1;
@@ -302,7 +300,7 @@ pub enum Fate {
 /// Ground truth at a sub-pixel position of row `y`, if valid.
 fn truth_at(gt: &[f64], w: usize, y: usize, x: f64) -> Option<f64> {
     let xr = x.round();
-    (xr >= 0.0 && xr < w as f64).then(|| gt[y * w + xr as usize]).filter(|&g| g > 0.0 && g.is_finite())
+    (xr >= 0.0 && xr < w as f64).then(|| gt[y * w + xr as usize]).filter(|&g| is_truth(g))
 }
 
 /// The true partner of reference declivity `rd` with ground truth `d`: the
@@ -364,7 +362,7 @@ pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
             let near = ((m.x_ref - 1.5).ceil().max(0.0) as usize)..=((m.x_ref + 1.5).floor().max(0.0) as usize).min(w - 1);
             tolerant_ok += near.into_iter().any(|x| {
                 let g = gt[y * w + x];
-                g > 0.0 && g.is_finite() && (m.disparity - g).abs() <= 1.0
+                is_truth(g) && (m.disparity - g).abs() <= 1.0
             }) as usize;
         }
         let (r, o) = (&line.reference, &line.other);
@@ -394,7 +392,7 @@ pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
             .collect();
         for x in 0..w {
             let gv = gt[y * w + x];
-            if !(gv > 0.0 && gv.is_finite()) {
+            if !is_truth(gv) {
                 continue;
             }
             let dv = frame.disparity[y * w + x];
@@ -455,7 +453,7 @@ pub fn error_picture(frame: &FrameResult, gt: &[f64]) -> image::RgbImage {
     let mut img = image::RgbImage::from_fn(w as u32, frame.height as u32, |x, y| {
         let k = y as usize * w + x as usize;
         let (g, d) = (gt[k], frame.disparity[k]);
-        image::Rgb(if !(g > 0.0 && g.is_finite()) {
+        image::Rgb(if !is_truth(g) {
             colours::NO_TRUTH
         } else if d <= 0.0 {
             colours::NO_OUTPUT
