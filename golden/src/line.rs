@@ -235,3 +235,45 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod reference_tests {
+    use super::*;
+    use crate::dp::banded_dp;
+    use crate::params::Mode;
+
+    #[test]
+    fn match_lines_takes_the_path_of_the_dp_on_the_readable_gains_in_every_mode() {
+        // match_lines computes gains with the integer `LineGain` as the DP
+        // sweeps them; `banded_gains` computes them with the per-equation
+        // `node_gain`. Both must give the same path, gain for gain.
+        let mut rng = crate::test_rng::TestRng::new(0x5a5a_1234_0f0f_9876);
+        let mut matched = 0;
+        for case in 0..300 {
+            let w = 40 + (rng.next() % 200) as usize;
+            let mut level = 128i32;
+            let left: Vec<u8> = (0..w)
+                .map(|_| {
+                    level = (level + (rng.next() % 61) as i32 - 30).clamp(0, 255);
+                    level as u8
+                })
+                .collect();
+            let shift = 1 + (rng.next() % 12) as usize;
+            let right: Vec<u8> = (0..w).map(|x| left[(x + shift).min(w - 1)].saturating_add((rng.next() % 9) as u8)).collect();
+            for mode in Mode::ALL {
+                for ref_view in [RefView::Left, RefView::Right] {
+                    let params = Params { ref_view, ..Params::with_mode(mode, 20.0).unwrap() };
+                    let (lr, rr) = (line_features(&left), line_features(&right));
+                    let (reference, other) = if ref_view == RefView::Left { (lr, rr) } else { (rr, lr) };
+                    let (matches, gain) = match_lines(&reference, &other, &params);
+                    let path = banded_dp(&banded_gains(&reference, &other, &params));
+                    let nodes: Vec<(usize, usize)> = matches.iter().map(|m| (m.ref_index, m.other_index)).collect();
+                    assert_eq!(nodes, path.nodes, "case {case}, {mode:?}, {ref_view:?}");
+                    assert_eq!(gain, path.gain, "case {case}, {mode:?}, {ref_view:?}");
+                    matched += matches.len();
+                }
+            }
+        }
+        assert!(matched > 1000, "the lines match: {matched}");
+    }
+}
