@@ -267,10 +267,10 @@ pub struct BandedGains {
     gains: Vec<f64>,
 }
 
-/// The gain stored for a band cell without a node: it never wins a
-/// comparison and stays `-∞` when a path gain is added to it (the same value
-/// as [`crate::gain::REJECTED`]).
-pub const NO_NODE: f64 = f64::NEG_INFINITY;
+/// The gain stored for a band cell without a node: the gain rule's value for
+/// a rejected node (`-∞`), which never wins a comparison and stays `-∞` when
+/// a path gain is added to it.
+pub const NO_NODE: f64 = crate::gain::REJECTED;
 
 impl BandedGains {
     /// A graph of `m` columns and no rows yet.
