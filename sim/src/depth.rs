@@ -3,7 +3,6 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use golden::line::LineFeatures;
 use golden::reconstruct::Camera;
 use golden::{process_frame, FrameResult, GreyImage, Params, RefView, Threads};
 
@@ -62,14 +61,10 @@ pub fn run_depth(left: &GreyImage, right: &GreyImage, params: &Params, job: &Dep
         &pictures::disparity_visual(&frame, params.dispmax),
         &put("disparity.png".into(), "disparity, near is bright (paper's photo 5)"),
     )?;
-    let (left_feats, right_feats): (Vec<&LineFeatures>, Vec<&LineFeatures>) = frame
-        .lines
-        .iter()
-        .map(|l| match params.ref_view {
-            RefView::Left => (&l.reference, &l.other),
-            RefView::Right => (&l.other, &l.reference),
-        })
-        .unzip();
+    let (left_feats, right_feats) = match params.ref_view {
+        RefView::Left => (pictures::reference_features(&frame), pictures::other_features(&frame)),
+        RefView::Right => (pictures::other_features(&frame), pictures::reference_features(&frame)),
+    };
     pictures::save_png(
         &pictures::declivity_overlay(left, &left_feats),
         &put("declivities_left.png".into(), "left characteristic declivities (photo 3): red rising, cyan falling"),
@@ -79,10 +74,8 @@ pub fn run_depth(left: &GreyImage, right: &GreyImage, params: &Params, job: &Dep
         &put("declivities_right.png".into(), "right characteristic declivities (photo 4)"),
     )?;
     let y = job.graph_line.unwrap_or(frame.height / 2).min(frame.height - 1);
-    let line = &frame.lines[y];
-    let path: Vec<(usize, usize)> = line.matches.iter().map(|m| (m.ref_index, m.other_index)).collect();
     pictures::save_png(
-        &pictures::matching_graph(&line.reference, &line.other, params, &path),
+        &pictures::line_matching_graph(&frame.lines[y], params),
         &put(format!("graph_line_{y}.png"), "matching graph of that line with its optimal path (fig. 4)"),
     )?;
     let mut points = None;
