@@ -8,7 +8,12 @@
 //! joining them. Each block generates Verilog that is co-simulated bit-exactly
 //! against the Rust model and checked against `golden`.
 //!
-//! The blocks arrive with their own issues; this crate already depends on
-//! `rust-hdl` 0.46 so that the toolchain and the HDL library build in CI.
+//! Conventions in every block: one clock input `clock`, no reset (registers
+//! start from their Verilog `initial` values, which rust-hdl writes), and
+//! arithmetic whose operands and result have the same width, so that Verilog's
+//! context-sized expressions compute exactly what the Rust simulation does.
+
+pub mod params;
+pub mod position_divider;
 
 pub use rust_hdl;

@@ -1,0 +1,106 @@
+//! Generation-time parameters of the hardware and the fixed-point formats
+//! derived from them.
+//!
+//! rust-hdl widths are const generics, and stable Rust cannot compute one
+//! const generic from another, so the sizes are constants here: change a
+//! parameter and every width below follows. The defaults are the sizes of
+//! `DESIGN.md` §3.
+
+/// Bits of a grey level (8-bit images).
+pub const PIXEL_BITS: usize = 8;
+
+/// log2 of the maximum line width `W_MAX`.
+pub const W_MAX_BITS: usize = 10;
+/// `W_MAX`: the widest line the detector stores (pixels beyond it are
+/// dropped and the line is flagged; see [`crate::declivity_detector`]).
+pub const W_MAX: usize = 1 << W_MAX_BITS;
+/// Bits of a pixel index `x < W_MAX`.
+pub const X_BITS: usize = W_MAX_BITS;
+/// Address bits of the ping-pong line buffer: one bank bit above `x`.
+pub const LINE_BUF_ADDR_BITS: usize = W_MAX_BITS + 1;
+
+/// `N_MAX`: characteristic declivities kept per line. Measured on the eight
+/// Middlebury pairs: 27–82 per line on average and at most 117 (motorcycle,
+/// 741 px wide), so 128 covers every row with room to spare; the 129th and
+/// later declivities of a line are dropped and the line is flagged.
+pub const N_MAX: usize = 128;
+/// Bits of a per-line declivity count `0 ..= N_MAX`.
+pub const COUNT_BITS: usize = 8;
+
+/// Bins of the |ΔI| histogram (one per grey-level difference).
+pub const HIST_BINS: usize = 1 << PIXEL_BITS;
+/// Address bits of the histogram.
+pub const HIST_ADDR_BITS: usize = PIXEL_BITS;
+/// Bits of a histogram count or a running sum of counts: up to
+/// `W_MAX - 1` differences per line, doubled in the median test.
+pub const HIST_COUNT_BITS: usize = W_MAX_BITS + 2;
+
+/// Fraction bits of the median's in-bin interpolation `(n/2 - below)/h`.
+pub const MEDIAN_FRAC_BITS: usize = 15;
+/// Bits of that fraction: it can be exactly 1.
+pub const MEDIAN_Q_BITS: usize = MEDIAN_FRAC_BITS + 1;
+
+/// Fraction bits of `d_t` (the threshold is within one LSB, 1/32 grey level,
+/// of golden's f64 value).
+pub const DT_FRAC_BITS: usize = 5;
+/// Bits of `d_t`: it reaches `5.6/(0.6745·√2) · 255.5 ≈ 1500` grey levels.
+pub const DT_BITS: usize = 16;
+/// Bits of the integer threshold `⌊d_t⌋`.
+pub const DT_INT_BITS: usize = DT_BITS - DT_FRAC_BITS;
+
+/// The factor from the median of |ΔI| to `d_t`: `5.6 / (0.6745·√2)`
+/// (eq. 2 with the MAD estimator of `DESIGN.md` §2.1).
+pub const THRESHOLD_PER_MEDIAN: f64 = 5.6 / (0.674_489_750_196_081_7 * std::f64::consts::SQRT_2);
+/// Fraction bits of `d_t` inside the threshold engine before rounding.
+pub const DT_ACC_FRAC_BITS: usize = 20;
+/// Bits of the threshold engine's accumulator (`d_t · 2^20 < 2^31`).
+pub const DT_ACC_BITS: usize = 32;
+/// `round(K · 2^19)`: `K·(v - ½)·2^20 = (2v - 1)·K_HALF`, added twice per bin
+/// during the histogram scan.
+pub const K_HALF: u64 = 3_077_993;
+/// Fraction bits of [`K_FRAC`].
+pub const K_FRAC_BITS: usize = 13;
+/// `round(K · 2^13)`: multiplies the in-bin fraction (16×16 product).
+pub const K_FRAC: u64 = 48_094;
+/// The σ floor of eq. 2's estimator (`1/√12`) as a `d_t` in fixed point:
+/// `round(5.6/√12 · 2^5)`.
+pub const DT_FLOOR: u64 = 52;
+
+/// Fraction bits of a declivity position `X_i` (eq. 3).
+pub const POS_FRAC_BITS: usize = 4;
+/// Bits of a position `X_i < W_MAX`.
+pub const POS_BITS: usize = W_MAX_BITS + POS_FRAC_BITS;
+/// Bits of a signed amplitude `a_i ∈ [-255, 255]` (two's complement).
+pub const AMP_BITS: usize = PIXEL_BITS + 1;
+/// Bits of `Σ g²` over one declivity: its gradients share a sign and add up
+/// to at most 255, so `Σ g² ≤ 255²`.
+pub const S0_BITS: usize = 2 * PIXEL_BITS;
+/// Bits of `Σ g²·(2x + 1)`: `Σ g² · (2 W_MAX - 1)`.
+pub const S1_BITS: usize = S0_BITS + W_MAX_BITS + 1;
+/// Bits of the eq. 3 dividend `Σ g²(2x+1) · 2^(POS_FRAC_BITS-1)`.
+pub const DIVIDEND_BITS: usize = S1_BITS + POS_FRAC_BITS - 1;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constants_are_the_rounded_reals() {
+        let k = THRESHOLD_PER_MEDIAN;
+        assert_eq!(K_HALF, (k * (1u64 << (DT_ACC_FRAC_BITS - 1)) as f64).round() as u64);
+        assert_eq!(K_FRAC, (k * (1u64 << K_FRAC_BITS) as f64).round() as u64);
+        assert_eq!(DT_FLOOR, (5.6 / 12f64.sqrt() * (1u64 << DT_FRAC_BITS) as f64).round() as u64);
+        // The widths hold their worst cases.
+        // The accumulator at the top bin plus the largest fraction term, and
+        // the 16×16 product of the fraction.
+        let top = (2 * (HIST_BINS as u64 - 1) - 1) * K_HALF;
+        let frac = (1u64 << MEDIAN_FRAC_BITS) * K_FRAC;
+        assert!(frac < 1 << 32);
+        assert!(top + (frac >> (MEDIAN_FRAC_BITS + K_FRAC_BITS - DT_ACC_FRAC_BITS)) < 1u64 << (DT_ACC_BITS - 1));
+        assert!((k * 255.5 * (1u64 << DT_FRAC_BITS) as f64) < (1u64 << DT_BITS) as f64);
+        assert!(255u64 * 255 < 1 << S0_BITS);
+        assert!(255u64 * 255 * (2 * W_MAX as u64 - 1) < 1 << S1_BITS);
+        assert!(DIVIDEND_BITS <= 32 && POS_BITS <= 32);
+        assert!(N_MAX < 1 << COUNT_BITS);
+    }
+}
