@@ -26,6 +26,7 @@ pub mod dp;
 pub mod error;
 pub mod frame;
 pub mod gain;
+pub mod hardware;
 pub mod line;
 pub mod noise;
 pub mod params;

@@ -14,6 +14,9 @@
 //! context-sized expressions compute exactly what the Rust simulation does.
 
 pub mod params;
+pub mod adaptive_threshold;
+pub mod declivity_detector;
+pub mod declivity_tracker;
 pub mod position_divider;
 
 pub use rust_hdl;

@@ -1,0 +1,420 @@
+//! The self-adaptive threshold of paper eq. 2, `d_t = 5.6 σ`, with σ from the
+//! line itself by the estimator of `DESIGN.md` §2.1 (golden `noise`): the
+//! median `m` of `|I(x+1) - I(x)|` interpolated inside its bin, and
+//! `d_t = max(K·m, 5.6/√12)` with `K = 5.6/(0.6745·√2)`.
+//!
+//! Two histogram banks in block RAM ([`HIST_BINS`] counts of
+//! [`HIST_COUNT_BITS`] bits each) let one line be counted while the line
+//! before is scanned.
+//!
+//! ## Ports
+//! - Counting: `inc_valid`, `inc_bank`, `inc_bin` (one |ΔI| per clock, any
+//!   bin sequence: a read-modify-write pipeline with forwarding handles the
+//!   same bin on consecutive clocks).
+//! - Scanning: `scan_start` (a one-clock pulse while `busy` is low) with
+//!   `scan_bank` and `scan_n` (the number of differences counted in that bank,
+//!   `W - 1`); `busy`; `done` pulses for one clock with `dt` (`d_t` with
+//!   [`DT_FRAC_BITS`] fraction bits, [`DT_BITS`] bits) valid, and `dt` holds
+//!   until the next scan ends.
+//!
+//! ## Timing
+//! The scan reads every bin once ([`HIST_BINS`] + 1 clocks, the bank's
+//! synchronous read adds one), clears it behind itself so the bank is ready
+//! for the line after next, finds the median bin `v` (the first non-empty bin
+//! where the counts reach `n/2`), then divides the in-bin fraction
+//! `(n - 2·below) / (2h)` to [`MEDIAN_FRAC_BITS`] bits ([`MEDIAN_Q_BITS`]
+//! clocks, one bit each) and scales it (2 clocks):
+//! `done` comes [`THRESHOLD_LATENCY`] clocks after `scan_start`, whatever the
+//! line. A bank must not be counted into while it is being scanned.
+//!
+//! ## Fixed point
+//! `K·m·2^20` is the sum of `(2v - 1)·round(K·2^19)` (accumulated bin by bin
+//! during the scan) and `q·round(K·2^13) / 2^8` (`q` the 16-bit fraction,
+//! halved again in bin 0, whose width is ½); rounding to 5 fraction bits then
+//! leaves `d_t` within half an LSB plus about 0.001 of golden's f64 value.
+//! The floor `5.6/√12` is [`DT_FLOOR`]; a line of one pixel (`n = 0`) gets it.
+
+use crate::params::*;
+use rust_hdl::prelude::*;
+
+/// Clocks from `scan_start` to `done`: one to start, [`HIST_BINS`] + 1 to
+/// read and test every bin, [`MEDIAN_Q_BITS`] to divide, 2 to scale.
+pub const THRESHOLD_LATENCY: usize = 1 + HIST_BINS + 1 + MEDIAN_Q_BITS + 2;
+
+/// Bits of the scan counter `0 ..= HIST_BINS`.
+const SCAN_BITS: usize = HIST_ADDR_BITS + 1;
+/// Bits of the division's running remainder: below twice the divisor.
+const REM_BITS: usize = HIST_COUNT_BITS + 1;
+/// Bits of the division's step counter.
+const STEP_BITS: usize = 5;
+
+#[derive(Copy, Clone, Debug, PartialEq, LogicState)]
+pub enum ThresholdState {
+    Idle,
+    Scan,
+    Divide,
+    Scale,
+    Round,
+}
+
+#[derive(LogicBlock)]
+pub struct AdaptiveThreshold {
+    pub clock: Signal<In, Clock>,
+    pub inc_valid: Signal<In, Bit>,
+    pub inc_bank: Signal<In, Bit>,
+    pub inc_bin: Signal<In, Bits<HIST_ADDR_BITS>>,
+    pub scan_start: Signal<In, Bit>,
+    pub scan_bank: Signal<In, Bit>,
+    pub scan_n: Signal<In, Bits<HIST_COUNT_BITS>>,
+    pub busy: Signal<Out, Bit>,
+    pub done: Signal<Out, Bit>,
+    pub dt: Signal<Out, Bits<DT_BITS>>,
+    hist0: RAM<Bits<HIST_COUNT_BITS>, HIST_ADDR_BITS>,
+    hist1: RAM<Bits<HIST_COUNT_BITS>, HIST_ADDR_BITS>,
+    // Counting pipeline: the increment whose read is under way, and the
+    // value written on the previous clock (forwarded to a repeated bin).
+    p_valid: DFF<Bit>,
+    p_bank: DFF<Bit>,
+    p_bin: DFF<Bits<HIST_ADDR_BITS>>,
+    f_valid: DFF<Bit>,
+    f_bank: DFF<Bit>,
+    f_bin: DFF<Bits<HIST_ADDR_BITS>>,
+    f_count: DFF<Bits<HIST_COUNT_BITS>>,
+    old_count: Signal<Local, Bits<HIST_COUNT_BITS>>,
+    new_count: Signal<Local, Bits<HIST_COUNT_BITS>>,
+    // Scan.
+    state: DFF<ThresholdState>,
+    bank: DFF<Bit>,
+    n: DFF<Bits<HIST_COUNT_BITS>>,
+    cnt: DFF<Bits<SCAN_BITS>>,
+    below: DFF<Bits<HIST_COUNT_BITS>>,
+    found: DFF<Bit>,
+    zero_bin: DFF<Bit>,
+    term1: DFF<Bits<DT_ACC_BITS>>,
+    ramp: DFF<Bits<DT_ACC_BITS>>,
+    den: DFF<Bits<HIST_COUNT_BITS>>,
+    rem: DFF<Bits<REM_BITS>>,
+    q: DFF<Bits<MEDIAN_Q_BITS>>,
+    step: DFF<Bits<STEP_BITS>>,
+    product: DFF<Bits<32>>,
+    dt_reg: DFF<Bits<DT_BITS>>,
+    done_reg: DFF<Bit>,
+    h: Signal<Local, Bits<HIST_COUNT_BITS>>,
+    reach: Signal<Local, Bits<HIST_COUNT_BITS>>,
+    bin: Signal<Local, Bits<HIST_ADDR_BITS>>,
+    wide_q: Signal<Local, Bits<16>>,
+    wide_k: Signal<Local, Bits<16>>,
+    prod_full: Signal<Local, Bits<32>>,
+    term2: Signal<Local, Bits<DT_ACC_BITS>>,
+    acc: Signal<Local, Bits<DT_ACC_BITS>>,
+    rounded: Signal<Local, Bits<DT_ACC_BITS>>,
+    // Constants of the fixed-point scaling.
+    k_half: Constant<Bits<DT_ACC_BITS>>,
+    k_frac: Constant<Bits<16>>,
+    dt_floor: Constant<Bits<DT_ACC_BITS>>,
+    round_half: Constant<Bits<DT_ACC_BITS>>,
+    round_shift: Constant<Bits<8>>,
+    frac_shift: Constant<Bits<8>>,
+    last_step: Constant<Bits<STEP_BITS>>,
+    last_scan: Constant<Bits<SCAN_BITS>>,
+}
+
+impl Default for AdaptiveThreshold {
+    fn default() -> Self {
+        let zeros = || RAM::from(std::iter::repeat(Bits::<HIST_COUNT_BITS>::default()).take(HIST_BINS));
+        Self {
+            clock: Default::default(),
+            inc_valid: Default::default(),
+            inc_bank: Default::default(),
+            inc_bin: Default::default(),
+            scan_start: Default::default(),
+            scan_bank: Default::default(),
+            scan_n: Default::default(),
+            busy: Default::default(),
+            done: Default::default(),
+            dt: Default::default(),
+            hist0: zeros(),
+            hist1: zeros(),
+            p_valid: Default::default(),
+            p_bank: Default::default(),
+            p_bin: Default::default(),
+            f_valid: Default::default(),
+            f_bank: Default::default(),
+            f_bin: Default::default(),
+            f_count: Default::default(),
+            old_count: Default::default(),
+            new_count: Default::default(),
+            state: Default::default(),
+            bank: Default::default(),
+            n: Default::default(),
+            cnt: Default::default(),
+            below: Default::default(),
+            found: Default::default(),
+            zero_bin: Default::default(),
+            term1: Default::default(),
+            ramp: Default::default(),
+            den: Default::default(),
+            rem: Default::default(),
+            q: Default::default(),
+            step: Default::default(),
+            product: Default::default(),
+            dt_reg: Default::default(),
+            done_reg: Default::default(),
+            h: Default::default(),
+            reach: Default::default(),
+            bin: Default::default(),
+            wide_q: Default::default(),
+            wide_k: Default::default(),
+            prod_full: Default::default(),
+            term2: Default::default(),
+            acc: Default::default(),
+            rounded: Default::default(),
+            k_half: Constant::new(K_HALF.into()),
+            k_frac: Constant::new(K_FRAC.into()),
+            dt_floor: Constant::new(DT_FLOOR.into()),
+            round_half: Constant::new((1u64 << (DT_ACC_FRAC_BITS - DT_FRAC_BITS - 1)).into()),
+            round_shift: Constant::new(((DT_ACC_FRAC_BITS - DT_FRAC_BITS) as u64).into()),
+            frac_shift: Constant::new(((MEDIAN_FRAC_BITS + K_FRAC_BITS - DT_ACC_FRAC_BITS) as u64).into()),
+            last_step: Constant::new(((MEDIAN_Q_BITS - 1) as u64).into()),
+            last_scan: Constant::new((HIST_BINS as u64).into()),
+        }
+    }
+}
+
+impl Logic for AdaptiveThreshold {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.hist0.read_clock.next = self.clock.val();
+        self.hist0.write_clock.next = self.clock.val();
+        self.hist1.read_clock.next = self.clock.val();
+        self.hist1.write_clock.next = self.clock.val();
+        dff_setup!(
+            self, clock, p_valid, p_bank, p_bin, f_valid, f_bank, f_bin, f_count, state, bank, n, cnt, below, found,
+            zero_bin, term1, ramp, den, rem, q, step, product, dt_reg, done_reg
+        );
+        // ---- Counting: read on the clock of the increment, write one clock
+        // later, forwarding the previous write when the bin repeats.
+        self.p_valid.d.next = self.inc_valid.val();
+        self.p_bank.d.next = self.inc_bank.val();
+        self.p_bin.d.next = self.inc_bin.val();
+        self.hist0.read_address.next = self.inc_bin.val();
+        self.hist1.read_address.next = self.inc_bin.val();
+        self.old_count.next = self.hist0.read_data.val();
+        if self.p_bank.q.val() {
+            self.old_count.next = self.hist1.read_data.val();
+        }
+        if self.f_valid.q.val() & (self.f_bank.q.val() == self.p_bank.q.val()) & (self.f_bin.q.val() == self.p_bin.q.val()) {
+            self.old_count.next = self.f_count.q.val();
+        }
+        self.new_count.next = self.old_count.val() + 1;
+        self.f_valid.d.next = self.p_valid.q.val();
+        self.f_bank.d.next = self.p_bank.q.val();
+        self.f_bin.d.next = self.p_bin.q.val();
+        self.f_count.d.next = self.new_count.val();
+        self.hist0.write_address.next = self.p_bin.q.val();
+        self.hist1.write_address.next = self.p_bin.q.val();
+        self.hist0.write_data.next = self.new_count.val();
+        self.hist1.write_data.next = self.new_count.val();
+        self.hist0.write_enable.next = self.p_valid.q.val() & !self.p_bank.q.val();
+        self.hist1.write_enable.next = self.p_valid.q.val() & self.p_bank.q.val();
+
+        // ---- Scan: bin v is read at cnt = v and tested (and cleared) at
+        // cnt = v + 1.
+        self.h.next = self.hist0.read_data.val();
+        if self.bank.q.val() {
+            self.h.next = self.hist1.read_data.val();
+        }
+        self.bin.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val() - 1);
+        self.reach.next = (self.below.q.val() + self.h.val()) << 1;
+        self.wide_q.next = bit_cast::<16, MEDIAN_Q_BITS>(self.q.q.val());
+        self.wide_k.next = self.k_frac.val();
+        self.prod_full.next = self.wide_q.val() * self.wide_k.val();
+        self.term2.next = self.product.q.val() >> self.frac_shift.val();
+        if self.zero_bin.q.val() {
+            self.term2.next = self.product.q.val() >> (self.frac_shift.val() + 1);
+        }
+        self.acc.next = self.term1.q.val() + self.term2.val();
+        self.rounded.next = (self.acc.val() + self.round_half.val()) >> self.round_shift.val();
+        self.done_reg.d.next = false;
+        self.busy.next = self.state.q.val() != ThresholdState::Idle;
+        self.done.next = self.done_reg.q.val();
+        self.dt.next = self.dt_reg.q.val();
+        match self.state.q.val() {
+            ThresholdState::Idle => {
+                if self.scan_start.val() {
+                    self.bank.d.next = self.scan_bank.val();
+                    self.n.d.next = self.scan_n.val();
+                    self.cnt.d.next = 0.into();
+                    self.below.d.next = 0.into();
+                    self.found.d.next = false;
+                    self.zero_bin.d.next = false;
+                    self.term1.d.next = 0.into();
+                    // (2v - 1)·K_HALF at v = 0, wrapping: -K_HALF.
+                    self.ramp.d.next = 0 - self.k_half.val();
+                    self.den.d.next = 1.into();
+                    self.rem.d.next = 0.into();
+                    self.state.d.next = ThresholdState::Scan;
+                }
+            }
+            ThresholdState::Scan => {
+                if self.bank.q.val() {
+                    self.hist1.read_address.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val());
+                } else {
+                    self.hist0.read_address.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val());
+                }
+                self.cnt.d.next = self.cnt.q.val() + 1;
+                if self.cnt.q.val() != 0 {
+                    // Test bin v = cnt - 1 and clear it.
+                    if self.bank.q.val() {
+                        self.hist1.write_enable.next = true;
+                        self.hist1.write_address.next = self.bin.val();
+                        self.hist1.write_data.next = 0.into();
+                    } else {
+                        self.hist0.write_enable.next = true;
+                        self.hist0.write_address.next = self.bin.val();
+                        self.hist0.write_data.next = 0.into();
+                    }
+                    self.ramp.d.next = self.ramp.q.val() + (self.k_half.val() << 1);
+                    if !self.found.q.val() {
+                        self.below.d.next = self.below.q.val() + self.h.val();
+                        if (self.h.val() != 0) & (self.reach.val() >= self.n.q.val()) {
+                            self.found.d.next = true;
+                            self.zero_bin.d.next = self.cnt.q.val() == 1;
+                            self.term1.d.next = self.ramp.q.val();
+                            if self.cnt.q.val() == 1 {
+                                self.term1.d.next = 0.into();
+                            }
+                            // The fraction (n - 2·below) / (2h), divided next.
+                            self.rem.d.next = bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.n.q.val() - (self.below.q.val() << 1));
+                            self.den.d.next = self.h.val() << 1;
+                        }
+                    }
+                    if self.cnt.q.val() == self.last_scan.val() {
+                        self.step.d.next = 0.into();
+                        self.q.d.next = 0.into();
+                        self.state.d.next = ThresholdState::Divide;
+                    }
+                }
+            }
+            ThresholdState::Divide => {
+                // One quotient bit per clock: rem < 2·den throughout.
+                self.step.d.next = self.step.q.val() + 1;
+                if self.rem.q.val() >= bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.den.q.val()) {
+                    self.rem.d.next = (self.rem.q.val() - bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.den.q.val())) << 1;
+                    self.q.d.next = (self.q.q.val() << 1) | 1;
+                } else {
+                    self.rem.d.next = self.rem.q.val() << 1;
+                    self.q.d.next = self.q.q.val() << 1;
+                }
+                if self.step.q.val() == self.last_step.val() {
+                    self.state.d.next = ThresholdState::Scale;
+                }
+            }
+            ThresholdState::Scale => {
+                self.product.d.next = self.prod_full.val();
+                self.state.d.next = ThresholdState::Round;
+            }
+            ThresholdState::Round => {
+                self.dt_reg.d.next = bit_cast::<DT_BITS, DT_ACC_BITS>(self.rounded.val());
+                if (self.rounded.val() < self.dt_floor.val()) | !self.found.q.val() {
+                    self.dt_reg.d.next = bit_cast::<DT_BITS, DT_ACC_BITS>(self.dt_floor.val());
+                }
+                self.done_reg.d.next = true;
+                self.state.d.next = ThresholdState::Idle;
+            }
+            _ => {
+                self.state.d.next = ThresholdState::Idle;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tick(uut: &mut AdaptiveThreshold) {
+        uut.clock.next = Clock::from(true);
+        assert!(simulate(uut, 100));
+        uut.clock.next = Clock::from(false);
+        assert!(simulate(uut, 100));
+    }
+
+    /// golden's eq. 2 on the differences `diffs` (the estimator's median and
+    /// floor), written out here in f64 so the test is independent of the
+    /// block's fixed point.
+    fn dt_of(diffs: &[u8]) -> f64 {
+        let n = diffs.len();
+        if n == 0 {
+            return 5.6 / 12f64.sqrt();
+        }
+        let mut h = [0u64; 256];
+        diffs.iter().for_each(|&d| h[d as usize] += 1);
+        let half = n as f64 / 2.0;
+        let mut below = 0u64;
+        for v in 0..256 {
+            if h[v] > 0 && (below + h[v]) as f64 >= half {
+                let (lo, w) = if v == 0 { (0.0, 0.5) } else { (v as f64 - 0.5, 1.0) };
+                let m = lo + w * (half - below as f64) / h[v] as f64;
+                return (THRESHOLD_PER_MEDIAN * m).max(5.6 / 12f64.sqrt());
+            }
+            below += h[v];
+        }
+        unreachable!()
+    }
+
+    #[test]
+    fn threshold_is_within_one_lsb_of_the_f64_estimator_and_banks_are_cleared() {
+        let mut uut = AdaptiveThreshold::default();
+        uut.connect_all();
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for case in 0..60 {
+            let n = match case {
+                0 => 0,
+                1 => 1,
+                _ => (next() % 1023) as usize,
+            };
+            let spread = 1 + next() % 256;
+            let diffs: Vec<u8> = (0..n)
+                .map(|i| if case % 3 == 0 && i % 2 == 0 { 7 } else { (next() % spread) as u8 })
+                .collect();
+            let bank = case % 2 == 1;
+            for &d in &diffs {
+                uut.inc_valid.next = true;
+                uut.inc_bank.next = bank;
+                uut.inc_bin.next = (d as u64).into();
+                assert!(simulate(&mut uut, 100));
+                tick(&mut uut);
+            }
+            uut.inc_valid.next = false;
+            assert!(simulate(&mut uut, 100));
+            tick(&mut uut);
+            uut.scan_start.next = true;
+            uut.scan_bank.next = bank;
+            uut.scan_n.next = (n as u64).into();
+            assert!(simulate(&mut uut, 100));
+            let mut clocks = 0;
+            loop {
+                tick(&mut uut);
+                uut.scan_start.next = false;
+                assert!(simulate(&mut uut, 100));
+                clocks += 1;
+                if uut.done.val() {
+                    break;
+                }
+                assert!(clocks < 1000, "hangs");
+            }
+            assert_eq!(clocks, THRESHOLD_LATENCY);
+            let got = uut.dt.val().to_u64() as f64 / (1u64 << DT_FRAC_BITS) as f64;
+            let want = dt_of(&diffs);
+            let lsb = 1.0 / (1u64 << DT_FRAC_BITS) as f64;
+            assert!((got - want).abs() < lsb, "case {case}: n {n}, d_t {got} vs {want}");
+        }
+    }
+}

@@ -1,0 +1,459 @@
+//! The extraction pass of the declivity detector (paper §II, `DESIGN.md`
+//! §2.1): tracks the extrema of a line at one pixel per clock, accumulates
+//! the two sums of eq. 3, reads the attributes and keeps the characteristic
+//! declivities (`|a_i| > d_t`), at most [`N_MAX`] per line.
+//!
+//! Declivities follow golden's rules exactly (golden `declivity` module doc):
+//! a declivity starts at each non-zero gradient `g(x) = I(x+1) - I(x)` whose
+//! sign differs from the last non-zero one, and ends one pixel after its own
+//! last non-zero gradient (the tight plateau rule).
+//!
+//! ## Ports
+//! - In: a pixel stream `in_valid`, `in_first`, `in_last`, `in_pix`, `in_x`
+//!   (the pixel's index in its line) with the line's `in_dt` (`d_t` in fixed
+//!   point), `in_wide` (line cut at `W_MAX`) and `in_sof` (first line of a
+//!   frame). A line's pixels must come on consecutive clocks; lines may be
+//!   back to back or apart.
+//! - Out: items for the eq. 3 divider ([`crate::position_divider`]):
+//!   `item_valid`, `item_dividend` (`Σ g²(2x+1) · 2^(POS_FRAC_BITS-1)`),
+//!   `item_divisor` (`Σ g²`) and four tag lanes laid out as [`TagLayout`]
+//!   says: a declivity record (start, end, amplitude, the 3+3 neighbour grey
+//!   levels, `d_t`) or, after the line's last record, the line's marker
+//!   (count, `d_t`, flags).
+//!
+//! ## Timing
+//! A pixel reaches the centre of a 7-pixel window [`TRACKER_CENTER`] + 1
+//! clocks after it enters (the window gives the two pixels after it for the
+//! right-hand levels, and two pipeline stages for `g²` and `g²(2x+1)`); a
+//! declivity's record leaves one clock after its closing pixel is at the
+//! centre, the line's marker one clock after the line's last record slot.
+//! At most one item per clock: a declivity closes on a gradient, the last
+//! one at the line's last pixel, and the marker takes the next clock, which
+//! is a bubble or a line's first pixel (where nothing closes).
+//!
+//! ## Overflow
+//! The (N_MAX + 1)-th and later characteristic declivities of a line are
+//! dropped and the marker's `full` flag is set; the line's other records and
+//! the stream stay aligned.
+
+use crate::params::*;
+use rust_hdl::prelude::*;
+
+/// Taps of the pixel window; the centre's pixel is `x`, taps 3 and 2 hold
+/// `x + 1` and `x + 2`, taps 5 and 6 hold `x - 1` and `x - 2`.
+pub const TRACKER_TAPS: usize = 7;
+/// The window tap where a pixel's gradient is examined.
+pub const TRACKER_CENTER: usize = 4;
+
+/// Where each field sits in the four 32-bit tag lanes of an item.
+pub struct TagLayout;
+
+impl TagLayout {
+    /// Lane 0: `start | end << X_BITS | amplitude << 2·X_BITS`, and the
+    /// marker flag above them.
+    pub const END_SHIFT: usize = X_BITS;
+    pub const AMP_SHIFT: usize = 2 * X_BITS;
+    pub const MARKER_SHIFT: usize = 2 * X_BITS + AMP_BITS;
+    /// Lane 1: `I(x_i) | I(x_i - 1) << 8 | I(x_i - 2) << 16` for a record;
+    /// the count for a marker. Lane 2: the right levels in the same layout
+    /// for a record; for a marker `wide | full << 1 | sof << 2`.
+    pub const LEVEL_SHIFT: usize = PIXEL_BITS;
+    /// Lane 3: `d_t`.
+    pub const DT_LANE: usize = 3;
+}
+
+#[derive(LogicBlock)]
+pub struct DeclivityTracker {
+    pub clock: Signal<In, Clock>,
+    pub in_valid: Signal<In, Bit>,
+    pub in_first: Signal<In, Bit>,
+    pub in_last: Signal<In, Bit>,
+    pub in_pix: Signal<In, Bits<PIXEL_BITS>>,
+    pub in_x: Signal<In, Bits<X_BITS>>,
+    pub in_dt: Signal<In, Bits<DT_BITS>>,
+    pub in_wide: Signal<In, Bit>,
+    pub in_sof: Signal<In, Bit>,
+    pub item_valid: Signal<Out, Bit>,
+    pub item_dividend: Signal<Out, Bits<DIVIDEND_BITS>>,
+    pub item_divisor: Signal<Out, Bits<S0_BITS>>,
+    pub item_tag0: Signal<Out, Bits<32>>,
+    pub item_tag1: Signal<Out, Bits<32>>,
+    pub item_tag2: Signal<Out, Bits<32>>,
+    pub item_tag3: Signal<Out, Bits<32>>,
+    // The window.
+    t_valid: [DFF<Bit>; TRACKER_TAPS],
+    t_first: [DFF<Bit>; TRACKER_TAPS],
+    t_last: [DFF<Bit>; TRACKER_TAPS],
+    t_pix: [DFF<Bits<PIXEL_BITS>>; TRACKER_TAPS],
+    t_x: [DFF<Bits<X_BITS>>; TRACKER_TAPS],
+    t_dt: [DFF<Bits<DT_BITS>>; TRACKER_TAPS],
+    t_wide: [DFF<Bit>; TRACKER_TAPS],
+    t_sof: [DFF<Bit>; TRACKER_TAPS],
+    // Gradient pipeline: g at taps 2–4, g² at taps 3–4, g²(2x+1) at tap 4.
+    g2: DFF<Bits<AMP_BITS>>,
+    g3: DFF<Bits<AMP_BITS>>,
+    g4: DFF<Bits<AMP_BITS>>,
+    gsq3: DFF<Bits<S0_BITS>>,
+    gsq4: DFF<Bits<S0_BITS>>,
+    w4: DFF<Bits<S1_BITS>>,
+    // The declivity under way.
+    seen: DFF<Bit>,
+    rising: DFF<Bit>,
+    start: DFF<Bits<X_BITS>>,
+    start_level: DFF<Bits<PIXEL_BITS>>,
+    left0: DFF<Bits<PIXEL_BITS>>,
+    left1: DFF<Bits<PIXEL_BITS>>,
+    left2: DFF<Bits<PIXEL_BITS>>,
+    s0: DFF<Bits<S0_BITS>>,
+    s1: DFF<Bits<S1_BITS>>,
+    last_nz: DFF<Bits<X_BITS>>,
+    // The line.
+    count: DFF<Bits<COUNT_BITS>>,
+    full: DFF<Bit>,
+    mk_pending: DFF<Bit>,
+    mk_count: DFF<Bits<COUNT_BITS>>,
+    mk_full: DFF<Bit>,
+    mk_wide: DFF<Bit>,
+    mk_sof: DFF<Bit>,
+    mk_dt: DFF<Bits<DT_BITS>>,
+    // The item register.
+    o_valid: DFF<Bit>,
+    o_dividend: DFF<Bits<DIVIDEND_BITS>>,
+    o_divisor: DFF<Bits<S0_BITS>>,
+    o_tag0: DFF<Bits<32>>,
+    o_tag1: DFF<Bits<32>>,
+    o_tag2: DFF<Bits<32>>,
+    o_tag3: DFF<Bits<32>>,
+    // Combinational values of the centre.
+    gabs: Signal<Local, Bits<16>>,
+    sq_full: Signal<Local, Bits<32>>,
+    odd_x: Signal<Local, Bits<16>>,
+    sq16: Signal<Local, Bits<16>>,
+    w_full: Signal<Local, Bits<32>>,
+    nz: Signal<Local, Bit>,
+    up: Signal<Local, Bit>,
+    seen_eff: Signal<Local, Bit>,
+    count_eff: Signal<Local, Bits<COUNT_BITS>>,
+    full_eff: Signal<Local, Bit>,
+    end: Signal<Local, Bits<X_BITS>>,
+    amp: Signal<Local, Bits<AMP_BITS>>,
+    amag: Signal<Local, Bits<DT_INT_BITS>>,
+    threshold: Signal<Local, Bits<DT_INT_BITS>>,
+    close_run: Signal<Local, Bit>,
+    close_line: Signal<Local, Bit>,
+    strong: Signal<Local, Bit>,
+    keep: Signal<Local, Bit>,
+    drop: Signal<Local, Bit>,
+    start_new: Signal<Local, Bit>,
+    extend: Signal<Local, Bit>,
+    p1: Signal<Local, Bits<PIXEL_BITS>>,
+    p2: Signal<Local, Bits<PIXEL_BITS>>,
+    pm1: Signal<Local, Bits<PIXEL_BITS>>,
+    pm2: Signal<Local, Bits<PIXEL_BITS>>,
+    right1: Signal<Local, Bits<PIXEL_BITS>>,
+    right2: Signal<Local, Bits<PIXEL_BITS>>,
+    // Constants.
+    n_max: Constant<Bits<COUNT_BITS>>,
+    sign_bit: Constant<Bits<AMP_BITS>>,
+    dt_frac: Constant<Bits<8>>,
+    dividend_shift: Constant<Bits<8>>,
+    end_shift: Constant<Bits<8>>,
+    amp_shift: Constant<Bits<8>>,
+    marker_shift: Constant<Bits<8>>,
+    level_shift: Constant<Bits<8>>,
+}
+
+impl Default for DeclivityTracker {
+    fn default() -> Self {
+        fn taps<T: Default>() -> [T; TRACKER_TAPS] {
+            core::array::from_fn(|_| T::default())
+        }
+        let c8 = |v: usize| Constant::new((v as u64).into());
+        Self {
+            clock: Default::default(),
+            in_valid: Default::default(),
+            in_first: Default::default(),
+            in_last: Default::default(),
+            in_pix: Default::default(),
+            in_x: Default::default(),
+            in_dt: Default::default(),
+            in_wide: Default::default(),
+            in_sof: Default::default(),
+            item_valid: Default::default(),
+            item_dividend: Default::default(),
+            item_divisor: Default::default(),
+            item_tag0: Default::default(),
+            item_tag1: Default::default(),
+            item_tag2: Default::default(),
+            item_tag3: Default::default(),
+            t_valid: taps(),
+            t_first: taps(),
+            t_last: taps(),
+            t_pix: taps(),
+            t_x: taps(),
+            t_dt: taps(),
+            t_wide: taps(),
+            t_sof: taps(),
+            g2: Default::default(),
+            g3: Default::default(),
+            g4: Default::default(),
+            gsq3: Default::default(),
+            gsq4: Default::default(),
+            w4: Default::default(),
+            seen: Default::default(),
+            rising: Default::default(),
+            start: Default::default(),
+            start_level: Default::default(),
+            left0: Default::default(),
+            left1: Default::default(),
+            left2: Default::default(),
+            s0: Default::default(),
+            s1: Default::default(),
+            last_nz: Default::default(),
+            count: Default::default(),
+            full: Default::default(),
+            mk_pending: Default::default(),
+            mk_count: Default::default(),
+            mk_full: Default::default(),
+            mk_wide: Default::default(),
+            mk_sof: Default::default(),
+            mk_dt: Default::default(),
+            o_valid: Default::default(),
+            o_dividend: Default::default(),
+            o_divisor: Default::default(),
+            o_tag0: Default::default(),
+            o_tag1: Default::default(),
+            o_tag2: Default::default(),
+            o_tag3: Default::default(),
+            gabs: Default::default(),
+            sq_full: Default::default(),
+            odd_x: Default::default(),
+            sq16: Default::default(),
+            w_full: Default::default(),
+            nz: Default::default(),
+            up: Default::default(),
+            seen_eff: Default::default(),
+            count_eff: Default::default(),
+            full_eff: Default::default(),
+            end: Default::default(),
+            amp: Default::default(),
+            amag: Default::default(),
+            threshold: Default::default(),
+            close_run: Default::default(),
+            close_line: Default::default(),
+            strong: Default::default(),
+            keep: Default::default(),
+            drop: Default::default(),
+            start_new: Default::default(),
+            extend: Default::default(),
+            p1: Default::default(),
+            p2: Default::default(),
+            pm1: Default::default(),
+            pm2: Default::default(),
+            right1: Default::default(),
+            right2: Default::default(),
+            n_max: Constant::new((N_MAX as u64).into()),
+            sign_bit: Constant::new((1u64 << PIXEL_BITS).into()),
+            dt_frac: c8(DT_FRAC_BITS),
+            dividend_shift: c8(POS_FRAC_BITS - 1),
+            end_shift: c8(TagLayout::END_SHIFT),
+            amp_shift: c8(TagLayout::AMP_SHIFT),
+            marker_shift: c8(TagLayout::MARKER_SHIFT),
+            level_shift: c8(TagLayout::LEVEL_SHIFT),
+        }
+    }
+}
+
+impl Logic for DeclivityTracker {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..TRACKER_TAPS {
+            self.t_valid[i].clock.next = self.clock.val();
+            self.t_first[i].clock.next = self.clock.val();
+            self.t_last[i].clock.next = self.clock.val();
+            self.t_pix[i].clock.next = self.clock.val();
+            self.t_x[i].clock.next = self.clock.val();
+            self.t_dt[i].clock.next = self.clock.val();
+            self.t_wide[i].clock.next = self.clock.val();
+            self.t_sof[i].clock.next = self.clock.val();
+        }
+        dff_setup!(
+            self, clock, g2, g3, g4, gsq3, gsq4, w4, seen, rising, start, start_level, left0, left1, left2, s0, s1,
+            last_nz, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
+            o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
+        );
+        // ---- The window shifts every clock; bubbles travel as bubbles.
+        self.t_valid[0].d.next = self.in_valid.val();
+        self.t_first[0].d.next = self.in_first.val();
+        self.t_last[0].d.next = self.in_last.val();
+        self.t_pix[0].d.next = self.in_pix.val();
+        self.t_x[0].d.next = self.in_x.val();
+        self.t_dt[0].d.next = self.in_dt.val();
+        self.t_wide[0].d.next = self.in_wide.val();
+        self.t_sof[0].d.next = self.in_sof.val();
+        for i in 1..TRACKER_TAPS {
+            self.t_valid[i].d.next = self.t_valid[i - 1].q.val();
+            self.t_first[i].d.next = self.t_first[i - 1].q.val();
+            self.t_last[i].d.next = self.t_last[i - 1].q.val();
+            self.t_pix[i].d.next = self.t_pix[i - 1].q.val();
+            self.t_x[i].d.next = self.t_x[i - 1].q.val();
+            self.t_dt[i].d.next = self.t_dt[i - 1].q.val();
+            self.t_wide[i].d.next = self.t_wide[i - 1].q.val();
+            self.t_sof[i].d.next = self.t_sof[i - 1].q.val();
+        }
+        // ---- Gradient pipeline. g(x) = I(x+1) - I(x) while x is at tap 1
+        // (zero at a line's last pixel), g² at tap 2, g²(2x+1) at tap 3.
+        self.g2.d.next = 0.into();
+        if self.t_valid[1].q.val() & !self.t_last[1].q.val() {
+            self.g2.d.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[0].q.val())
+                - bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[1].q.val());
+        }
+        self.g3.d.next = self.g2.q.val();
+        self.g4.d.next = self.g3.q.val();
+        self.gabs.next = bit_cast::<16, AMP_BITS>(self.g2.q.val());
+        if self.g2.q.val() >= self.sign_bit.val() {
+            self.gabs.next = bit_cast::<16, AMP_BITS>(0 - self.g2.q.val());
+        }
+        self.sq_full.next = self.gabs.val() * self.gabs.val();
+        self.gsq3.d.next = bit_cast::<S0_BITS, 32>(self.sq_full.val());
+        self.gsq4.d.next = self.gsq3.q.val();
+        self.odd_x.next = (bit_cast::<16, X_BITS>(self.t_x[3].q.val()) << 1) | 1;
+        self.sq16.next = bit_cast::<16, S0_BITS>(self.gsq3.q.val());
+        self.w_full.next = self.sq16.val() * self.odd_x.val();
+        self.w4.d.next = bit_cast::<S1_BITS, 32>(self.w_full.val());
+
+        // ---- The centre: pixel x at tap 4.
+        self.nz.next = self.g4.q.val() != 0;
+        self.up.next = self.nz.val() & (self.g4.q.val() < self.sign_bit.val());
+        self.seen_eff.next = self.seen.q.val() & !self.t_first[4].q.val();
+        self.count_eff.next = self.count.q.val();
+        self.full_eff.next = self.full.q.val();
+        if self.t_first[4].q.val() {
+            self.count_eff.next = 0.into();
+            self.full_eff.next = false;
+        }
+        self.end.next = self.last_nz.q.val() + 1;
+        self.amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val())
+            - bit_cast::<AMP_BITS, PIXEL_BITS>(self.start_level.q.val());
+        self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(self.amp.val());
+        if self.amp.val() >= self.sign_bit.val() {
+            self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(0 - self.amp.val());
+        }
+        self.threshold.next = bit_cast::<DT_INT_BITS, DT_BITS>(self.t_dt[4].q.val() >> self.dt_frac.val());
+        self.close_run.next = self.t_valid[4].q.val()
+            & !self.t_last[4].q.val()
+            & self.nz.val()
+            & self.seen_eff.val()
+            & (self.up.val() != self.rising.q.val());
+        self.close_line.next = self.t_valid[4].q.val() & self.t_last[4].q.val() & self.seen_eff.val();
+        self.strong.next = self.amag.val() > self.threshold.val();
+        self.keep.next = (self.close_run.val() | self.close_line.val()) & self.strong.val() & (self.count_eff.val() < self.n_max.val());
+        self.drop.next = (self.close_run.val() | self.close_line.val()) & self.strong.val() & (self.count_eff.val() >= self.n_max.val());
+        self.start_new.next = self.t_valid[4].q.val()
+            & !self.t_last[4].q.val()
+            & self.nz.val()
+            & (!self.seen_eff.val() | (self.up.val() != self.rising.q.val()));
+        self.extend.next = self.t_valid[4].q.val()
+            & !self.t_last[4].q.val()
+            & self.nz.val()
+            & self.seen_eff.val()
+            & (self.up.val() == self.rising.q.val());
+        // Neighbour levels: x + 1 and x + 2 clamped at the line's end, x - 1
+        // and x - 2 clamped at its start.
+        self.p1.next = self.t_pix[3].q.val();
+        self.p2.next = self.t_pix[2].q.val();
+        if self.t_last[3].q.val() {
+            self.p2.next = self.t_pix[3].q.val();
+        }
+        self.pm1.next = self.t_pix[5].q.val();
+        self.pm2.next = self.t_pix[6].q.val();
+        if self.t_first[5].q.val() {
+            self.pm2.next = self.t_pix[5].q.val();
+        }
+        if self.t_first[4].q.val() {
+            self.pm1.next = self.t_pix[4].q.val();
+            self.pm2.next = self.t_pix[4].q.val();
+        }
+        // I(end + k): the run from end to x is flat, so only end = x and
+        // end = x - 1 reach past x.
+        self.right1.next = self.t_pix[4].q.val();
+        self.right2.next = self.t_pix[4].q.val();
+        if self.close_run.val() & (self.end.val() == self.t_x[4].q.val()) {
+            self.right1.next = self.p1.val();
+            self.right2.next = self.p2.val();
+        }
+        if self.close_run.val() & ((self.end.val() + 1) == self.t_x[4].q.val()) {
+            self.right2.next = self.p1.val();
+        }
+
+        // ---- State.
+        if self.t_valid[4].q.val() {
+            self.count.d.next = self.count_eff.val() + bit_cast::<COUNT_BITS, 1>(self.keep.val().into());
+            self.full.d.next = self.full_eff.val() | self.drop.val();
+            self.seen.d.next = self.seen_eff.val();
+        }
+        if self.start_new.val() {
+            self.seen.d.next = true;
+            self.rising.d.next = self.up.val();
+            self.start.d.next = self.t_x[4].q.val();
+            self.start_level.d.next = self.t_pix[4].q.val();
+            self.left0.d.next = self.t_pix[4].q.val();
+            self.left1.d.next = self.pm1.val();
+            self.left2.d.next = self.pm2.val();
+            self.s0.d.next = self.gsq4.q.val();
+            self.s1.d.next = self.w4.q.val();
+            self.last_nz.d.next = self.t_x[4].q.val();
+        }
+        if self.extend.val() {
+            self.s0.d.next = self.s0.q.val() + self.gsq4.q.val();
+            self.s1.d.next = self.s1.q.val() + self.w4.q.val();
+            self.last_nz.d.next = self.t_x[4].q.val();
+        }
+        self.mk_pending.d.next = self.t_valid[4].q.val() & self.t_last[4].q.val();
+        if self.t_valid[4].q.val() & self.t_last[4].q.val() {
+            self.mk_count.d.next = self.count_eff.val() + bit_cast::<COUNT_BITS, 1>(self.keep.val().into());
+            self.mk_full.d.next = self.full_eff.val() | self.drop.val();
+            self.mk_wide.d.next = self.t_wide[4].q.val();
+            self.mk_sof.d.next = self.t_sof[4].q.val();
+            self.mk_dt.d.next = self.t_dt[4].q.val();
+        }
+
+        // ---- The item: a kept record, else a pending marker.
+        self.o_valid.d.next = self.keep.val() | self.mk_pending.q.val();
+        self.o_dividend.d.next = 0.into();
+        self.o_divisor.d.next = 1.into();
+        self.o_tag0.d.next = 0.into();
+        self.o_tag1.d.next = 0.into();
+        self.o_tag2.d.next = 0.into();
+        self.o_tag3.d.next = 0.into();
+        if self.keep.val() {
+            self.o_dividend.d.next = bit_cast::<DIVIDEND_BITS, S1_BITS>(self.s1.q.val()) << self.dividend_shift.val();
+            self.o_divisor.d.next = self.s0.q.val();
+            self.o_tag0.d.next = bit_cast::<32, X_BITS>(self.start.q.val())
+                | (bit_cast::<32, X_BITS>(self.end.val()) << self.end_shift.val())
+                | (bit_cast::<32, AMP_BITS>(self.amp.val()) << self.amp_shift.val());
+            self.o_tag1.d.next = bit_cast::<32, PIXEL_BITS>(self.left0.q.val())
+                | (bit_cast::<32, PIXEL_BITS>(self.left1.q.val()) << self.level_shift.val())
+                | (bit_cast::<32, PIXEL_BITS>(self.left2.q.val()) << (self.level_shift.val() << 1));
+            self.o_tag2.d.next = bit_cast::<32, PIXEL_BITS>(self.t_pix[4].q.val())
+                | (bit_cast::<32, PIXEL_BITS>(self.right1.val()) << self.level_shift.val())
+                | (bit_cast::<32, PIXEL_BITS>(self.right2.val()) << (self.level_shift.val() << 1));
+            self.o_tag3.d.next = bit_cast::<32, DT_BITS>(self.t_dt[4].q.val());
+        }
+        if self.mk_pending.q.val() {
+            self.o_tag0.d.next = bit_cast::<32, 1>(true.into()) << self.marker_shift.val();
+            self.o_tag1.d.next = bit_cast::<32, COUNT_BITS>(self.mk_count.q.val());
+            self.o_tag2.d.next = bit_cast::<32, 1>(self.mk_wide.q.val().into())
+                | (bit_cast::<32, 1>(self.mk_full.q.val().into()) << 1)
+                | (bit_cast::<32, 1>(self.mk_sof.q.val().into()) << 2);
+            self.o_tag3.d.next = bit_cast::<32, DT_BITS>(self.mk_dt.q.val());
+        }
+        self.item_valid.next = self.o_valid.q.val();
+        self.item_dividend.next = self.o_dividend.q.val();
+        self.item_divisor.next = self.o_divisor.q.val();
+        self.item_tag0.next = self.o_tag0.q.val();
+        self.item_tag1.next = self.o_tag1.q.val();
+        self.item_tag2.next = self.o_tag2.q.val();
+        self.item_tag3.next = self.o_tag3.q.val();
+    }
+}
