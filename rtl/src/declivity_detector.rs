@@ -432,21 +432,41 @@ impl Logic for DeclivityDetector {
         self.tag1.next = self.divider.out_tag1.val();
         self.tag2.next = self.divider.out_tag2.val();
         self.m_valid.next = self.divider.out_valid.val();
-        self.m_last.next = (self.tag0.val() >> self.marker_shift.val()) != 0;
-        self.m_start.next = bit_cast::<X_BITS, 32>(self.tag0.val());
-        self.m_end.next = bit_cast::<X_BITS, 32>(self.tag0.val() >> self.end_shift.val());
-        self.m_amp.next = bit_cast::<AMP_BITS, 32>(self.tag0.val() >> self.amp_shift.val());
-        self.m_pos.next = self.divider.out_quotient.val();
-        self.m_left0.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val());
-        self.m_left1.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val() >> self.level_shift.val());
-        self.m_left2.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val() >> (self.level_shift.val() << 1));
-        self.m_right0.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val());
-        self.m_right1.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val() >> self.level_shift.val());
-        self.m_right2.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val() >> (self.level_shift.val() << 1));
-        self.m_dt.next = bit_cast::<DT_BITS, 32>(self.divider.out_tag3.val());
-        self.m_count.next = bit_cast::<COUNT_BITS, 32>(self.tag1.val());
-        self.m_wide.next = self.tag2.val().get_bit(0);
-        self.m_full.next = self.tag2.val().get_bit(1);
-        self.m_sof.next = self.tag2.val().get_bit(2);
+        self.m_last.next = false;
+        self.m_start.next = 0.into();
+        self.m_end.next = 0.into();
+        self.m_amp.next = 0.into();
+        self.m_pos.next = 0.into();
+        self.m_left0.next = 0.into();
+        self.m_left1.next = 0.into();
+        self.m_left2.next = 0.into();
+        self.m_right0.next = 0.into();
+        self.m_right1.next = 0.into();
+        self.m_right2.next = 0.into();
+        self.m_dt.next = 0.into();
+        self.m_count.next = 0.into();
+        self.m_wide.next = false;
+        self.m_full.next = false;
+        self.m_sof.next = false;
+        // Unpacked only on a valid beat (outputs are zero between beats),
+        // which also keeps the simulation's shifts to the beats.
+        if self.divider.out_valid.val() {
+            self.m_last.next = (self.tag0.val() >> self.marker_shift.val()) != 0;
+            self.m_start.next = bit_cast::<X_BITS, 32>(self.tag0.val());
+            self.m_end.next = bit_cast::<X_BITS, 32>(self.tag0.val() >> self.end_shift.val());
+            self.m_amp.next = bit_cast::<AMP_BITS, 32>(self.tag0.val() >> self.amp_shift.val());
+            self.m_pos.next = self.divider.out_quotient.val();
+            self.m_left0.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val());
+            self.m_left1.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val() >> self.level_shift.val());
+            self.m_left2.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val() >> (self.level_shift.val() << 1));
+            self.m_right0.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val());
+            self.m_right1.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val() >> self.level_shift.val());
+            self.m_right2.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val() >> (self.level_shift.val() << 1));
+            self.m_dt.next = bit_cast::<DT_BITS, 32>(self.divider.out_tag3.val());
+            self.m_count.next = bit_cast::<COUNT_BITS, 32>(self.tag1.val());
+            self.m_wide.next = self.tag2.val().get_bit(0);
+            self.m_full.next = self.tag2.val().get_bit(1);
+            self.m_sof.next = self.tag2.val().get_bit(2);
+        }
     }
 }

@@ -126,20 +126,23 @@ impl Logic for DivisionStep {
         self.out_tag3.next = self.tag3.q.val();
         self.valid.d.next = self.in_valid.val();
         self.den.d.next = self.in_den.val();
-        self.low.d.next = self.in_low.val() << 1;
+        // Doubling by addition: rust-hdl 0.46 simulates shifts through big
+        // integers, additions natively (the Verilog is the same).
+        self.low.d.next = self.in_low.val() + self.in_low.val();
         self.tag0.d.next = self.in_tag0.val();
         self.tag1.d.next = self.in_tag1.val();
         self.tag2.d.next = self.in_tag2.val();
         self.tag3.d.next = self.in_tag3.val();
-        self.trial.next = (bit_cast::<TRIAL_BITS, S0_BITS>(self.in_rem.val()) << 1)
-            | bit_cast::<TRIAL_BITS, POS_BITS>(self.in_low.val() >> self.msb_shift.val());
+        self.trial.next = bit_cast::<TRIAL_BITS, S0_BITS>(self.in_rem.val())
+            + bit_cast::<TRIAL_BITS, S0_BITS>(self.in_rem.val())
+            + bit_cast::<TRIAL_BITS, 1>(self.in_low.val().get_bit(self.msb_shift.val().index()).into());
         self.divisor.next = bit_cast::<TRIAL_BITS, S0_BITS>(self.in_den.val());
         if self.trial.val() >= self.divisor.val() {
             self.rem.d.next = bit_cast::<S0_BITS, TRIAL_BITS>(self.trial.val() - self.divisor.val());
-            self.quo.d.next = (self.in_quo.val() << 1) | 1;
+            self.quo.d.next = self.in_quo.val() + self.in_quo.val() + 1;
         } else {
             self.rem.d.next = bit_cast::<S0_BITS, TRIAL_BITS>(self.trial.val());
-            self.quo.d.next = self.in_quo.val() << 1;
+            self.quo.d.next = self.in_quo.val() + self.in_quo.val();
         }
     }
 }

@@ -6,10 +6,13 @@
 //! of the `rtl` blocks, co-simulation and synthesis reports.
 
 pub mod bundled;
+pub mod cosim;
 pub mod depth;
+pub mod detector;
 pub mod error;
 pub mod eval;
 pub mod io;
 pub mod pictures;
+pub mod synth;
 
 pub use error::SimError;
