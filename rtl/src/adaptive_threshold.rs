@@ -94,7 +94,7 @@ pub struct AdaptiveThreshold {
     ramp: DFF<Bits<DT_ACC_BITS>>,
     den: DFF<Bits<HIST_COUNT_BITS>>,
     rem: DFF<Bits<REM_BITS>>,
-    q: DFF<Bits<MEDIAN_Q_BITS>>,
+    quotient: DFF<Bits<MEDIAN_Q_BITS>>,
     step: DFF<Bits<STEP_BITS>>,
     product: DFF<Bits<32>>,
     dt_reg: DFF<Bits<DT_BITS>>,
@@ -155,7 +155,7 @@ impl Default for AdaptiveThreshold {
             ramp: Default::default(),
             den: Default::default(),
             rem: Default::default(),
-            q: Default::default(),
+            quotient: Default::default(),
             step: Default::default(),
             product: Default::default(),
             dt_reg: Default::default(),
@@ -190,7 +190,7 @@ impl Logic for AdaptiveThreshold {
         self.hist1.write_clock.next = self.clock.val();
         dff_setup!(
             self, clock, p_valid, p_bank, p_bin, f_valid, f_bank, f_bin, f_count, state, bank, n, cnt, below, found,
-            zero_bin, term1, ramp, den, rem, q, step, product, dt_reg, done_reg
+            zero_bin, term1, ramp, den, rem, quotient, step, product, dt_reg, done_reg
         );
         // ---- Counting: read on the clock of the increment, write one clock
         // later, forwarding the previous write when the bin repeats.
@@ -226,7 +226,7 @@ impl Logic for AdaptiveThreshold {
         }
         self.bin.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val() - 1);
         self.reach.next = (self.below.q.val() + self.h.val()) << 1;
-        self.wide_q.next = bit_cast::<16, MEDIAN_Q_BITS>(self.q.q.val());
+        self.wide_q.next = bit_cast::<16, MEDIAN_Q_BITS>(self.quotient.q.val());
         self.wide_k.next = self.k_frac.val();
         self.prod_full.next = self.wide_q.val() * self.wide_k.val();
         self.term2.next = self.product.q.val() >> self.frac_shift.val();
@@ -291,7 +291,7 @@ impl Logic for AdaptiveThreshold {
                     }
                     if self.cnt.q.val() == self.last_scan.val() {
                         self.step.d.next = 0.into();
-                        self.q.d.next = 0.into();
+                        self.quotient.d.next = 0.into();
                         self.state.d.next = ThresholdState::Divide;
                     }
                 }
@@ -301,10 +301,10 @@ impl Logic for AdaptiveThreshold {
                 self.step.d.next = self.step.q.val() + 1;
                 if self.rem.q.val() >= bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.den.q.val()) {
                     self.rem.d.next = (self.rem.q.val() - bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.den.q.val())) << 1;
-                    self.q.d.next = (self.q.q.val() << 1) | 1;
+                    self.quotient.d.next = (self.quotient.q.val() << 1) | 1;
                 } else {
                     self.rem.d.next = self.rem.q.val() << 1;
-                    self.q.d.next = self.q.q.val() << 1;
+                    self.quotient.d.next = self.quotient.q.val() << 1;
                 }
                 if self.step.q.val() == self.last_step.val() {
                     self.state.d.next = ThresholdState::Scale;

@@ -44,6 +44,10 @@ use rust_hdl::prelude::*;
 pub const TRACKER_TAPS: usize = 7;
 /// The window tap where a pixel's gradient is examined.
 pub const TRACKER_CENTER: usize = 4;
+/// Taps of the per-pixel flags and line values, which are read up to the
+/// centre only (the first-pixel flag one further, to clamp `x - 2`).
+const CENTER_TAPS: usize = TRACKER_CENTER + 1;
+const FIRST_TAPS: usize = TRACKER_CENTER + 2;
 
 /// Where each field sits in the four 32-bit tag lanes of an item.
 pub struct TagLayout;
@@ -81,14 +85,14 @@ pub struct DeclivityTracker {
     pub item_tag2: Signal<Out, Bits<32>>,
     pub item_tag3: Signal<Out, Bits<32>>,
     // The window.
-    t_valid: [DFF<Bit>; TRACKER_TAPS],
-    t_first: [DFF<Bit>; TRACKER_TAPS],
-    t_last: [DFF<Bit>; TRACKER_TAPS],
+    t_valid: [DFF<Bit>; CENTER_TAPS],
+    t_first: [DFF<Bit>; FIRST_TAPS],
+    t_last: [DFF<Bit>; CENTER_TAPS],
     t_pix: [DFF<Bits<PIXEL_BITS>>; TRACKER_TAPS],
-    t_x: [DFF<Bits<X_BITS>>; TRACKER_TAPS],
-    t_dt: [DFF<Bits<DT_BITS>>; TRACKER_TAPS],
-    t_wide: [DFF<Bit>; TRACKER_TAPS],
-    t_sof: [DFF<Bit>; TRACKER_TAPS],
+    t_x: [DFF<Bits<X_BITS>>; CENTER_TAPS],
+    t_dt: [DFF<Bits<DT_BITS>>; CENTER_TAPS],
+    t_wide: [DFF<Bit>; CENTER_TAPS],
+    t_sof: [DFF<Bit>; CENTER_TAPS],
     // Gradient pipeline: g at taps 2–4, g² at taps 3–4, g²(2x+1) at tap 4.
     g2: DFF<Bits<AMP_BITS>>,
     g3: DFF<Bits<AMP_BITS>>,
@@ -135,13 +139,13 @@ pub struct DeclivityTracker {
     seen_eff: Signal<Local, Bit>,
     count_eff: Signal<Local, Bits<COUNT_BITS>>,
     full_eff: Signal<Local, Bit>,
-    end: Signal<Local, Bits<X_BITS>>,
+    decl_end: Signal<Local, Bits<X_BITS>>,
     amp: Signal<Local, Bits<AMP_BITS>>,
     amag: Signal<Local, Bits<DT_INT_BITS>>,
     threshold: Signal<Local, Bits<DT_INT_BITS>>,
     close_run: Signal<Local, Bit>,
     close_line: Signal<Local, Bit>,
-    strong: Signal<Local, Bit>,
+    characteristic: Signal<Local, Bit>,
     keep: Signal<Local, Bit>,
     drop: Signal<Local, Bit>,
     start_new: Signal<Local, Bit>,
@@ -165,7 +169,7 @@ pub struct DeclivityTracker {
 
 impl Default for DeclivityTracker {
     fn default() -> Self {
-        fn taps<T: Default>() -> [T; TRACKER_TAPS] {
+        fn taps<T: Default, const N: usize>() -> [T; N] {
             core::array::from_fn(|_| T::default())
         }
         let c8 = |v: usize| Constant::new((v as u64).into());
@@ -235,13 +239,13 @@ impl Default for DeclivityTracker {
             seen_eff: Default::default(),
             count_eff: Default::default(),
             full_eff: Default::default(),
-            end: Default::default(),
+            decl_end: Default::default(),
             amp: Default::default(),
             amag: Default::default(),
             threshold: Default::default(),
             close_run: Default::default(),
             close_line: Default::default(),
-            strong: Default::default(),
+            characteristic: Default::default(),
             keep: Default::default(),
             drop: Default::default(),
             start_new: Default::default(),
@@ -268,10 +272,14 @@ impl Logic for DeclivityTracker {
     #[hdl_gen]
     fn update(&mut self) {
         for i in 0..TRACKER_TAPS {
-            self.t_valid[i].clock.next = self.clock.val();
-            self.t_first[i].clock.next = self.clock.val();
-            self.t_last[i].clock.next = self.clock.val();
             self.t_pix[i].clock.next = self.clock.val();
+        }
+        for i in 0..FIRST_TAPS {
+            self.t_first[i].clock.next = self.clock.val();
+        }
+        for i in 0..CENTER_TAPS {
+            self.t_valid[i].clock.next = self.clock.val();
+            self.t_last[i].clock.next = self.clock.val();
             self.t_x[i].clock.next = self.clock.val();
             self.t_dt[i].clock.next = self.clock.val();
             self.t_wide[i].clock.next = self.clock.val();
@@ -292,10 +300,14 @@ impl Logic for DeclivityTracker {
         self.t_wide[0].d.next = self.in_wide.val();
         self.t_sof[0].d.next = self.in_sof.val();
         for i in 1..TRACKER_TAPS {
-            self.t_valid[i].d.next = self.t_valid[i - 1].q.val();
-            self.t_first[i].d.next = self.t_first[i - 1].q.val();
-            self.t_last[i].d.next = self.t_last[i - 1].q.val();
             self.t_pix[i].d.next = self.t_pix[i - 1].q.val();
+        }
+        for i in 1..FIRST_TAPS {
+            self.t_first[i].d.next = self.t_first[i - 1].q.val();
+        }
+        for i in 1..CENTER_TAPS {
+            self.t_valid[i].d.next = self.t_valid[i - 1].q.val();
+            self.t_last[i].d.next = self.t_last[i - 1].q.val();
             self.t_x[i].d.next = self.t_x[i - 1].q.val();
             self.t_dt[i].d.next = self.t_dt[i - 1].q.val();
             self.t_wide[i].d.next = self.t_wide[i - 1].q.val();
@@ -332,7 +344,7 @@ impl Logic for DeclivityTracker {
             self.count_eff.next = 0.into();
             self.full_eff.next = false;
         }
-        self.end.next = self.last_nz.q.val() + 1;
+        self.decl_end.next = self.last_nz.q.val() + 1;
         self.amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val())
             - bit_cast::<AMP_BITS, PIXEL_BITS>(self.start_level.q.val());
         self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(self.amp.val());
@@ -346,9 +358,9 @@ impl Logic for DeclivityTracker {
             & self.seen_eff.val()
             & (self.up.val() != self.rising.q.val());
         self.close_line.next = self.t_valid[4].q.val() & self.t_last[4].q.val() & self.seen_eff.val();
-        self.strong.next = self.amag.val() > self.threshold.val();
-        self.keep.next = (self.close_run.val() | self.close_line.val()) & self.strong.val() & (self.count_eff.val() < self.n_max.val());
-        self.drop.next = (self.close_run.val() | self.close_line.val()) & self.strong.val() & (self.count_eff.val() >= self.n_max.val());
+        self.characteristic.next = self.amag.val() > self.threshold.val();
+        self.keep.next = (self.close_run.val() | self.close_line.val()) & self.characteristic.val() & (self.count_eff.val() < self.n_max.val());
+        self.drop.next = (self.close_run.val() | self.close_line.val()) & self.characteristic.val() & (self.count_eff.val() >= self.n_max.val());
         self.start_new.next = self.t_valid[4].q.val()
             & !self.t_last[4].q.val()
             & self.nz.val()
@@ -378,11 +390,11 @@ impl Logic for DeclivityTracker {
         // end = x - 1 reach past x.
         self.right1.next = self.t_pix[4].q.val();
         self.right2.next = self.t_pix[4].q.val();
-        if self.close_run.val() & (self.end.val() == self.t_x[4].q.val()) {
+        if self.close_run.val() & (self.decl_end.val() == self.t_x[4].q.val()) {
             self.right1.next = self.p1.val();
             self.right2.next = self.p2.val();
         }
-        if self.close_run.val() & ((self.end.val() + 1) == self.t_x[4].q.val()) {
+        if self.close_run.val() & ((self.decl_end.val() + 1) == self.t_x[4].q.val()) {
             self.right2.next = self.p1.val();
         }
 
@@ -430,7 +442,7 @@ impl Logic for DeclivityTracker {
             self.o_dividend.d.next = bit_cast::<DIVIDEND_BITS, S1_BITS>(self.s1.q.val()) << self.dividend_shift.val();
             self.o_divisor.d.next = self.s0.q.val();
             self.o_tag0.d.next = bit_cast::<32, X_BITS>(self.start.q.val())
-                | (bit_cast::<32, X_BITS>(self.end.val()) << self.end_shift.val())
+                | (bit_cast::<32, X_BITS>(self.decl_end.val()) << self.end_shift.val())
                 | (bit_cast::<32, AMP_BITS>(self.amp.val()) << self.amp_shift.val());
             self.o_tag1.d.next = bit_cast::<32, PIXEL_BITS>(self.left0.q.val())
                 | (bit_cast::<32, PIXEL_BITS>(self.left1.q.val()) << self.level_shift.val())

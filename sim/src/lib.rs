@@ -14,5 +14,6 @@ pub mod eval;
 pub mod io;
 pub mod pictures;
 pub mod synth;
+pub mod verilog;
 
 pub use error::SimError;
