@@ -9,8 +9,9 @@
 //!
 //! ## Ports
 //! - Counting: `inc_valid`, `inc_bank`, `inc_bin` (one |ΔI| per clock, any
-//!   bin sequence: a read-modify-write pipeline with forwarding handles the
-//!   same bin on consecutive clocks).
+//!   bin sequence: a three-clock read-modify-write pipeline — read, block
+//!   RAM output register, write — forwards the two writes still in flight
+//!   when a bin repeats).
 //! - Scanning: `scan_start` (a one-clock pulse while `busy` is low) with
 //!   `scan_bank` and `scan_n` (the number of differences counted in that bank,
 //!   `W - 1`); `busy`; `done` pulses for one clock with `dt` (`d_t` with
@@ -18,8 +19,9 @@
 //!   until the next scan ends.
 //!
 //! ## Timing
-//! The scan reads every bin once ([`HIST_BINS`] + 1 clocks, the bank's
-//! synchronous read adds one), clears it behind itself so the bank is ready
+//! One clock after `scan_start` lets the last count land; the scan then
+//! reads every bin once ([`HIST_BINS`] + 3 clocks: the synchronous read, the
+//! output register and the running count add three), clears it behind itself so the bank is ready
 //! for the line after next, finds the median bin `v` (the first non-empty bin
 //! where the counts reach `n/2`), then divides the in-bin fraction
 //! `(n - 2·below) / (2h)` to [`MEDIAN_FRAC_BITS`] bits ([`MEDIAN_Q_BITS`]
@@ -37,12 +39,13 @@
 use crate::params::*;
 use rust_hdl::prelude::*;
 
-/// Clocks from `scan_start` to `done`: one to start, [`HIST_BINS`] + 1 to
-/// read and test every bin, [`MEDIAN_Q_BITS`] to divide, 2 to scale.
-pub const THRESHOLD_LATENCY: usize = 1 + HIST_BINS + 1 + MEDIAN_Q_BITS + 2;
+/// Clocks from `scan_start` to `done`: two to start (the last count of the
+/// line lands), [`HIST_BINS`] + 3 to read, count and test every bin,
+/// [`MEDIAN_Q_BITS`] to divide, 2 to scale.
+pub const THRESHOLD_LATENCY: usize = 2 + HIST_BINS + 3 + MEDIAN_Q_BITS + 2;
 
-/// Bits of the scan counter `0 ..= HIST_BINS`.
-const SCAN_BITS: usize = HIST_ADDR_BITS + 1;
+/// Bits of the scan counter `0 ..= HIST_BINS + 1`.
+const SCAN_BITS: usize = HIST_ADDR_BITS + 2;
 /// Bits of the division's running remainder: below twice the divisor.
 const REM_BITS: usize = HIST_COUNT_BITS + 1;
 /// Bits of the division's step counter.
@@ -51,6 +54,7 @@ const STEP_BITS: usize = 5;
 #[derive(Copy, Clone, Debug, PartialEq, LogicState)]
 pub enum ThresholdState {
     Idle,
+    Settle,
     Scan,
     Divide,
     Scale,
@@ -71,15 +75,25 @@ pub struct AdaptiveThreshold {
     pub dt: Signal<Out, Bits<DT_BITS>>,
     hist0: RAM<Bits<HIST_COUNT_BITS>, HIST_ADDR_BITS>,
     hist1: RAM<Bits<HIST_COUNT_BITS>, HIST_ADDR_BITS>,
-    // Counting pipeline: the increment whose read is under way, and the
-    // value written on the previous clock (forwarded to a repeated bin).
-    p_valid: DFF<Bit>,
-    p_bank: DFF<Bit>,
-    p_bin: DFF<Bits<HIST_ADDR_BITS>>,
-    f_valid: DFF<Bit>,
-    f_bank: DFF<Bit>,
-    f_bin: DFF<Bits<HIST_ADDR_BITS>>,
-    f_count: DFF<Bits<HIST_COUNT_BITS>>,
+    // Counting pipeline: the increments whose read is under way (p1: read
+    // issued last clock; p2: data in the output register), and the values
+    // written one and two clocks ago (forwarded to a repeated bin).
+    p1_valid: DFF<Bit>,
+    p1_bank: DFF<Bit>,
+    p1_bin: DFF<Bits<HIST_ADDR_BITS>>,
+    p2_valid: DFF<Bit>,
+    p2_bank: DFF<Bit>,
+    p2_bin: DFF<Bits<HIST_ADDR_BITS>>,
+    rd0: DFF<Bits<HIST_COUNT_BITS>>,
+    rd1: DFF<Bits<HIST_COUNT_BITS>>,
+    f1_valid: DFF<Bit>,
+    f1_bank: DFF<Bit>,
+    f1_bin: DFF<Bits<HIST_ADDR_BITS>>,
+    f1_count: DFF<Bits<HIST_COUNT_BITS>>,
+    f2_valid: DFF<Bit>,
+    f2_bank: DFF<Bit>,
+    f2_bin: DFF<Bits<HIST_ADDR_BITS>>,
+    f2_count: DFF<Bits<HIST_COUNT_BITS>>,
     old_count: Signal<Local, Bits<HIST_COUNT_BITS>>,
     new_count: Signal<Local, Bits<HIST_COUNT_BITS>>,
     // Scan.
@@ -87,7 +101,8 @@ pub struct AdaptiveThreshold {
     bank: DFF<Bit>,
     n: DFF<Bits<HIST_COUNT_BITS>>,
     cnt: DFF<Bits<SCAN_BITS>>,
-    below: DFF<Bits<HIST_COUNT_BITS>>,
+    cum: DFF<Bits<HIST_COUNT_BITS>>,
+    hv: DFF<Bits<HIST_COUNT_BITS>>,
     found: DFF<Bit>,
     zero_bin: DFF<Bit>,
     term1: DFF<Bits<DT_ACC_BITS>>,
@@ -101,6 +116,8 @@ pub struct AdaptiveThreshold {
     done_reg: DFF<Bit>,
     h: Signal<Local, Bits<HIST_COUNT_BITS>>,
     reach: Signal<Local, Bits<HIST_COUNT_BITS>>,
+    below_v: Signal<Local, Bits<HIST_COUNT_BITS>>,
+    num: Signal<Local, Bits<HIST_COUNT_BITS>>,
     bin: Signal<Local, Bits<HIST_ADDR_BITS>>,
     wide_q: Signal<Local, Bits<16>>,
     wide_k: Signal<Local, Bits<16>>,
@@ -135,20 +152,30 @@ impl Default for AdaptiveThreshold {
             dt: Default::default(),
             hist0: zeros(),
             hist1: zeros(),
-            p_valid: Default::default(),
-            p_bank: Default::default(),
-            p_bin: Default::default(),
-            f_valid: Default::default(),
-            f_bank: Default::default(),
-            f_bin: Default::default(),
-            f_count: Default::default(),
+            p1_valid: Default::default(),
+            p1_bank: Default::default(),
+            p1_bin: Default::default(),
+            p2_valid: Default::default(),
+            p2_bank: Default::default(),
+            p2_bin: Default::default(),
+            rd0: Default::default(),
+            rd1: Default::default(),
+            f1_valid: Default::default(),
+            f1_bank: Default::default(),
+            f1_bin: Default::default(),
+            f1_count: Default::default(),
+            f2_valid: Default::default(),
+            f2_bank: Default::default(),
+            f2_bin: Default::default(),
+            f2_count: Default::default(),
             old_count: Default::default(),
             new_count: Default::default(),
             state: Default::default(),
             bank: Default::default(),
             n: Default::default(),
             cnt: Default::default(),
-            below: Default::default(),
+            cum: Default::default(),
+            hv: Default::default(),
             found: Default::default(),
             zero_bin: Default::default(),
             term1: Default::default(),
@@ -162,6 +189,8 @@ impl Default for AdaptiveThreshold {
             done_reg: Default::default(),
             h: Default::default(),
             reach: Default::default(),
+            below_v: Default::default(),
+            num: Default::default(),
             bin: Default::default(),
             wide_q: Default::default(),
             wide_k: Default::default(),
@@ -176,7 +205,7 @@ impl Default for AdaptiveThreshold {
             round_shift: Constant::new(((DT_ACC_FRAC_BITS - DT_FRAC_BITS) as u64).into()),
             frac_shift: Constant::new(((MEDIAN_FRAC_BITS + K_FRAC_BITS - DT_ACC_FRAC_BITS) as u64).into()),
             last_step: Constant::new(((MEDIAN_Q_BITS - 1) as u64).into()),
-            last_scan: Constant::new((HIST_BINS as u64).into()),
+            last_scan: Constant::new((HIST_BINS as u64 + 2).into()),
         }
     }
 }
@@ -189,43 +218,59 @@ impl Logic for AdaptiveThreshold {
         self.hist1.read_clock.next = self.clock.val();
         self.hist1.write_clock.next = self.clock.val();
         dff_setup!(
-            self, clock, p_valid, p_bank, p_bin, f_valid, f_bank, f_bin, f_count, state, bank, n, cnt, below, found,
+            self, clock, p1_valid, p1_bank, p1_bin, p2_valid, p2_bank, p2_bin, rd0, rd1, f1_valid, f1_bank, f1_bin,
+            f1_count, f2_valid, f2_bank, f2_bin, f2_count, state, bank, n, cnt, cum, hv, found,
             zero_bin, term1, ramp, den, rem, quotient, step, product, dt_reg, done_reg
         );
-        // ---- Counting: read on the clock of the increment, write one clock
-        // later, forwarding the previous write when the bin repeats.
-        self.p_valid.d.next = self.inc_valid.val();
-        self.p_bank.d.next = self.inc_bank.val();
-        self.p_bin.d.next = self.inc_bin.val();
+        // ---- Counting: read on the clock of the increment, register the
+        // block RAM's output on the next, write on the third, forwarding the
+        // writes of the two clocks before when the bin repeats.
+        self.p1_valid.d.next = self.inc_valid.val();
+        self.p1_bank.d.next = self.inc_bank.val();
+        self.p1_bin.d.next = self.inc_bin.val();
+        self.p2_valid.d.next = self.p1_valid.q.val();
+        self.p2_bank.d.next = self.p1_bank.q.val();
+        self.p2_bin.d.next = self.p1_bin.q.val();
+        self.rd0.d.next = self.hist0.read_data.val();
+        self.rd1.d.next = self.hist1.read_data.val();
         self.hist0.read_address.next = self.inc_bin.val();
         self.hist1.read_address.next = self.inc_bin.val();
-        self.old_count.next = self.hist0.read_data.val();
-        if self.p_bank.q.val() {
-            self.old_count.next = self.hist1.read_data.val();
+        self.old_count.next = self.rd0.q.val();
+        if self.p2_bank.q.val() {
+            self.old_count.next = self.rd1.q.val();
         }
-        if self.f_valid.q.val() & (self.f_bank.q.val() == self.p_bank.q.val()) & (self.f_bin.q.val() == self.p_bin.q.val()) {
-            self.old_count.next = self.f_count.q.val();
+        if self.f2_valid.q.val() & (self.f2_bank.q.val() == self.p2_bank.q.val()) & (self.f2_bin.q.val() == self.p2_bin.q.val()) {
+            self.old_count.next = self.f2_count.q.val();
+        }
+        if self.f1_valid.q.val() & (self.f1_bank.q.val() == self.p2_bank.q.val()) & (self.f1_bin.q.val() == self.p2_bin.q.val()) {
+            self.old_count.next = self.f1_count.q.val();
         }
         self.new_count.next = self.old_count.val() + 1;
-        self.f_valid.d.next = self.p_valid.q.val();
-        self.f_bank.d.next = self.p_bank.q.val();
-        self.f_bin.d.next = self.p_bin.q.val();
-        self.f_count.d.next = self.new_count.val();
-        self.hist0.write_address.next = self.p_bin.q.val();
-        self.hist1.write_address.next = self.p_bin.q.val();
+        self.f1_valid.d.next = self.p2_valid.q.val();
+        self.f1_bank.d.next = self.p2_bank.q.val();
+        self.f1_bin.d.next = self.p2_bin.q.val();
+        self.f1_count.d.next = self.new_count.val();
+        self.f2_valid.d.next = self.f1_valid.q.val();
+        self.f2_bank.d.next = self.f1_bank.q.val();
+        self.f2_bin.d.next = self.f1_bin.q.val();
+        self.f2_count.d.next = self.f1_count.q.val();
+        self.hist0.write_address.next = self.p2_bin.q.val();
+        self.hist1.write_address.next = self.p2_bin.q.val();
         self.hist0.write_data.next = self.new_count.val();
         self.hist1.write_data.next = self.new_count.val();
-        self.hist0.write_enable.next = self.p_valid.q.val() & !self.p_bank.q.val();
-        self.hist1.write_enable.next = self.p_valid.q.val() & self.p_bank.q.val();
+        self.hist0.write_enable.next = self.p2_valid.q.val() & !self.p2_bank.q.val();
+        self.hist1.write_enable.next = self.p2_valid.q.val() & self.p2_bank.q.val();
 
         // ---- Scan: bin v is read at cnt = v and tested (and cleared) at
-        // cnt = v + 1.
-        self.h.next = self.hist0.read_data.val();
+        // cnt = v + 2, from the output register.
+        self.h.next = self.rd0.q.val();
         if self.bank.q.val() {
-            self.h.next = self.hist1.read_data.val();
+            self.h.next = self.rd1.q.val();
         }
-        self.bin.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val() - 1);
-        self.reach.next = (self.below.q.val() + self.h.val()) << 1;
+        self.bin.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val() - 2);
+        self.reach.next = self.cum.q.val() << 1;
+        self.below_v.next = self.cum.q.val() - self.hv.q.val();
+        self.num.next = self.n.q.val() - (self.below_v.val() << 1);
         self.wide_q.next = bit_cast::<16, MEDIAN_Q_BITS>(self.quotient.q.val());
         self.wide_k.next = self.k_frac.val();
         self.prod_full.next = self.wide_q.val() * self.wide_k.val();
@@ -245,7 +290,8 @@ impl Logic for AdaptiveThreshold {
                     self.bank.d.next = self.scan_bank.val();
                     self.n.d.next = self.scan_n.val();
                     self.cnt.d.next = 0.into();
-                    self.below.d.next = 0.into();
+                    self.cum.d.next = 0.into();
+                    self.hv.d.next = 0.into();
                     self.found.d.next = false;
                     self.zero_bin.d.next = false;
                     self.term1.d.next = 0.into();
@@ -253,8 +299,11 @@ impl Logic for AdaptiveThreshold {
                     self.ramp.d.next = 0 - self.k_half.val();
                     self.den.d.next = 1.into();
                     self.rem.d.next = 0.into();
-                    self.state.d.next = ThresholdState::Scan;
+                    self.state.d.next = ThresholdState::Settle;
                 }
+            }
+            ThresholdState::Settle => {
+                self.state.d.next = ThresholdState::Scan;
             }
             ThresholdState::Scan => {
                 if self.bank.q.val() {
@@ -263,8 +312,9 @@ impl Logic for AdaptiveThreshold {
                     self.hist0.read_address.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val());
                 }
                 self.cnt.d.next = self.cnt.q.val() + 1;
-                if self.cnt.q.val() != 0 {
-                    // Test bin v = cnt - 1 and clear it.
+                if self.cnt.q.val() >= 2 {
+                    // Bin v = cnt - 2 is in the output register: add it to
+                    // the running count and clear it.
                     if self.bank.q.val() {
                         self.hist1.write_enable.next = true;
                         self.hist1.write_address.next = self.bin.val();
@@ -274,20 +324,23 @@ impl Logic for AdaptiveThreshold {
                         self.hist0.write_address.next = self.bin.val();
                         self.hist0.write_data.next = 0.into();
                     }
+                    self.cum.d.next = self.cum.q.val() + self.h.val();
+                    self.hv.d.next = self.h.val();
+                }
+                if self.cnt.q.val() >= 3 {
+                    // Bin v = cnt - 3 is tested: the first non-empty bin
+                    // whose running count reaches n/2 holds the median.
                     self.ramp.d.next = self.ramp.q.val() + (self.k_half.val() << 1);
-                    if !self.found.q.val() {
-                        self.below.d.next = self.below.q.val() + self.h.val();
-                        if (self.h.val() != 0) & (self.reach.val() >= self.n.q.val()) {
-                            self.found.d.next = true;
-                            self.zero_bin.d.next = self.cnt.q.val() == 1;
-                            self.term1.d.next = self.ramp.q.val();
-                            if self.cnt.q.val() == 1 {
-                                self.term1.d.next = 0.into();
-                            }
-                            // The fraction (n - 2·below) / (2h), divided next.
-                            self.rem.d.next = bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.n.q.val() - (self.below.q.val() << 1));
-                            self.den.d.next = self.h.val() << 1;
+                    if !self.found.q.val() & (self.hv.q.val() != 0) & (self.reach.val() >= self.n.q.val()) {
+                        self.found.d.next = true;
+                        self.zero_bin.d.next = self.cnt.q.val() == 3;
+                        self.term1.d.next = self.ramp.q.val();
+                        if self.cnt.q.val() == 3 {
+                            self.term1.d.next = 0.into();
                         }
+                        // The fraction (n - 2·below) / (2h), divided next.
+                        self.rem.d.next = bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.num.val());
+                        self.den.d.next = self.hv.q.val() << 1;
                     }
                     if self.cnt.q.val() == self.last_scan.val() {
                         self.step.d.next = 0.into();

@@ -146,6 +146,8 @@ pub struct DeclivityDetector {
     stored: Signal<Local, Bit>,
     diff: Signal<Local, Bits<PIXEL_BITS>>,
     scan_state: Signal<Local, Bits<2>>,
+    scan_width: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
+    scan_diffs: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
     read_state: Signal<Local, Bits<2>>,
     read_width: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
     start_read: Signal<Local, Bit>,
@@ -235,6 +237,8 @@ impl Default for DeclivityDetector {
             stored: Default::default(),
             diff: Default::default(),
             scan_state: Default::default(),
+            scan_width: Default::default(),
+            scan_diffs: Default::default(),
             read_state: Default::default(),
             read_width: Default::default(),
             start_read: Default::default(),
@@ -354,11 +358,14 @@ impl Logic for DeclivityDetector {
 
         // ---- B: the threshold engine takes full banks in order.
         self.scan_state.next = self.state0.q.val();
-        self.threshold.scan_n.next = bit_cast::<HIST_COUNT_BITS, LINE_BUF_ADDR_BITS>(self.width0.q.val() - 1);
+        self.scan_width.next = self.width0.q.val();
         if self.mb.q.val() {
             self.scan_state.next = self.state1.q.val();
-            self.threshold.scan_n.next = bit_cast::<HIST_COUNT_BITS, LINE_BUF_ADDR_BITS>(self.width1.q.val() - 1);
+            self.scan_width.next = self.width1.q.val();
         }
+        // Through a signal of its own width (see `amag` in the tracker).
+        self.scan_diffs.next = self.scan_width.val() - 1;
+        self.threshold.scan_n.next = bit_cast::<HIST_COUNT_BITS, LINE_BUF_ADDR_BITS>(self.scan_diffs.val());
         self.threshold.scan_bank.next = self.mb.q.val();
         self.threshold.scan_start.next =
             (self.scan_state.val() == self.bank_full.val()) & !self.threshold.busy.val() & !self.threshold.done.val();

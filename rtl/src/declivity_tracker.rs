@@ -100,6 +100,11 @@ pub struct DeclivityTracker {
     gsq3: DFF<Bits<S0_BITS>>,
     gsq4: DFF<Bits<S0_BITS>>,
     w4: DFF<Bits<S1_BITS>>,
+    // Registered one clock ahead of the centre: the sign tests of g(x) and
+    // the amplitude test |I(x) - I(x_i)| > ⌊d_t⌋ of a declivity closing at x.
+    nz4: DFF<Bit>,
+    up4: DFF<Bit>,
+    char4: DFF<Bit>,
     // The declivity under way.
     seen: DFF<Bit>,
     rising: DFF<Bit>,
@@ -140,7 +145,12 @@ pub struct DeclivityTracker {
     count_eff: Signal<Local, Bits<COUNT_BITS>>,
     full_eff: Signal<Local, Bit>,
     decl_end: Signal<Local, Bits<X_BITS>>,
+    end_next: Signal<Local, Bits<X_BITS>>,
+    neg_g: Signal<Local, Bits<AMP_BITS>>,
+    neg_amp: Signal<Local, Bits<AMP_BITS>>,
     amp: Signal<Local, Bits<AMP_BITS>>,
+    next_level: Signal<Local, Bits<PIXEL_BITS>>,
+    next_amp: Signal<Local, Bits<AMP_BITS>>,
     amag: Signal<Local, Bits<DT_INT_BITS>>,
     threshold: Signal<Local, Bits<DT_INT_BITS>>,
     close_run: Signal<Local, Bit>,
@@ -204,6 +214,9 @@ impl Default for DeclivityTracker {
             gsq3: Default::default(),
             gsq4: Default::default(),
             w4: Default::default(),
+            nz4: Default::default(),
+            up4: Default::default(),
+            char4: Default::default(),
             seen: Default::default(),
             rising: Default::default(),
             start: Default::default(),
@@ -240,7 +253,12 @@ impl Default for DeclivityTracker {
             count_eff: Default::default(),
             full_eff: Default::default(),
             decl_end: Default::default(),
+            end_next: Default::default(),
+            neg_g: Default::default(),
+            neg_amp: Default::default(),
             amp: Default::default(),
+            next_level: Default::default(),
+            next_amp: Default::default(),
             amag: Default::default(),
             threshold: Default::default(),
             close_run: Default::default(),
@@ -286,7 +304,7 @@ impl Logic for DeclivityTracker {
             self.t_sof[i].clock.next = self.clock.val();
         }
         dff_setup!(
-            self, clock, g2, g3, g4, gsq3, gsq4, w4, seen, rising, start, start_level, left0, left1, left2, s0, s1,
+            self, clock, g2, g3, g4, gsq3, gsq4, w4, nz4, up4, char4, seen, rising, start, start_level, left0, left1, left2, s0, s1,
             last_nz, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
             o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
         );
@@ -322,9 +340,12 @@ impl Logic for DeclivityTracker {
         }
         self.g3.d.next = self.g2.q.val();
         self.g4.d.next = self.g3.q.val();
+        // Negations go through a signal of their own width: Verilog would
+        // compute `0 - g` at the literal's 32 bits before the cast.
+        self.neg_g.next = 0 - self.g2.q.val();
         self.gabs.next = bit_cast::<16, AMP_BITS>(self.g2.q.val());
         if self.g2.q.val() >= self.sign_bit.val() {
-            self.gabs.next = bit_cast::<16, AMP_BITS>(0 - self.g2.q.val());
+            self.gabs.next = bit_cast::<16, AMP_BITS>(self.neg_g.val());
         }
         self.sq_full.next = self.gabs.val() * self.gabs.val();
         self.gsq3.d.next = bit_cast::<S0_BITS, 32>(self.sq_full.val());
@@ -335,8 +356,8 @@ impl Logic for DeclivityTracker {
         self.w4.d.next = bit_cast::<S1_BITS, 32>(self.w_full.val());
 
         // ---- The centre: pixel x at tap 4.
-        self.nz.next = self.g4.q.val() != 0;
-        self.up.next = self.nz.val() & (self.g4.q.val() < self.sign_bit.val());
+        self.nz.next = self.nz4.q.val();
+        self.up.next = self.up4.q.val();
         self.seen_eff.next = self.seen.q.val() & !self.t_first[4].q.val();
         self.count_eff.next = self.count.q.val();
         self.full_eff.next = self.full.q.val();
@@ -345,20 +366,16 @@ impl Logic for DeclivityTracker {
             self.full_eff.next = false;
         }
         self.decl_end.next = self.last_nz.q.val() + 1;
+        self.end_next.next = self.last_nz.q.val() + 2;
         self.amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val())
             - bit_cast::<AMP_BITS, PIXEL_BITS>(self.start_level.q.val());
-        self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(self.amp.val());
-        if self.amp.val() >= self.sign_bit.val() {
-            self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(0 - self.amp.val());
-        }
-        self.threshold.next = bit_cast::<DT_INT_BITS, DT_BITS>(self.t_dt[4].q.val() >> self.dt_frac.val());
         self.close_run.next = self.t_valid[4].q.val()
             & !self.t_last[4].q.val()
             & self.nz.val()
             & self.seen_eff.val()
             & (self.up.val() != self.rising.q.val());
         self.close_line.next = self.t_valid[4].q.val() & self.t_last[4].q.val() & self.seen_eff.val();
-        self.characteristic.next = self.amag.val() > self.threshold.val();
+        self.characteristic.next = self.char4.q.val();
         self.keep.next = (self.close_run.val() | self.close_line.val()) & self.characteristic.val() & (self.count_eff.val() < self.n_max.val());
         self.drop.next = (self.close_run.val() | self.close_line.val()) & self.characteristic.val() & (self.count_eff.val() >= self.n_max.val());
         self.start_new.next = self.t_valid[4].q.val()
@@ -370,6 +387,24 @@ impl Logic for DeclivityTracker {
             & self.nz.val()
             & self.seen_eff.val()
             & (self.up.val() == self.rising.q.val());
+        // One clock ahead: pixel x at tap 3. Its declivity started at
+        // x - 1 (now at the centre) or earlier.
+        self.nz4.d.next = self.g3.q.val() != 0;
+        self.up4.d.next = (self.g3.q.val() != 0) & (self.g3.q.val() < self.sign_bit.val());
+        self.next_level.next = self.start_level.q.val();
+        if self.start_new.val() {
+            self.next_level.next = self.t_pix[4].q.val();
+        }
+        self.next_amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[3].q.val())
+            - bit_cast::<AMP_BITS, PIXEL_BITS>(self.next_level.val());
+        self.neg_amp.next = 0 - self.next_amp.val();
+        self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(self.next_amp.val());
+        if self.next_amp.val() >= self.sign_bit.val() {
+            self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(self.neg_amp.val());
+        }
+        self.threshold.next = bit_cast::<DT_INT_BITS, DT_BITS>(self.t_dt[3].q.val() >> self.dt_frac.val());
+        self.char4.d.next = self.amag.val() > self.threshold.val();
+
         // Neighbour levels: x + 1 and x + 2 clamped at the line's end, x - 1
         // and x - 2 clamped at its start.
         self.p1.next = self.t_pix[3].q.val();
@@ -394,7 +429,7 @@ impl Logic for DeclivityTracker {
             self.right1.next = self.p1.val();
             self.right2.next = self.p2.val();
         }
-        if self.close_run.val() & ((self.decl_end.val() + 1) == self.t_x[4].q.val()) {
+        if self.close_run.val() & (self.end_next.val() == self.t_x[4].q.val()) {
             self.right2.next = self.p1.val();
         }
 

@@ -43,8 +43,7 @@
 //! [`yosys_latch_check`] uses the Debian `yosys` (`apt-get install -y yosys`):
 //! `read_verilog; hierarchy -check -top; proc; flatten` and counts the latch
 //! cells (`$dlatch`, `$adlatch`, `$dlatchsr`, `$_DLATCH_*`) that `proc` infers
-//! from incomplete combinational assignments, then `synth -flatten` for a cell
-//! count.
+//! from incomplete combinational assignments, and the word-level cell count.
 
 use serde::Serialize;
 use serde_json::Value;
@@ -196,7 +195,8 @@ pub struct YosysCheck {
     pub latches: u64,
     /// Latch cells with their source location, e.g. `$dlatch top.v:7.5-9.8`.
     pub latch_cells: Vec<String>,
-    /// Cells of the flattened top after a generic `synth`.
+    /// Word-level cells of the flattened top after `proc` (a generic `synth`
+    /// would take a minute on the detector and adds nothing to the check).
     pub cells: u64,
     /// Lines of the yosys log that mention a latch (`Latch inferred for signal ...`).
     pub log_lines: Vec<String>,
@@ -561,8 +561,8 @@ pub fn netlist_cell_counts(json: &str, top: &str) -> Result<BTreeMap<String, u64
 }
 
 /// Runs the Debian yosys on the design and counts the latches that `proc`
-/// infers (incomplete assignments in `always @*`); also gives the cell count of
-/// a generic `synth -flatten`.
+/// infers (incomplete assignments in `always @*`); also gives the word-level
+/// cell count of the flattened design.
 pub fn yosys_latch_check(verilog: &str, top: &str) -> Result<YosysCheck, SynthError> {
     let yosys = find_on_path("yosys").ok_or_else(|| SynthError::ToolMissing {
         tool: "yosys".into(),
@@ -575,7 +575,7 @@ pub fn yosys_latch_check(verilog: &str, top: &str) -> Result<YosysCheck, SynthEr
         work.path.join("check.ys"),
         format!(
             "read_verilog top.v\nhierarchy -check -top {top}\nproc\nflatten\nopt_clean\n\
-             write_json proc.json\nsynth -top {top} -flatten\nwrite_json synth.json\n"
+             write_json proc.json\n"
         ),
     )?;
     run_tool(
@@ -613,8 +613,7 @@ pub fn yosys_latch_check(verilog: &str, top: &str) -> Result<YosysCheck, SynthEr
             }
         }
     }
-    let synth = read(&work.path.join("synth.json"), "yosys JSON")?;
-    let cells = netlist_cell_counts(&synth, top)?.values().sum();
+    let cells = netlist_cell_counts(&read(&work.path.join("proc.json"), "yosys JSON")?, top)?.values().sum();
     let log = std::fs::read_to_string(work.path.join("yosys.log")).unwrap_or_default();
     let log_lines = log
         .lines()
