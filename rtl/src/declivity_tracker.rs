@@ -48,6 +48,8 @@ pub const TRACKER_CENTER: usize = 4;
 /// centre only (the first-pixel flag one further, to clamp `x - 2`).
 const CENTER_TAPS: usize = TRACKER_CENTER + 1;
 const FIRST_TAPS: usize = TRACKER_CENTER + 2;
+/// Bits of a grey level plus the integer threshold (no overflow).
+const CMP_BITS: usize = DT_INT_BITS + 1;
 
 /// Where each field sits in the four 32-bit tag lanes of an item.
 pub struct TagLayout;
@@ -97,6 +99,7 @@ pub struct DeclivityTracker {
     g2: DFF<Bits<AMP_BITS>>,
     g3: DFF<Bits<AMP_BITS>>,
     g4: DFF<Bits<AMP_BITS>>,
+    gabs2: DFF<Bits<PIXEL_BITS>>,
     gsq3: DFF<Bits<S0_BITS>>,
     gsq4: DFF<Bits<S0_BITS>>,
     w4: DFF<Bits<S1_BITS>>,
@@ -146,13 +149,14 @@ pub struct DeclivityTracker {
     full_eff: Signal<Local, Bit>,
     decl_end: Signal<Local, Bits<X_BITS>>,
     end_next: Signal<Local, Bits<X_BITS>>,
-    neg_g: Signal<Local, Bits<AMP_BITS>>,
-    neg_amp: Signal<Local, Bits<AMP_BITS>>,
+    lvl_a: Signal<Local, Bits<CMP_BITS>>,
+    lvl_run: Signal<Local, Bits<CMP_BITS>>,
+    lvl_new: Signal<Local, Bits<CMP_BITS>>,
+    thr: Signal<Local, Bits<CMP_BITS>>,
+    a_thr: Signal<Local, Bits<CMP_BITS>>,
+    run_thr: Signal<Local, Bits<CMP_BITS>>,
+    new_thr: Signal<Local, Bits<CMP_BITS>>,
     amp: Signal<Local, Bits<AMP_BITS>>,
-    next_level: Signal<Local, Bits<PIXEL_BITS>>,
-    next_amp: Signal<Local, Bits<AMP_BITS>>,
-    amag: Signal<Local, Bits<DT_INT_BITS>>,
-    threshold: Signal<Local, Bits<DT_INT_BITS>>,
     close_run: Signal<Local, Bit>,
     close_line: Signal<Local, Bit>,
     characteristic: Signal<Local, Bit>,
@@ -211,6 +215,7 @@ impl Default for DeclivityTracker {
             g2: Default::default(),
             g3: Default::default(),
             g4: Default::default(),
+            gabs2: Default::default(),
             gsq3: Default::default(),
             gsq4: Default::default(),
             w4: Default::default(),
@@ -254,13 +259,14 @@ impl Default for DeclivityTracker {
             full_eff: Default::default(),
             decl_end: Default::default(),
             end_next: Default::default(),
-            neg_g: Default::default(),
-            neg_amp: Default::default(),
+            lvl_a: Default::default(),
+            lvl_run: Default::default(),
+            lvl_new: Default::default(),
+            thr: Default::default(),
+            a_thr: Default::default(),
+            run_thr: Default::default(),
+            new_thr: Default::default(),
             amp: Default::default(),
-            next_level: Default::default(),
-            next_amp: Default::default(),
-            amag: Default::default(),
-            threshold: Default::default(),
             close_run: Default::default(),
             close_line: Default::default(),
             characteristic: Default::default(),
@@ -304,7 +310,7 @@ impl Logic for DeclivityTracker {
             self.t_sof[i].clock.next = self.clock.val();
         }
         dff_setup!(
-            self, clock, g2, g3, g4, gsq3, gsq4, w4, nz4, up4, char4, seen, rising, start, start_level, left0, left1, left2, s0, s1,
+            self, clock, g2, g3, g4, gabs2, gsq3, gsq4, w4, nz4, up4, char4, seen, rising, start, start_level, left0, left1, left2, s0, s1,
             last_nz, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
             o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
         );
@@ -340,13 +346,16 @@ impl Logic for DeclivityTracker {
         }
         self.g3.d.next = self.g2.q.val();
         self.g4.d.next = self.g3.q.val();
-        // Negations go through a signal of their own width: Verilog would
-        // compute `0 - g` at the literal's 32 bits before the cast.
-        self.neg_g.next = 0 - self.g2.q.val();
-        self.gabs.next = bit_cast::<16, AMP_BITS>(self.g2.q.val());
-        if self.g2.q.val() >= self.sign_bit.val() {
-            self.gabs.next = bit_cast::<16, AMP_BITS>(self.neg_g.val());
+        // |g(x)| registered beside g(x), as the difference of the larger and
+        // the smaller level (no negation in front of the multiplier).
+        self.gabs2.d.next = 0.into();
+        if self.t_valid[1].q.val() & !self.t_last[1].q.val() {
+            self.gabs2.d.next = self.t_pix[0].q.val() - self.t_pix[1].q.val();
+            if self.t_pix[1].q.val() > self.t_pix[0].q.val() {
+                self.gabs2.d.next = self.t_pix[1].q.val() - self.t_pix[0].q.val();
+            }
         }
+        self.gabs.next = bit_cast::<16, PIXEL_BITS>(self.gabs2.q.val());
         self.sq_full.next = self.gabs.val() * self.gabs.val();
         self.gsq3.d.next = bit_cast::<S0_BITS, 32>(self.sq_full.val());
         self.gsq4.d.next = self.gsq3.q.val();
@@ -391,19 +400,20 @@ impl Logic for DeclivityTracker {
         // x - 1 (now at the centre) or earlier.
         self.nz4.d.next = self.g3.q.val() != 0;
         self.up4.d.next = (self.g3.q.val() != 0) & (self.g3.q.val() < self.sign_bit.val());
-        self.next_level.next = self.start_level.q.val();
+        // |I(x) - level| > ⌊d_t⌋ as two comparisons with the threshold added
+        // to one side, for both possible start levels (the declivity under
+        // way, or one starting at x - 1), chosen last.
+        self.lvl_a.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[3].q.val());
+        self.lvl_run.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.start_level.q.val());
+        self.lvl_new.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val());
+        self.thr.next = bit_cast::<CMP_BITS, DT_BITS>(self.t_dt[3].q.val() >> self.dt_frac.val());
+        self.a_thr.next = self.lvl_a.val() + self.thr.val();
+        self.run_thr.next = self.lvl_run.val() + self.thr.val();
+        self.new_thr.next = self.lvl_new.val() + self.thr.val();
+        self.char4.d.next = (self.lvl_a.val() > self.run_thr.val()) | (self.lvl_run.val() > self.a_thr.val());
         if self.start_new.val() {
-            self.next_level.next = self.t_pix[4].q.val();
+            self.char4.d.next = (self.lvl_a.val() > self.new_thr.val()) | (self.lvl_new.val() > self.a_thr.val());
         }
-        self.next_amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[3].q.val())
-            - bit_cast::<AMP_BITS, PIXEL_BITS>(self.next_level.val());
-        self.neg_amp.next = 0 - self.next_amp.val();
-        self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(self.next_amp.val());
-        if self.next_amp.val() >= self.sign_bit.val() {
-            self.amag.next = bit_cast::<DT_INT_BITS, AMP_BITS>(self.neg_amp.val());
-        }
-        self.threshold.next = bit_cast::<DT_INT_BITS, DT_BITS>(self.t_dt[3].q.val() >> self.dt_frac.val());
-        self.char4.d.next = self.amag.val() > self.threshold.val();
 
         // Neighbour levels: x + 1 and x + 2 clamped at the line's end, x - 1
         // and x - 2 clamped at its start.
