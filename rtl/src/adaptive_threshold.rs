@@ -25,7 +25,7 @@
 //! for the line after next, finds the median bin `v` (the first non-empty bin
 //! where the counts reach `n/2`), then divides the in-bin fraction
 //! `(n - 2·below) / (2h)` to [`MEDIAN_FRAC_BITS`] bits ([`MEDIAN_Q_BITS`]
-//! clocks, one bit each) and scales it (2 clocks):
+//! clocks, one bit each) and scales it (3 clocks):
 //! `done` comes [`THRESHOLD_LATENCY`] clocks after `scan_start`, whatever the
 //! line. A bank must not be counted into while it is being scanned.
 //!
@@ -41,8 +41,8 @@ use rust_hdl::prelude::*;
 
 /// Clocks from `scan_start` to `done`: two to start (the last count of the
 /// line lands), [`HIST_BINS`] + 3 to read, count and test every bin,
-/// [`MEDIAN_Q_BITS`] to divide, 2 to scale.
-pub const THRESHOLD_LATENCY: usize = 2 + HIST_BINS + 3 + MEDIAN_Q_BITS + 2;
+/// [`MEDIAN_Q_BITS`] to divide, 3 to scale (product, sum, rounding).
+pub const THRESHOLD_LATENCY: usize = 2 + HIST_BINS + 3 + MEDIAN_Q_BITS + 3;
 
 /// Bits of the scan counter `0 ..= HIST_BINS + 1`.
 const SCAN_BITS: usize = HIST_ADDR_BITS + 2;
@@ -58,6 +58,7 @@ pub enum ThresholdState {
     Scan,
     Divide,
     Scale,
+    Sum,
     Round,
 }
 
@@ -90,6 +91,8 @@ pub struct AdaptiveThreshold {
     f1_bank: DFF<Bit>,
     f1_bin: DFF<Bits<HIST_ADDR_BITS>>,
     f1_count: DFF<Bits<HIST_COUNT_BITS>>,
+    hit1: DFF<Bit>,
+    hit2: DFF<Bit>,
     f2_valid: DFF<Bit>,
     f2_bank: DFF<Bit>,
     f2_bin: DFF<Bits<HIST_ADDR_BITS>>,
@@ -103,6 +106,11 @@ pub struct AdaptiveThreshold {
     cnt: DFF<Bits<SCAN_BITS>>,
     cum: DFF<Bits<HIST_COUNT_BITS>>,
     hv: DFF<Bits<HIST_COUNT_BITS>>,
+    hv_nz: DFF<Bit>,
+    counting: DFF<Bit>,
+    testing: DFF<Bit>,
+    first_test: DFF<Bit>,
+    last_test: DFF<Bit>,
     found: DFF<Bit>,
     zero_bin: DFF<Bit>,
     term1: DFF<Bits<DT_ACC_BITS>>,
@@ -112,6 +120,7 @@ pub struct AdaptiveThreshold {
     quotient: DFF<Bits<MEDIAN_Q_BITS>>,
     step: DFF<Bits<STEP_BITS>>,
     product: DFF<Bits<32>>,
+    sum: DFF<Bits<DT_ACC_BITS>>,
     dt_reg: DFF<Bits<DT_BITS>>,
     done_reg: DFF<Bit>,
     h: Signal<Local, Bits<HIST_COUNT_BITS>>,
@@ -133,7 +142,8 @@ pub struct AdaptiveThreshold {
     round_shift: Constant<Bits<8>>,
     frac_shift: Constant<Bits<8>>,
     last_step: Constant<Bits<STEP_BITS>>,
-    last_scan: Constant<Bits<SCAN_BITS>>,
+    pre_last_scan: Constant<Bits<SCAN_BITS>>,
+    k_step: Constant<Bits<DT_ACC_BITS>>,
 }
 
 impl Default for AdaptiveThreshold {
@@ -164,6 +174,8 @@ impl Default for AdaptiveThreshold {
             f1_bank: Default::default(),
             f1_bin: Default::default(),
             f1_count: Default::default(),
+            hit1: Default::default(),
+            hit2: Default::default(),
             f2_valid: Default::default(),
             f2_bank: Default::default(),
             f2_bin: Default::default(),
@@ -176,6 +188,11 @@ impl Default for AdaptiveThreshold {
             cnt: Default::default(),
             cum: Default::default(),
             hv: Default::default(),
+            hv_nz: Default::default(),
+            counting: Default::default(),
+            testing: Default::default(),
+            first_test: Default::default(),
+            last_test: Default::default(),
             found: Default::default(),
             zero_bin: Default::default(),
             term1: Default::default(),
@@ -185,6 +202,7 @@ impl Default for AdaptiveThreshold {
             quotient: Default::default(),
             step: Default::default(),
             product: Default::default(),
+            sum: Default::default(),
             dt_reg: Default::default(),
             done_reg: Default::default(),
             h: Default::default(),
@@ -205,7 +223,8 @@ impl Default for AdaptiveThreshold {
             round_shift: Constant::new(((DT_ACC_FRAC_BITS - DT_FRAC_BITS) as u64).into()),
             frac_shift: Constant::new(((MEDIAN_FRAC_BITS + K_FRAC_BITS - DT_ACC_FRAC_BITS) as u64).into()),
             last_step: Constant::new(((MEDIAN_Q_BITS - 1) as u64).into()),
-            last_scan: Constant::new((HIST_BINS as u64 + 2).into()),
+            pre_last_scan: Constant::new((HIST_BINS as u64 + 1).into()),
+            k_step: Constant::new((2 * K_HALF).into()),
         }
     }
 }
@@ -219,8 +238,8 @@ impl Logic for AdaptiveThreshold {
         self.hist1.write_clock.next = self.clock.val();
         dff_setup!(
             self, clock, p1_valid, p1_bank, p1_bin, p2_valid, p2_bank, p2_bin, rd0, rd1, f1_valid, f1_bank, f1_bin,
-            f1_count, f2_valid, f2_bank, f2_bin, f2_count, state, bank, n, cnt, cum, hv, found,
-            zero_bin, term1, ramp, den, rem, quotient, step, product, dt_reg, done_reg
+            f1_count, hit1, hit2, f2_valid, f2_bank, f2_bin, f2_count, state, bank, n, cnt, cum, hv, hv_nz, counting, testing, first_test, last_test, found,
+            zero_bin, term1, ramp, den, rem, quotient, step, product, sum, dt_reg, done_reg
         );
         // ---- Counting: read on the clock of the increment, register the
         // block RAM's output on the next, write on the third, forwarding the
@@ -239,10 +258,14 @@ impl Logic for AdaptiveThreshold {
         if self.p2_bank.q.val() {
             self.old_count.next = self.rd1.q.val();
         }
-        if self.f2_valid.q.val() & (self.f2_bank.q.val() == self.p2_bank.q.val()) & (self.f2_bin.q.val() == self.p2_bin.q.val()) {
+        // Which writes in flight hold the bin, compared one clock ahead:
+        // p1 against p2 (next clock's f1) and against f1 (next clock's f2).
+        self.hit1.d.next = self.p2_valid.q.val() & (self.p2_bank.q.val() == self.p1_bank.q.val()) & (self.p2_bin.q.val() == self.p1_bin.q.val());
+        self.hit2.d.next = self.f1_valid.q.val() & (self.f1_bank.q.val() == self.p1_bank.q.val()) & (self.f1_bin.q.val() == self.p1_bin.q.val());
+        if self.hit2.q.val() {
             self.old_count.next = self.f2_count.q.val();
         }
-        if self.f1_valid.q.val() & (self.f1_bank.q.val() == self.p2_bank.q.val()) & (self.f1_bin.q.val() == self.p2_bin.q.val()) {
+        if self.hit1.q.val() {
             self.old_count.next = self.f1_count.q.val();
         }
         self.new_count.next = self.old_count.val() + 1;
@@ -278,8 +301,12 @@ impl Logic for AdaptiveThreshold {
         if self.zero_bin.q.val() {
             self.term2.next = self.product.q.val() >> (self.frac_shift.val() + 1);
         }
+        // Bin 0 has no (2v - 1)·K/2 term.
         self.acc.next = self.term1.q.val() + self.term2.val();
-        self.rounded.next = (self.acc.val() + self.round_half.val()) >> self.round_shift.val();
+        if self.zero_bin.q.val() {
+            self.acc.next = self.term2.val();
+        }
+        self.rounded.next = (self.sum.q.val() + self.round_half.val()) >> self.round_shift.val();
         self.done_reg.d.next = false;
         self.busy.next = self.state.q.val() != ThresholdState::Idle;
         self.done.next = self.done_reg.q.val();
@@ -299,6 +326,10 @@ impl Logic for AdaptiveThreshold {
                     self.ramp.d.next = 0 - self.k_half.val();
                     self.den.d.next = 1.into();
                     self.rem.d.next = 0.into();
+                    self.counting.d.next = false;
+                    self.testing.d.next = false;
+                    self.first_test.d.next = false;
+                    self.last_test.d.next = false;
                     self.state.d.next = ThresholdState::Settle;
                 }
             }
@@ -312,7 +343,12 @@ impl Logic for AdaptiveThreshold {
                     self.hist0.read_address.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val());
                 }
                 self.cnt.d.next = self.cnt.q.val() + 1;
-                if self.cnt.q.val() >= 2 {
+                // The phase flags of the next clock, from this clock's count.
+                self.counting.d.next = self.cnt.q.val() >= 1;
+                self.testing.d.next = self.cnt.q.val() >= 2;
+                self.first_test.d.next = self.cnt.q.val() == 2;
+                self.last_test.d.next = self.cnt.q.val() == self.pre_last_scan.val();
+                if self.counting.q.val() {
                     // Bin v = cnt - 2 is in the output register: add it to
                     // the running count and clear it.
                     if self.bank.q.val() {
@@ -326,23 +362,21 @@ impl Logic for AdaptiveThreshold {
                     }
                     self.cum.d.next = self.cum.q.val() + self.h.val();
                     self.hv.d.next = self.h.val();
+                    self.hv_nz.d.next = self.h.val() != 0;
                 }
-                if self.cnt.q.val() >= 3 {
+                if self.testing.q.val() {
                     // Bin v = cnt - 3 is tested: the first non-empty bin
                     // whose running count reaches n/2 holds the median.
-                    self.ramp.d.next = self.ramp.q.val() + (self.k_half.val() << 1);
-                    if !self.found.q.val() & (self.hv.q.val() != 0) & (self.reach.val() >= self.n.q.val()) {
+                    self.ramp.d.next = self.ramp.q.val() + self.k_step.val();
+                    if !self.found.q.val() & self.hv_nz.q.val() & (self.reach.val() >= self.n.q.val()) {
                         self.found.d.next = true;
-                        self.zero_bin.d.next = self.cnt.q.val() == 3;
+                        self.zero_bin.d.next = self.first_test.q.val();
                         self.term1.d.next = self.ramp.q.val();
-                        if self.cnt.q.val() == 3 {
-                            self.term1.d.next = 0.into();
-                        }
                         // The fraction (n - 2·below) / (2h), divided next.
                         self.rem.d.next = bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.num.val());
                         self.den.d.next = self.hv.q.val() << 1;
                     }
-                    if self.cnt.q.val() == self.last_scan.val() {
+                    if self.last_test.q.val() {
                         self.step.d.next = 0.into();
                         self.quotient.d.next = 0.into();
                         self.state.d.next = ThresholdState::Divide;
@@ -365,6 +399,10 @@ impl Logic for AdaptiveThreshold {
             }
             ThresholdState::Scale => {
                 self.product.d.next = self.prod_full.val();
+                self.state.d.next = ThresholdState::Sum;
+            }
+            ThresholdState::Sum => {
+                self.sum.d.next = self.acc.val();
                 self.state.d.next = ThresholdState::Round;
             }
             ThresholdState::Round => {

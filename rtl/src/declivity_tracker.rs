@@ -108,6 +108,11 @@ pub struct DeclivityTracker {
     nz4: DFF<Bit>,
     up4: DFF<Bit>,
     char4: DFF<Bit>,
+    /// `I + ⌊d_t⌋` of the pixels at taps 3 and 4, and of the declivity's
+    /// start level.
+    at_thr3: DFF<Bits<CMP_BITS>>,
+    at_thr4: DFF<Bits<CMP_BITS>>,
+    run_thr: DFF<Bits<CMP_BITS>>,
     // The declivity under way.
     seen: DFF<Bit>,
     rising: DFF<Bit>,
@@ -118,7 +123,12 @@ pub struct DeclivityTracker {
     left2: DFF<Bits<PIXEL_BITS>>,
     s0: DFF<Bits<S0_BITS>>,
     s1: DFF<Bits<S1_BITS>>,
-    last_nz: DFF<Bits<X_BITS>>,
+    /// `x_{i+1}`: one past the last non-zero gradient so far.
+    end_reg: DFF<Bits<X_BITS>>,
+    /// The gradients at x - 1 and x - 2 updated `end_reg` (so `x_{i+1}` is
+    /// x or x - 1).
+    upd1: DFF<Bit>,
+    upd2: DFF<Bit>,
     // The line.
     count: DFF<Bits<COUNT_BITS>>,
     full: DFF<Bit>,
@@ -147,15 +157,11 @@ pub struct DeclivityTracker {
     seen_eff: Signal<Local, Bit>,
     count_eff: Signal<Local, Bits<COUNT_BITS>>,
     full_eff: Signal<Local, Bit>,
-    decl_end: Signal<Local, Bits<X_BITS>>,
-    end_next: Signal<Local, Bits<X_BITS>>,
+    x_next: Signal<Local, Bits<X_BITS>>,
     lvl_a: Signal<Local, Bits<CMP_BITS>>,
     lvl_run: Signal<Local, Bits<CMP_BITS>>,
     lvl_new: Signal<Local, Bits<CMP_BITS>>,
     thr: Signal<Local, Bits<CMP_BITS>>,
-    a_thr: Signal<Local, Bits<CMP_BITS>>,
-    run_thr: Signal<Local, Bits<CMP_BITS>>,
-    new_thr: Signal<Local, Bits<CMP_BITS>>,
     amp: Signal<Local, Bits<AMP_BITS>>,
     close_run: Signal<Local, Bit>,
     close_line: Signal<Local, Bit>,
@@ -222,6 +228,9 @@ impl Default for DeclivityTracker {
             nz4: Default::default(),
             up4: Default::default(),
             char4: Default::default(),
+            at_thr3: Default::default(),
+            at_thr4: Default::default(),
+            run_thr: Default::default(),
             seen: Default::default(),
             rising: Default::default(),
             start: Default::default(),
@@ -231,7 +240,9 @@ impl Default for DeclivityTracker {
             left2: Default::default(),
             s0: Default::default(),
             s1: Default::default(),
-            last_nz: Default::default(),
+            end_reg: Default::default(),
+            upd1: Default::default(),
+            upd2: Default::default(),
             count: Default::default(),
             full: Default::default(),
             mk_pending: Default::default(),
@@ -257,15 +268,11 @@ impl Default for DeclivityTracker {
             seen_eff: Default::default(),
             count_eff: Default::default(),
             full_eff: Default::default(),
-            decl_end: Default::default(),
-            end_next: Default::default(),
+            x_next: Default::default(),
             lvl_a: Default::default(),
             lvl_run: Default::default(),
             lvl_new: Default::default(),
             thr: Default::default(),
-            a_thr: Default::default(),
-            run_thr: Default::default(),
-            new_thr: Default::default(),
             amp: Default::default(),
             close_run: Default::default(),
             close_line: Default::default(),
@@ -310,8 +317,8 @@ impl Logic for DeclivityTracker {
             self.t_sof[i].clock.next = self.clock.val();
         }
         dff_setup!(
-            self, clock, g2, g3, g4, gabs2, gsq3, gsq4, w4, nz4, up4, char4, seen, rising, start, start_level, left0, left1, left2, s0, s1,
-            last_nz, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
+            self, clock, g2, g3, g4, gabs2, gsq3, gsq4, w4, nz4, up4, char4, at_thr3, at_thr4, run_thr, seen, rising, start, start_level, left0, left1, left2, s0, s1,
+            end_reg, upd1, upd2, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
             o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
         );
         // ---- The window shifts every clock; bubbles travel as bubbles.
@@ -374,8 +381,7 @@ impl Logic for DeclivityTracker {
             self.count_eff.next = 0.into();
             self.full_eff.next = false;
         }
-        self.decl_end.next = self.last_nz.q.val() + 1;
-        self.end_next.next = self.last_nz.q.val() + 2;
+        self.x_next.next = self.t_x[4].q.val() + 1;
         self.amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val())
             - bit_cast::<AMP_BITS, PIXEL_BITS>(self.start_level.q.val());
         self.close_run.next = self.t_valid[4].q.val()
@@ -402,17 +408,17 @@ impl Logic for DeclivityTracker {
         self.up4.d.next = (self.g3.q.val() != 0) & (self.g3.q.val() < self.sign_bit.val());
         // |I(x) - level| > ⌊d_t⌋ as two comparisons with the threshold added
         // to one side, for both possible start levels (the declivity under
-        // way, or one starting at x - 1), chosen last.
+        // way, or one starting at x - 1), chosen last. The sums `I + ⌊d_t⌋`
+        // are registered: at taps 3 and 4, and for the declivity's start.
         self.lvl_a.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[3].q.val());
         self.lvl_run.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.start_level.q.val());
         self.lvl_new.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val());
-        self.thr.next = bit_cast::<CMP_BITS, DT_BITS>(self.t_dt[3].q.val() >> self.dt_frac.val());
-        self.a_thr.next = self.lvl_a.val() + self.thr.val();
-        self.run_thr.next = self.lvl_run.val() + self.thr.val();
-        self.new_thr.next = self.lvl_new.val() + self.thr.val();
-        self.char4.d.next = (self.lvl_a.val() > self.run_thr.val()) | (self.lvl_run.val() > self.a_thr.val());
+        self.thr.next = bit_cast::<CMP_BITS, DT_BITS>(self.t_dt[2].q.val() >> self.dt_frac.val());
+        self.at_thr3.d.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[2].q.val()) + self.thr.val();
+        self.at_thr4.d.next = self.at_thr3.q.val();
+        self.char4.d.next = (self.lvl_a.val() > self.run_thr.q.val()) | (self.lvl_run.val() > self.at_thr3.q.val());
         if self.start_new.val() {
-            self.char4.d.next = (self.lvl_a.val() > self.new_thr.val()) | (self.lvl_new.val() > self.a_thr.val());
+            self.char4.d.next = (self.lvl_a.val() > self.at_thr4.q.val()) | (self.lvl_new.val() > self.at_thr3.q.val());
         }
 
         // Neighbour levels: x + 1 and x + 2 clamped at the line's end, x - 1
@@ -435,11 +441,11 @@ impl Logic for DeclivityTracker {
         // end = x - 1 reach past x.
         self.right1.next = self.t_pix[4].q.val();
         self.right2.next = self.t_pix[4].q.val();
-        if self.close_run.val() & (self.decl_end.val() == self.t_x[4].q.val()) {
+        if self.close_run.val() & self.upd1.q.val() {
             self.right1.next = self.p1.val();
             self.right2.next = self.p2.val();
         }
-        if self.close_run.val() & (self.end_next.val() == self.t_x[4].q.val()) {
+        if self.close_run.val() & !self.upd1.q.val() & self.upd2.q.val() {
             self.right2.next = self.p1.val();
         }
 
@@ -449,22 +455,25 @@ impl Logic for DeclivityTracker {
             self.full.d.next = self.full_eff.val() | self.drop.val();
             self.seen.d.next = self.seen_eff.val();
         }
+        self.upd1.d.next = self.start_new.val() | self.extend.val();
+        self.upd2.d.next = self.upd1.q.val();
         if self.start_new.val() {
             self.seen.d.next = true;
             self.rising.d.next = self.up.val();
             self.start.d.next = self.t_x[4].q.val();
             self.start_level.d.next = self.t_pix[4].q.val();
+            self.run_thr.d.next = self.at_thr4.q.val();
             self.left0.d.next = self.t_pix[4].q.val();
             self.left1.d.next = self.pm1.val();
             self.left2.d.next = self.pm2.val();
             self.s0.d.next = self.gsq4.q.val();
             self.s1.d.next = self.w4.q.val();
-            self.last_nz.d.next = self.t_x[4].q.val();
+            self.end_reg.d.next = self.x_next.val();
         }
         if self.extend.val() {
             self.s0.d.next = self.s0.q.val() + self.gsq4.q.val();
             self.s1.d.next = self.s1.q.val() + self.w4.q.val();
-            self.last_nz.d.next = self.t_x[4].q.val();
+            self.end_reg.d.next = self.x_next.val();
         }
         self.mk_pending.d.next = self.t_valid[4].q.val() & self.t_last[4].q.val();
         if self.t_valid[4].q.val() & self.t_last[4].q.val() {
@@ -487,7 +496,7 @@ impl Logic for DeclivityTracker {
             self.o_dividend.d.next = bit_cast::<DIVIDEND_BITS, S1_BITS>(self.s1.q.val()) << self.dividend_shift.val();
             self.o_divisor.d.next = self.s0.q.val();
             self.o_tag0.d.next = bit_cast::<32, X_BITS>(self.start.q.val())
-                | (bit_cast::<32, X_BITS>(self.decl_end.val()) << self.end_shift.val())
+                | (bit_cast::<32, X_BITS>(self.end_reg.q.val()) << self.end_shift.val())
                 | (bit_cast::<32, AMP_BITS>(self.amp.val()) << self.amp_shift.val());
             self.o_tag1.d.next = bit_cast::<32, PIXEL_BITS>(self.left0.q.val())
                 | (bit_cast::<32, PIXEL_BITS>(self.left1.q.val()) << self.level_shift.val())
