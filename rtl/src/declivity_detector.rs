@@ -29,10 +29,13 @@
 //!   Records come left to right, then the marker; lines in input order.
 //!
 //! ## Timing
-//! Throughput: one pixel per clock with `s_tready` high whenever the line
-//! period is at least [`MIN_LINE_PERIOD`] clocks (every real image here:
-//! `W ≥ 384`); shorter lines back to back wait for the threshold engine
-//! (`s_tready` low between lines, never inside one). Latency: the marker of
+//! Throughput: one pixel per clock, `s_tready` high, over back-to-back
+//! lines of one width `W ≥` [`MIN_LINE_PERIOD`] (every real image here:
+//! `W ≥ 384`). Line n + 2 is accepted once line n has started to be read;
+//! [`line_starts`] gives, for any sequence of widths offered back to back,
+//! the clock at which each line's first pixel is accepted, and so the
+//! stalls of shorter or mixed lines (`s_tready` low between lines, never
+//! inside one). Latency: the marker of
 //! a line of `W` stored pixels leaves [`marker_latency`]`(W)` clocks after
 //! its last pixel is accepted, when the engines are free; a record of a
 //! declivity that closes at pixel `x` leaves `W - 1 - x` clocks before the
@@ -52,11 +55,45 @@ use crate::params::*;
 use crate::position_divider::{PositionDivider, DIVIDER_LATENCY};
 use rust_hdl::prelude::*;
 
-/// Shortest line period (clocks from a line's first pixel to the next
-/// line's first pixel) that never stalls the input: the threshold engine
-/// must have finished line n and its reader started before line n + 2
-/// arrives. See [`marker_latency`] for where the terms come from.
-pub const MIN_LINE_PERIOD: usize = THRESHOLD_LATENCY + 4;
+/// The shortest width of back-to-back lines of one width that never stalls
+/// the input: line n + 2 needs line n's bank, released one clock after its
+/// reading starts, `THRESHOLD_LATENCY + 3` clocks after line n's last pixel
+/// (see [`line_starts`]).
+pub const MIN_LINE_PERIOD: usize = THRESHOLD_LATENCY + 3;
+
+/// The clock at which the first pixel of each line is accepted when lines of
+/// `widths` pixels are offered back to back from clock 0 (`tvalid` always
+/// high), engines idle at the start. The recurrence of the three engines,
+/// with `T` = [`THRESHOLD_LATENCY`], `L_n` the clock of line n's last pixel
+/// and `W'_n = min(W_n, W_MAX)` its stored width:
+/// - the threshold engine starts line n at `B_n = max(L_n + 1, B_(n-1) + T + 1)`;
+/// - the reader decides to start it at `D_n = max(B_n + T + 1, D_(n-1) + W'_(n-1))`
+///   (the clock of line n - 1's last read address) and reads from `D_n + 1`;
+/// - line n + 2 (same bank) is accepted from `D_n + 2`, and from `L_(n+1) + 1`.
+pub fn line_starts(widths: &[usize]) -> Vec<u64> {
+    let t = THRESHOLD_LATENCY as u64;
+    let mut starts: Vec<u64> = Vec::with_capacity(widths.len());
+    let mut last_pixel: Vec<u64> = Vec::with_capacity(widths.len());
+    let mut reads: Vec<u64> = Vec::with_capacity(widths.len());
+    let (mut b_prev, mut d_prev, mut w_prev): (Option<u64>, Option<u64>, u64) = (None, None, 0);
+    for (n, &w) in widths.iter().enumerate() {
+        let w = w.max(1) as u64;
+        let mut s = if n == 0 { 0 } else { last_pixel[n - 1] + 1 };
+        if n >= 2 {
+            s = s.max(reads[n - 2] + 2);
+        }
+        starts.push(s);
+        let l = s + w - 1;
+        last_pixel.push(l);
+        let b = b_prev.map_or(l + 1, |bp| (l + 1).max(bp + t + 1));
+        let d = d_prev.map_or(b + t + 1, |dp| (b + t + 1).max(dp + w_prev));
+        reads.push(d);
+        b_prev = Some(b);
+        d_prev = Some(d);
+        w_prev = w.min(W_MAX as u64);
+    }
+    starts
+}
 
 /// Clocks from the last pixel of a line of `width` stored pixels being
 /// accepted to its marker on the outputs, when the threshold engine and the
