@@ -291,22 +291,16 @@ impl Logic for AdaptiveThreshold {
             self.h.next = self.rd1.q.val();
         }
         self.bin.next = bit_cast::<HIST_ADDR_BITS, SCAN_BITS>(self.cnt.q.val() - 2);
-        self.reach.next = self.cum.q.val() << 1;
+        // (Doublings by addition: rust-hdl simulates shifts slowly.)
+        self.reach.next = self.cum.q.val() + self.cum.q.val();
         self.below_v.next = self.cum.q.val() - self.hv.q.val();
-        self.num.next = self.n.q.val() - (self.below_v.val() << 1);
+        self.num.next = self.n.q.val() - self.below_v.val() - self.below_v.val();
         self.wide_q.next = bit_cast::<16, MEDIAN_Q_BITS>(self.quotient.q.val());
         self.wide_k.next = self.k_frac.val();
         self.prod_full.next = self.wide_q.val() * self.wide_k.val();
-        self.term2.next = self.product.q.val() >> self.frac_shift.val();
-        if self.zero_bin.q.val() {
-            self.term2.next = self.product.q.val() >> (self.frac_shift.val() + 1);
-        }
-        // Bin 0 has no (2v - 1)·K/2 term.
-        self.acc.next = self.term1.q.val() + self.term2.val();
-        if self.zero_bin.q.val() {
-            self.acc.next = self.term2.val();
-        }
-        self.rounded.next = (self.sum.q.val() + self.round_half.val()) >> self.round_shift.val();
+        self.term2.next = 0.into();
+        self.acc.next = 0.into();
+        self.rounded.next = 0.into();
         self.done_reg.d.next = false;
         self.busy.next = self.state.q.val() != ThresholdState::Idle;
         self.done.next = self.done_reg.q.val();
@@ -402,10 +396,20 @@ impl Logic for AdaptiveThreshold {
                 self.state.d.next = ThresholdState::Sum;
             }
             ThresholdState::Sum => {
+                self.term2.next = self.product.q.val() >> self.frac_shift.val();
+                if self.zero_bin.q.val() {
+                    self.term2.next = self.product.q.val() >> (self.frac_shift.val() + 1);
+                }
+                // Bin 0 has no (2v - 1)·K/2 term.
+                self.acc.next = self.term1.q.val() + self.term2.val();
+                if self.zero_bin.q.val() {
+                    self.acc.next = self.term2.val();
+                }
                 self.sum.d.next = self.acc.val();
                 self.state.d.next = ThresholdState::Round;
             }
             ThresholdState::Round => {
+                self.rounded.next = (self.sum.q.val() + self.round_half.val()) >> self.round_shift.val();
                 self.dt_reg.d.next = bit_cast::<DT_BITS, DT_ACC_BITS>(self.rounded.val());
                 if (self.rounded.val() < self.dt_floor.val()) | !self.found.q.val() {
                     self.dt_reg.d.next = bit_cast::<DT_BITS, DT_ACC_BITS>(self.dt_floor.val());

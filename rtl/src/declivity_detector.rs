@@ -165,6 +165,7 @@ pub struct DeclivityDetector {
     rx: DFF<Bits<X_BITS>>,
     r_last_x: DFF<Bits<X_BITS>>,
     r_dt: DFF<Bits<DT_BITS>>,
+    r_thr: DFF<Bits<DT_INT_BITS>>,
     r_wide: DFF<Bit>,
     r_sof: DFF<Bit>,
     free_pending: DFF<Bit>,
@@ -174,6 +175,7 @@ pub struct DeclivityDetector {
     d_last: DFF<Bit>,
     d_x: DFF<Bits<X_BITS>>,
     d_dt: DFF<Bits<DT_BITS>>,
+    d_thr: DFF<Bits<DT_INT_BITS>>,
     d_wide: DFF<Bit>,
     d_sof: DFF<Bit>,
     // Combinational.
@@ -196,7 +198,7 @@ pub struct DeclivityDetector {
     bank_free: Constant<Bits<2>>,
     bank_full: Constant<Bits<2>>,
     bank_ready: Constant<Bits<2>>,
-    bank_shift: Constant<Bits<8>>,
+    dt_frac: Constant<Bits<8>>,
     end_shift: Constant<Bits<8>>,
     amp_shift: Constant<Bits<8>>,
     marker_shift: Constant<Bits<8>>,
@@ -257,6 +259,7 @@ impl Default for DeclivityDetector {
             rx: Default::default(),
             r_last_x: Default::default(),
             r_dt: Default::default(),
+            r_thr: Default::default(),
             r_wide: Default::default(),
             r_sof: Default::default(),
             free_pending: Default::default(),
@@ -266,6 +269,7 @@ impl Default for DeclivityDetector {
             d_last: Default::default(),
             d_x: Default::default(),
             d_dt: Default::default(),
+            d_thr: Default::default(),
             d_wide: Default::default(),
             d_sof: Default::default(),
             write_state: Default::default(),
@@ -286,7 +290,7 @@ impl Default for DeclivityDetector {
             bank_free: Constant::new(BANK_FREE.into()),
             bank_full: Constant::new(BANK_FULL.into()),
             bank_ready: Constant::new(BANK_READY.into()),
-            bank_shift: c8(X_BITS),
+            dt_frac: c8(DT_FRAC_BITS),
             end_shift: c8(TagLayout::END_SHIFT),
             amp_shift: c8(TagLayout::AMP_SHIFT),
             marker_shift: c8(TagLayout::MARKER_SHIFT),
@@ -305,8 +309,8 @@ impl Logic for DeclivityDetector {
         self.divider.clock.next = self.clock.val();
         dff_setup!(
             self, clock, state0, state1, width0, width1, wide0, wide1, sof0, sof1, dt0, dt1, wb, wx, in_line,
-            prev_pix, line_sof, line_wide, mb, rb, reading, r_bank, rx, r_last_x, r_dt, r_wide, r_sof,
-            free_pending, free_bank, d_valid, d_first, d_last, d_x, d_dt, d_wide, d_sof
+            prev_pix, line_sof, line_wide, mb, rb, reading, r_bank, rx, r_last_x, r_dt, r_thr, r_wide, r_sof,
+            free_pending, free_bank, d_valid, d_first, d_last, d_x, d_dt, d_thr, d_wide, d_sof
         );
 
         // ---- A: input into bank wb, accepted while that bank is free.
@@ -325,8 +329,12 @@ impl Logic for DeclivityDetector {
         if self.prev_pix.q.val() > self.s_tdata.val() {
             self.diff.next = self.prev_pix.q.val() - self.s_tdata.val();
         }
-        self.line_buf.write_address.next = (bit_cast::<LINE_BUF_ADDR_BITS, 1>(self.wb.q.val().into()) << self.bank_shift.val())
-            | self.x_now.val();
+        // Bank bit on top of x (an addition, not a shift: rust-hdl simulates
+        // shifts slowly; x < W_MAX so they are the same).
+        self.line_buf.write_address.next = self.x_now.val();
+        if self.wb.q.val() {
+            self.line_buf.write_address.next = self.x_now.val() + self.w_max.val();
+        }
         self.line_buf.write_data.next = self.s_tdata.val();
         self.line_buf.write_enable.next = self.accept.val() & self.stored.val();
         self.threshold.inc_valid.next = self.accept.val() & self.stored.val() & self.in_line.q.val();
@@ -358,13 +366,16 @@ impl Logic for DeclivityDetector {
         }
         self.start_read.next = (self.read_state.val() == self.bank_ready.val())
             & (!self.reading.q.val() | (self.rx.q.val() == self.r_last_x.q.val()));
-        self.line_buf.read_address.next = (bit_cast::<LINE_BUF_ADDR_BITS, 1>(self.r_bank.q.val().into()) << self.bank_shift.val())
-            | bit_cast::<LINE_BUF_ADDR_BITS, X_BITS>(self.rx.q.val());
+        self.line_buf.read_address.next = bit_cast::<LINE_BUF_ADDR_BITS, X_BITS>(self.rx.q.val());
+        if self.r_bank.q.val() {
+            self.line_buf.read_address.next = bit_cast::<LINE_BUF_ADDR_BITS, X_BITS>(self.rx.q.val()) + self.w_max.val();
+        }
         self.d_valid.d.next = self.reading.q.val();
         self.d_first.d.next = self.rx.q.val() == 0;
         self.d_last.d.next = self.rx.q.val() == self.r_last_x.q.val();
         self.d_x.d.next = self.rx.q.val();
         self.d_dt.d.next = self.r_dt.q.val();
+        self.d_thr.d.next = self.r_thr.q.val();
         self.d_wide.d.next = self.r_wide.q.val();
         self.d_sof.d.next = self.r_sof.q.val();
         if self.reading.q.val() {
@@ -382,7 +393,10 @@ impl Logic for DeclivityDetector {
             self.r_dt.d.next = self.dt0.q.val();
             self.r_wide.d.next = self.wide0.q.val();
             self.r_sof.d.next = self.sof0.q.val();
+            // ⌊d_t⌋ once per line.
+            self.r_thr.d.next = bit_cast::<DT_INT_BITS, DT_BITS>(self.dt0.q.val() >> self.dt_frac.val());
             if self.rb.q.val() {
+                self.r_thr.d.next = bit_cast::<DT_INT_BITS, DT_BITS>(self.dt1.q.val() >> self.dt_frac.val());
                 self.r_dt.d.next = self.dt1.q.val();
                 self.r_wide.d.next = self.wide1.q.val();
                 self.r_sof.d.next = self.sof1.q.val();
@@ -461,6 +475,7 @@ impl Logic for DeclivityDetector {
         self.tracker.in_pix.next = self.line_buf.read_data.val();
         self.tracker.in_x.next = self.d_x.q.val();
         self.tracker.in_dt.next = self.d_dt.q.val();
+        self.tracker.in_thr.next = self.d_thr.q.val();
         self.tracker.in_wide.next = self.d_wide.q.val();
         self.tracker.in_sof.next = self.d_sof.q.val();
         self.divider.in_valid.next = self.tracker.item_valid.val();

@@ -11,7 +11,7 @@
 //! ## Ports
 //! - In: a pixel stream `in_valid`, `in_first`, `in_last`, `in_pix`, `in_x`
 //!   (the pixel's index in its line) with the line's `in_dt` (`d_t` in fixed
-//!   point), `in_wide` (line cut at `W_MAX`) and `in_sof` (first line of a
+//!   point) and `in_thr` (`⌊d_t⌋`), `in_wide` (line cut at `W_MAX`) and `in_sof` (first line of a
 //!   frame). A line's pixels must come on consecutive clocks; lines may be
 //!   back to back or apart.
 //! - Out: items for the eq. 3 divider ([`crate::position_divider`]):
@@ -48,6 +48,8 @@ pub const TRACKER_CENTER: usize = 4;
 /// centre only (the first-pixel flag one further, to clamp `x - 2`).
 const CENTER_TAPS: usize = TRACKER_CENTER + 1;
 const FIRST_TAPS: usize = TRACKER_CENTER + 2;
+/// Taps of the integer threshold (read at tap 2).
+const THR_TAPS: usize = 3;
 /// Bits of a grey level plus the integer threshold (no overflow).
 const CMP_BITS: usize = DT_INT_BITS + 1;
 
@@ -77,6 +79,8 @@ pub struct DeclivityTracker {
     pub in_pix: Signal<In, Bits<PIXEL_BITS>>,
     pub in_x: Signal<In, Bits<X_BITS>>,
     pub in_dt: Signal<In, Bits<DT_BITS>>,
+    /// `⌊d_t⌋`, the line's integer threshold.
+    pub in_thr: Signal<In, Bits<DT_INT_BITS>>,
     pub in_wide: Signal<In, Bit>,
     pub in_sof: Signal<In, Bit>,
     pub item_valid: Signal<Out, Bit>,
@@ -93,6 +97,7 @@ pub struct DeclivityTracker {
     t_pix: [DFF<Bits<PIXEL_BITS>>; TRACKER_TAPS],
     t_x: [DFF<Bits<X_BITS>>; CENTER_TAPS],
     t_dt: [DFF<Bits<DT_BITS>>; CENTER_TAPS],
+    t_thr: [DFF<Bits<DT_INT_BITS>>; THR_TAPS],
     t_wide: [DFF<Bit>; CENTER_TAPS],
     t_sof: [DFF<Bit>; CENTER_TAPS],
     // Gradient pipeline: g at taps 2–4, g² at taps 3–4, g²(2x+1) at tap 4.
@@ -179,7 +184,6 @@ pub struct DeclivityTracker {
     // Constants.
     n_max: Constant<Bits<COUNT_BITS>>,
     sign_bit: Constant<Bits<AMP_BITS>>,
-    dt_frac: Constant<Bits<8>>,
     dividend_shift: Constant<Bits<8>>,
     end_shift: Constant<Bits<8>>,
     amp_shift: Constant<Bits<8>>,
@@ -201,6 +205,7 @@ impl Default for DeclivityTracker {
             in_pix: Default::default(),
             in_x: Default::default(),
             in_dt: Default::default(),
+            in_thr: Default::default(),
             in_wide: Default::default(),
             in_sof: Default::default(),
             item_valid: Default::default(),
@@ -216,6 +221,7 @@ impl Default for DeclivityTracker {
             t_pix: taps(),
             t_x: taps(),
             t_dt: taps(),
+            t_thr: taps(),
             t_wide: taps(),
             t_sof: taps(),
             g2: Default::default(),
@@ -289,7 +295,6 @@ impl Default for DeclivityTracker {
             right2: Default::default(),
             n_max: Constant::new((N_MAX as u64).into()),
             sign_bit: Constant::new((1u64 << PIXEL_BITS).into()),
-            dt_frac: c8(DT_FRAC_BITS),
             dividend_shift: c8(POS_FRAC_BITS - 1),
             end_shift: c8(TagLayout::END_SHIFT),
             amp_shift: c8(TagLayout::AMP_SHIFT),
@@ -307,6 +312,9 @@ impl Logic for DeclivityTracker {
         }
         for i in 0..FIRST_TAPS {
             self.t_first[i].clock.next = self.clock.val();
+        }
+        for i in 0..THR_TAPS {
+            self.t_thr[i].clock.next = self.clock.val();
         }
         for i in 0..CENTER_TAPS {
             self.t_valid[i].clock.next = self.clock.val();
@@ -328,6 +336,7 @@ impl Logic for DeclivityTracker {
         self.t_pix[0].d.next = self.in_pix.val();
         self.t_x[0].d.next = self.in_x.val();
         self.t_dt[0].d.next = self.in_dt.val();
+        self.t_thr[0].d.next = self.in_thr.val();
         self.t_wide[0].d.next = self.in_wide.val();
         self.t_sof[0].d.next = self.in_sof.val();
         for i in 1..TRACKER_TAPS {
@@ -335,6 +344,9 @@ impl Logic for DeclivityTracker {
         }
         for i in 1..FIRST_TAPS {
             self.t_first[i].d.next = self.t_first[i - 1].q.val();
+        }
+        for i in 1..THR_TAPS {
+            self.t_thr[i].d.next = self.t_thr[i - 1].q.val();
         }
         for i in 1..CENTER_TAPS {
             self.t_valid[i].d.next = self.t_valid[i - 1].q.val();
@@ -366,7 +378,7 @@ impl Logic for DeclivityTracker {
         self.sq_full.next = self.gabs.val() * self.gabs.val();
         self.gsq3.d.next = bit_cast::<S0_BITS, 32>(self.sq_full.val());
         self.gsq4.d.next = self.gsq3.q.val();
-        self.odd_x.next = (bit_cast::<16, X_BITS>(self.t_x[3].q.val()) << 1) | 1;
+        self.odd_x.next = bit_cast::<16, X_BITS>(self.t_x[3].q.val()) + bit_cast::<16, X_BITS>(self.t_x[3].q.val()) + 1;
         self.sq16.next = bit_cast::<16, S0_BITS>(self.gsq3.q.val());
         self.w_full.next = self.sq16.val() * self.odd_x.val();
         self.w4.d.next = bit_cast::<S1_BITS, 32>(self.w_full.val());
@@ -413,7 +425,7 @@ impl Logic for DeclivityTracker {
         self.lvl_a.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[3].q.val());
         self.lvl_run.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.start_level.q.val());
         self.lvl_new.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val());
-        self.thr.next = bit_cast::<CMP_BITS, DT_BITS>(self.t_dt[2].q.val() >> self.dt_frac.val());
+        self.thr.next = bit_cast::<CMP_BITS, DT_INT_BITS>(self.t_thr[2].q.val());
         self.at_thr3.d.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[2].q.val()) + self.thr.val();
         self.at_thr4.d.next = self.at_thr3.q.val();
         self.char4.d.next = (self.lvl_a.val() > self.run_thr.q.val()) | (self.lvl_run.val() > self.at_thr3.q.val());

@@ -22,7 +22,9 @@
 //! ## Timing
 //! Latency [`DIVIDER_LATENCY`] = [`POS_BITS`] clocks (one per quotient bit),
 //! throughput one division per clock, no back-pressure: a bubble
-//! (`in_valid` low) travels through as a bubble. The quotient must fit in
+//! (`in_valid` low) travels through as a bubble. The tags wait in four small
+//! RAMs written every clock and read [`POS_BITS`] clocks later (distributed
+//! RAM instead of `4 × 32 × POS_BITS` flip-flops). The quotient must fit in
 //! [`POS_BITS`] bits, which holds for any position `X_i < W_MAX`: then
 //! `dividend >> POS_BITS < divisor`. A zero divisor gives an all-ones
 //! quotient (it never happens on a declivity, which has a non-zero gradient).
@@ -36,41 +38,27 @@ pub const DIVIDER_LATENCY: usize = POS_BITS;
 pub const TRIAL_BITS: usize = S0_BITS + 1;
 
 /// One step of long division: shift the next dividend bit into the
-/// remainder, subtract the divisor if it fits, append the quotient bit; the
-/// result is registered. The tags ride along.
+/// remainder, subtract the divisor if it fits; the dividend's remaining low
+/// bits and the quotient share one register (`lq`), bits leaving at the top
+/// as quotient bits enter at the bottom. The result is registered.
 #[derive(LogicBlock)]
 pub struct DivisionStep {
     pub clock: Signal<In, Clock>,
     pub in_valid: Signal<In, Bit>,
     pub in_rem: Signal<In, Bits<S0_BITS>>,
-    pub in_low: Signal<In, Bits<POS_BITS>>,
+    pub in_lq: Signal<In, Bits<POS_BITS>>,
     pub in_den: Signal<In, Bits<S0_BITS>>,
-    pub in_quo: Signal<In, Bits<POS_BITS>>,
-    pub in_tag0: Signal<In, Bits<32>>,
-    pub in_tag1: Signal<In, Bits<32>>,
-    pub in_tag2: Signal<In, Bits<32>>,
-    pub in_tag3: Signal<In, Bits<32>>,
     pub out_valid: Signal<Out, Bit>,
-    valid: DFF<Bit>,
     pub out_rem: Signal<Out, Bits<S0_BITS>>,
-    rem: DFF<Bits<S0_BITS>>,
-    pub out_low: Signal<Out, Bits<POS_BITS>>,
-    low: DFF<Bits<POS_BITS>>,
+    pub out_lq: Signal<Out, Bits<POS_BITS>>,
     pub out_den: Signal<Out, Bits<S0_BITS>>,
+    valid: DFF<Bit>,
+    rem: DFF<Bits<S0_BITS>>,
+    lq: DFF<Bits<POS_BITS>>,
     den: DFF<Bits<S0_BITS>>,
-    pub out_quo: Signal<Out, Bits<POS_BITS>>,
-    quo: DFF<Bits<POS_BITS>>,
-    pub out_tag0: Signal<Out, Bits<32>>,
-    tag0: DFF<Bits<32>>,
-    pub out_tag1: Signal<Out, Bits<32>>,
-    tag1: DFF<Bits<32>>,
-    pub out_tag2: Signal<Out, Bits<32>>,
-    tag2: DFF<Bits<32>>,
-    pub out_tag3: Signal<Out, Bits<32>>,
-    tag3: DFF<Bits<32>>,
     trial: Signal<Local, Bits<TRIAL_BITS>>,
     divisor: Signal<Local, Bits<TRIAL_BITS>>,
-    msb_shift: Constant<Bits<8>>,
+    msb: Constant<Bits<8>>,
 }
 
 impl Default for DivisionStep {
@@ -79,34 +67,19 @@ impl Default for DivisionStep {
             clock: Default::default(),
             in_valid: Default::default(),
             in_rem: Default::default(),
-            in_low: Default::default(),
+            in_lq: Default::default(),
             in_den: Default::default(),
-            in_quo: Default::default(),
-            in_tag0: Default::default(),
-            in_tag1: Default::default(),
-            in_tag2: Default::default(),
-            in_tag3: Default::default(),
-            valid: Default::default(),
             out_valid: Default::default(),
-            rem: Default::default(),
             out_rem: Default::default(),
-            low: Default::default(),
-            out_low: Default::default(),
-            den: Default::default(),
+            out_lq: Default::default(),
             out_den: Default::default(),
-            quo: Default::default(),
-            out_quo: Default::default(),
-            tag0: Default::default(),
-            out_tag0: Default::default(),
-            tag1: Default::default(),
-            out_tag1: Default::default(),
-            tag2: Default::default(),
-            out_tag2: Default::default(),
-            tag3: Default::default(),
-            out_tag3: Default::default(),
+            valid: Default::default(),
+            rem: Default::default(),
+            lq: Default::default(),
+            den: Default::default(),
             trial: Default::default(),
             divisor: Default::default(),
-            msb_shift: Constant::new(((POS_BITS - 1) as u64).into()),
+            msb: Constant::new(((POS_BITS - 1) as u64).into()),
         }
     }
 }
@@ -114,40 +87,34 @@ impl Default for DivisionStep {
 impl Logic for DivisionStep {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, valid, rem, low, den, quo, tag0, tag1, tag2, tag3);
+        dff_setup!(self, clock, valid, rem, lq, den);
         self.out_valid.next = self.valid.q.val();
         self.out_rem.next = self.rem.q.val();
-        self.out_low.next = self.low.q.val();
+        self.out_lq.next = self.lq.q.val();
         self.out_den.next = self.den.q.val();
-        self.out_quo.next = self.quo.q.val();
-        self.out_tag0.next = self.tag0.q.val();
-        self.out_tag1.next = self.tag1.q.val();
-        self.out_tag2.next = self.tag2.q.val();
-        self.out_tag3.next = self.tag3.q.val();
         self.valid.d.next = self.in_valid.val();
         self.den.d.next = self.in_den.val();
         // Doubling by addition: rust-hdl 0.46 simulates shifts through big
         // integers, additions natively (the Verilog is the same).
-        self.low.d.next = self.in_low.val() + self.in_low.val();
-        self.tag0.d.next = self.in_tag0.val();
-        self.tag1.d.next = self.in_tag1.val();
-        self.tag2.d.next = self.in_tag2.val();
-        self.tag3.d.next = self.in_tag3.val();
         self.trial.next = bit_cast::<TRIAL_BITS, S0_BITS>(self.in_rem.val())
             + bit_cast::<TRIAL_BITS, S0_BITS>(self.in_rem.val())
-            + bit_cast::<TRIAL_BITS, 1>(self.in_low.val().get_bit(self.msb_shift.val().index()).into());
+            + bit_cast::<TRIAL_BITS, 1>(self.in_lq.val().get_bit(self.msb.val().index()).into());
         self.divisor.next = bit_cast::<TRIAL_BITS, S0_BITS>(self.in_den.val());
         if self.trial.val() >= self.divisor.val() {
             self.rem.d.next = bit_cast::<S0_BITS, TRIAL_BITS>(self.trial.val() - self.divisor.val());
-            self.quo.d.next = self.in_quo.val() + self.in_quo.val() + 1;
+            self.lq.d.next = self.in_lq.val() + self.in_lq.val() + 1;
         } else {
             self.rem.d.next = bit_cast::<S0_BITS, TRIAL_BITS>(self.trial.val());
-            self.quo.d.next = self.in_quo.val() + self.in_quo.val();
+            self.lq.d.next = self.in_lq.val() + self.in_lq.val();
         }
     }
 }
 
-/// The pipelined divider: [`POS_BITS`] [`DivisionStep`]s in a row.
+/// Address bits of the tag delay RAMs: 2^TAG_ADDR_BITS > DIVIDER_LATENCY.
+const TAG_ADDR_BITS: usize = 4;
+
+/// The pipelined divider: [`POS_BITS`] [`DivisionStep`]s in a row, the tags
+/// beside them in RAM.
 #[derive(LogicBlock)]
 pub struct PositionDivider {
     pub clock: Signal<In, Clock>,
@@ -165,7 +132,15 @@ pub struct PositionDivider {
     pub out_tag2: Signal<Out, Bits<32>>,
     pub out_tag3: Signal<Out, Bits<32>>,
     steps: [DivisionStep; POS_BITS],
+    tags0: RAM<Bits<32>, TAG_ADDR_BITS>,
+    tags1: RAM<Bits<32>, TAG_ADDR_BITS>,
+    tags2: RAM<Bits<32>, TAG_ADDR_BITS>,
+    tags3: RAM<Bits<32>, TAG_ADDR_BITS>,
+    /// Write pointer; the read pointer trails it by `DIVIDER_LATENCY - 1`
+    /// (the read is synchronous).
+    wptr: DFF<Bits<TAG_ADDR_BITS>>,
     quotient_bits: Constant<Bits<8>>,
+    read_lag: Constant<Bits<TAG_ADDR_BITS>>,
 }
 
 impl Default for PositionDivider {
@@ -186,7 +161,13 @@ impl Default for PositionDivider {
             out_tag2: Default::default(),
             out_tag3: Default::default(),
             steps: core::array::from_fn(|_| Default::default()),
+            tags0: Default::default(),
+            tags1: Default::default(),
+            tags2: Default::default(),
+            tags3: Default::default(),
+            wptr: Default::default(),
             quotient_bits: Constant::new((POS_BITS as u64).into()),
+            read_lag: Constant::new(((DIVIDER_LATENCY - 1) as u64).into()),
         }
     }
 }
@@ -197,36 +178,59 @@ impl Logic for PositionDivider {
         for k in 0..POS_BITS {
             self.steps[k].clock.next = self.clock.val();
         }
+        self.tags0.read_clock.next = self.clock.val();
+        self.tags0.write_clock.next = self.clock.val();
+        self.tags1.read_clock.next = self.clock.val();
+        self.tags1.write_clock.next = self.clock.val();
+        self.tags2.read_clock.next = self.clock.val();
+        self.tags2.write_clock.next = self.clock.val();
+        self.tags3.read_clock.next = self.clock.val();
+        self.tags3.write_clock.next = self.clock.val();
+        dff_setup!(self, clock, wptr);
         // The dividend's bits above the quotient's are the first remainder
         // (smaller than the divisor when the quotient fits).
+        // (Only on a valid item: rust-hdl simulates shifts slowly.)
         self.steps[0].in_valid.next = self.in_valid.val();
-        self.steps[0].in_rem.next = bit_cast::<S0_BITS, DIVIDEND_BITS>(self.in_dividend.val() >> self.quotient_bits.val());
-        self.steps[0].in_low.next = bit_cast::<POS_BITS, DIVIDEND_BITS>(self.in_dividend.val());
+        self.steps[0].in_rem.next = 0.into();
+        self.steps[0].in_lq.next = 0.into();
+        if self.in_valid.val() {
+            self.steps[0].in_rem.next = bit_cast::<S0_BITS, DIVIDEND_BITS>(self.in_dividend.val() >> self.quotient_bits.val());
+            self.steps[0].in_lq.next = bit_cast::<POS_BITS, DIVIDEND_BITS>(self.in_dividend.val());
+        }
         self.steps[0].in_den.next = self.in_divisor.val();
-        self.steps[0].in_quo.next = 0.into();
-        self.steps[0].in_tag0.next = self.in_tag0.val();
-        self.steps[0].in_tag1.next = self.in_tag1.val();
-        self.steps[0].in_tag2.next = self.in_tag2.val();
-        self.steps[0].in_tag3.next = self.in_tag3.val();
         for k in 1..POS_BITS {
             self.steps[k].in_valid.next = self.steps[k - 1].out_valid.val();
             self.steps[k].in_rem.next = self.steps[k - 1].out_rem.val();
-            self.steps[k].in_low.next = self.steps[k - 1].out_low.val();
+            self.steps[k].in_lq.next = self.steps[k - 1].out_lq.val();
             self.steps[k].in_den.next = self.steps[k - 1].out_den.val();
-            self.steps[k].in_quo.next = self.steps[k - 1].out_quo.val();
-            self.steps[k].in_tag0.next = self.steps[k - 1].out_tag0.val();
-            self.steps[k].in_tag1.next = self.steps[k - 1].out_tag1.val();
-            self.steps[k].in_tag2.next = self.steps[k - 1].out_tag2.val();
-            self.steps[k].in_tag3.next = self.steps[k - 1].out_tag3.val();
         }
+        // Tags: written every clock, read DIVIDER_LATENCY - 1 clocks later
+        // so they leave with their quotient.
+        self.wptr.d.next = self.wptr.q.val() + 1;
+        self.tags0.write_address.next = self.wptr.q.val();
+        self.tags1.write_address.next = self.wptr.q.val();
+        self.tags2.write_address.next = self.wptr.q.val();
+        self.tags3.write_address.next = self.wptr.q.val();
+        self.tags0.write_enable.next = true;
+        self.tags1.write_enable.next = true;
+        self.tags2.write_enable.next = true;
+        self.tags3.write_enable.next = true;
+        self.tags0.write_data.next = self.in_tag0.val();
+        self.tags1.write_data.next = self.in_tag1.val();
+        self.tags2.write_data.next = self.in_tag2.val();
+        self.tags3.write_data.next = self.in_tag3.val();
+        self.tags0.read_address.next = self.wptr.q.val() - self.read_lag.val();
+        self.tags1.read_address.next = self.wptr.q.val() - self.read_lag.val();
+        self.tags2.read_address.next = self.wptr.q.val() - self.read_lag.val();
+        self.tags3.read_address.next = self.wptr.q.val() - self.read_lag.val();
         for k in (POS_BITS - 1)..POS_BITS {
             self.out_valid.next = self.steps[k].out_valid.val();
-            self.out_quotient.next = self.steps[k].out_quo.val();
-            self.out_tag0.next = self.steps[k].out_tag0.val();
-            self.out_tag1.next = self.steps[k].out_tag1.val();
-            self.out_tag2.next = self.steps[k].out_tag2.val();
-            self.out_tag3.next = self.steps[k].out_tag3.val();
+            self.out_quotient.next = self.steps[k].out_lq.val();
         }
+        self.out_tag0.next = self.tags0.read_data.val();
+        self.out_tag1.next = self.tags1.read_data.val();
+        self.out_tag2.next = self.tags2.read_data.val();
+        self.out_tag3.next = self.tags3.read_data.val();
     }
 }
 
