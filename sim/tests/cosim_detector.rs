@@ -155,3 +155,17 @@ fn detector_synthesizes_in_yosys_without_latches() {
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
     assert!(check.cells > 1000, "the detector is not empty: {} cells", check.cells);
 }
+
+#[test]
+fn detector_places_and_routes_on_ecp5_85k_with_its_memories_in_block_ram() {
+    let r = sim::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{}", sim::synth::report_table(&r));
+    // One DP16KD (18 kbit) holds the 2 × 1024 × 8-bit line buffer, one each
+    // of the two 256 × 12-bit histogram banks.
+    assert_eq!(r.brams, 3, "block RAMs");
+    // Three products: g², g²·(2x + 1) and the median fraction × K.
+    assert_eq!(r.dsps, 3, "DSPs");
+    // A small block: well under a tenth of the device.
+    assert!(r.luts < 83_640 / 10 && r.ffs < 83_640 / 10, "LUTs {} FFs {}", r.luts, r.ffs);
+    assert!(r.fmax_mhz.is_finite() && r.fmax_mhz > 50.0, "Fmax {}", r.fmax_mhz);
+}
