@@ -147,10 +147,95 @@ fn eval_json_gives_null_nonocc_without_a_mask() {
 
 #[test]
 fn every_subcommand_explains_itself_in_help() {
-    for args in [&["--help"][..], &["depth", "--help"], &["eval", "--help"]] {
+    for args in [
+        &["--help"][..],
+        &["depth", "--help"],
+        &["eval", "--help"],
+        &["rtl", "detect", "--help"],
+        &["verilog", "--help"],
+        &["synth", "--help"],
+    ] {
         let o = declivity(args, Path::new("."));
         let (out, _) = text(&o);
         assert!(o.status.success());
         assert!(out.contains("Usage:") && out.len() > 400, "{args:?}: {out}");
+    }
+}
+
+fn bundled_left() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("data/tsukuba/left_gray.png")
+}
+
+#[test]
+fn rtl_detect_json_reports_agreement_throughput_and_writes_the_overlay_and_waveform() {
+    let dir = tempfile::tempdir().unwrap();
+    let left = bundled_left();
+    let o = declivity(
+        &["rtl", "detect", left.to_str().unwrap(), "--json", "--out", "o", "--vcd", "w.vcd", "--lines", "10..11"],
+        dir.path(),
+    );
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    for key in [
+        "lines",
+        "pixels",
+        "cycles",
+        "px_per_clk",
+        "declivities_rtl",
+        "declivities_golden",
+        "borderline",
+        "mismatches",
+        "max_pos_err_lsb",
+        "sim_cycles_per_s",
+    ] {
+        assert!(v.get(key).is_some(), "{key} in {out}");
+    }
+    assert_eq!(v["lines"], 288);
+    assert_eq!(v["pixels"], 384 * 288);
+    assert_eq!(v["mismatches"], 0, "{out}");
+    assert_eq!(v["px_per_clk"], 1.0, "{out}");
+    // The records are golden's but for the few whose amplitude sits on d_t.
+    let (rtl, gold) = (v["declivities_rtl"].as_u64().unwrap(), v["declivities_golden"].as_u64().unwrap());
+    assert!(rtl > 10_000 && rtl.abs_diff(gold) <= v["borderline"].as_u64().unwrap(), "{out}");
+    assert!(v["max_pos_err_lsb"].as_f64().unwrap() < 1.0);
+    // The image streams in `pixels` clocks; the last line's records follow
+    // within one marker latency.
+    let cycles = v["cycles"].as_u64().unwrap();
+    assert!(cycles > 384 * 288 && cycles < 384 * 288 + 2000, "{cycles}");
+    let overlay = image::open(dir.path().join("o/declivities_rtl.png")).unwrap();
+    assert_eq!((overlay.width(), overlay.height()), (384, 288));
+    let vcd = std::fs::read_to_string(dir.path().join("w.vcd")).unwrap();
+    assert!(vcd.contains("$var") && vcd.contains("s_tdata") && vcd.contains("#"), "a VCD with the ports");
+}
+
+#[test]
+fn rtl_detect_rejects_rows_outside_the_image_and_unreadable_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let left = bundled_left();
+    let o = declivity(&["rtl", "detect", left.to_str().unwrap(), "--vcd", "w.vcd", "--lines", "280..300"], dir.path());
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("280..300") && err.contains("288 rows"), "{err}");
+    std::fs::write(dir.path().join("bad.png"), b"not a png").unwrap();
+    let o = declivity(&["rtl", "detect", "bad.png"], dir.path());
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("bad.png"), "{err}");
+    let o = declivity(&["rtl", "detect", left.to_str().unwrap(), "--lines", "5..2", "--vcd", "w.vcd"], dir.path());
+    assert!(!o.status.success());
+    assert!(text(&o).1.contains("empty"), "{}", text(&o).1);
+}
+
+#[test]
+fn verilog_command_writes_the_detector_with_its_ports() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = declivity(&["verilog", "--top", "detector", "--out", "v"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v = std::fs::read_to_string(dir.path().join("v/detector.v")).unwrap();
+    assert!(v.contains("module top"));
+    for port in ["s_tdata", "s_tvalid", "s_tuser", "s_tlast", "s_tready", "m_valid", "m_last", "m_pos", "m_dt"] {
+        assert!(v.contains(port), "{port}");
     }
 }
