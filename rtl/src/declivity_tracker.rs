@@ -157,8 +157,6 @@ pub struct DeclivityTracker {
     odd_x: Signal<Local, Bits<16>>,
     sq16: Signal<Local, Bits<16>>,
     w_full: Signal<Local, Bits<32>>,
-    nz: Signal<Local, Bit>,
-    up: Signal<Local, Bit>,
     seen_eff: Signal<Local, Bit>,
     count_eff: Signal<Local, Bits<COUNT_BITS>>,
     full_eff: Signal<Local, Bit>,
@@ -170,7 +168,6 @@ pub struct DeclivityTracker {
     amp: Signal<Local, Bits<AMP_BITS>>,
     close_run: Signal<Local, Bit>,
     close_line: Signal<Local, Bit>,
-    characteristic: Signal<Local, Bit>,
     keep: Signal<Local, Bit>,
     drop: Signal<Local, Bit>,
     start_new: Signal<Local, Bit>,
@@ -269,8 +266,6 @@ impl Default for DeclivityTracker {
             odd_x: Default::default(),
             sq16: Default::default(),
             w_full: Default::default(),
-            nz: Default::default(),
-            up: Default::default(),
             seen_eff: Default::default(),
             count_eff: Default::default(),
             full_eff: Default::default(),
@@ -282,7 +277,6 @@ impl Default for DeclivityTracker {
             amp: Default::default(),
             close_run: Default::default(),
             close_line: Default::default(),
-            characteristic: Default::default(),
             keep: Default::default(),
             drop: Default::default(),
             start_new: Default::default(),
@@ -384,8 +378,6 @@ impl Logic for DeclivityTracker {
         self.w4.d.next = bit_cast::<S1_BITS, 32>(self.w_full.val());
 
         // ---- The centre: pixel x at tap 4.
-        self.nz.next = self.nz4.q.val();
-        self.up.next = self.up4.q.val();
         self.seen_eff.next = self.seen.q.val() & !self.t_first[4].q.val();
         self.count_eff.next = self.count.q.val();
         self.full_eff.next = self.full.q.val();
@@ -398,22 +390,21 @@ impl Logic for DeclivityTracker {
             - bit_cast::<AMP_BITS, PIXEL_BITS>(self.start_level.q.val());
         self.close_run.next = self.t_valid[4].q.val()
             & !self.t_last[4].q.val()
-            & self.nz.val()
+            & self.nz4.q.val()
             & self.seen_eff.val()
-            & (self.up.val() != self.rising.q.val());
+            & (self.up4.q.val() != self.rising.q.val());
         self.close_line.next = self.t_valid[4].q.val() & self.t_last[4].q.val() & self.seen_eff.val();
-        self.characteristic.next = self.char4.q.val();
-        self.keep.next = (self.close_run.val() | self.close_line.val()) & self.characteristic.val() & (self.count_eff.val() < self.n_max.val());
-        self.drop.next = (self.close_run.val() | self.close_line.val()) & self.characteristic.val() & (self.count_eff.val() >= self.n_max.val());
+        self.keep.next = (self.close_run.val() | self.close_line.val()) & self.char4.q.val() & (self.count_eff.val() < self.n_max.val());
+        self.drop.next = (self.close_run.val() | self.close_line.val()) & self.char4.q.val() & (self.count_eff.val() >= self.n_max.val());
         self.start_new.next = self.t_valid[4].q.val()
             & !self.t_last[4].q.val()
-            & self.nz.val()
-            & (!self.seen_eff.val() | (self.up.val() != self.rising.q.val()));
+            & self.nz4.q.val()
+            & (!self.seen_eff.val() | (self.up4.q.val() != self.rising.q.val()));
         self.extend.next = self.t_valid[4].q.val()
             & !self.t_last[4].q.val()
-            & self.nz.val()
+            & self.nz4.q.val()
             & self.seen_eff.val()
-            & (self.up.val() == self.rising.q.val());
+            & (self.up4.q.val() == self.rising.q.val());
         // One clock ahead: pixel x at tap 3. Its declivity started at
         // x - 1 (now at the centre) or earlier.
         self.nz4.d.next = self.g3.q.val() != 0;
@@ -471,7 +462,7 @@ impl Logic for DeclivityTracker {
         self.upd2.d.next = self.upd1.q.val();
         if self.start_new.val() {
             self.seen.d.next = true;
-            self.rising.d.next = self.up.val();
+            self.rising.d.next = self.up4.q.val();
             self.start.d.next = self.t_x[4].q.val();
             self.start_level.d.next = self.t_pix[4].q.val();
             self.run_thr.d.next = self.at_thr4.q.val();
