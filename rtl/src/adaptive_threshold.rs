@@ -429,10 +429,7 @@ mod tests {
     use super::*;
 
     fn tick(uut: &mut AdaptiveThreshold) {
-        uut.clock.next = Clock::from(true);
-        assert!(simulate(uut, 100));
-        uut.clock.next = Clock::from(false);
-        assert!(simulate(uut, 100));
+        crate::tick(uut, |u| &mut u.clock);
     }
 
     /// golden's eq. 2 on the differences `diffs` (the estimator's median and

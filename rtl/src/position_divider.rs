@@ -239,10 +239,7 @@ mod tests {
     use super::*;
 
     fn clock(uut: &mut PositionDivider) {
-        uut.clock.next = Clock::from(true);
-        assert!(simulate(uut, 100));
-        uut.clock.next = Clock::from(false);
-        assert!(simulate(uut, 100));
+        crate::tick(uut, |u| &mut u.clock);
     }
 
     #[test]
