@@ -79,3 +79,38 @@ mod tests {
         assert!(!roomy.wide && !roomy.full);
     }
 }
+
+#[cfg(test)]
+mod parity_tests {
+    use super::*;
+    use crate::line::process_line;
+    use crate::params::Params;
+
+    fn textured(n: usize, seed: u64) -> Vec<u8> {
+        let mut rng = crate::test_rng::TestRng::new(seed);
+        let mut level = 128i32;
+        (0..n)
+            .map(|_| {
+                level = (level + (rng.next() % 41) as i32 - 20).clamp(0, 255);
+                level as u8
+            })
+            .collect()
+    }
+
+    #[test]
+    fn parity_mode_changes_nothing_within_the_limits_and_cuts_lines_beyond_them() {
+        let limits = HardwareLimits::default();
+        let with = |p: &Params| Params { hardware: Some(limits), ..*p };
+        let params = Params::new(40.0).unwrap();
+        // Within the limits: the same result.
+        let (l, r) = (textured(600, 1), textured(600, 2));
+        assert_eq!(process_line(&l, &r, &params), process_line(&l, &r, &with(&params)));
+        // A 1500-px line: parity keeps the first W_MAX pixels' declivities.
+        let (l, r) = (textured(1500, 3), textured(1500, 4));
+        let free = process_line(&l, &r, &params);
+        let cut = process_line(&l, &r, &with(&params));
+        assert!(free.reference.declivities.iter().any(|d| d.end >= limits.w_max));
+        assert!(cut.reference.declivities.iter().all(|d| d.end < limits.w_max));
+        assert_eq!(cut.reference.declivities, detect_line(&l, limits).declivities);
+    }
+}

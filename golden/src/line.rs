@@ -22,6 +22,19 @@ pub struct LineFeatures {
     pub declivities: Vec<Declivity>,
 }
 
+/// [`line_features`], or with `Some(limits)` as the streaming detector of
+/// those sizes finds them (`crate::hardware::detect_line`; σ is then
+/// `d_t / 5.6`).
+pub fn line_features_with(line: &[u8], limits: Option<crate::hardware::HardwareLimits>) -> LineFeatures {
+    match limits {
+        None => line_features(line),
+        Some(limits) => {
+            let d = crate::hardware::detect_line(line, limits);
+            LineFeatures { sigma: d.dt / crate::noise::THRESHOLD_FACTOR, dt: d.dt, declivities: d.declivities }
+        }
+    }
+}
+
 /// Segments one line: σ, `d_t` (eq. 2) and the characteristic declivities.
 pub fn line_features(line: &[u8]) -> LineFeatures {
     let sigma = noise_sigma(line);
@@ -191,7 +204,7 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
 /// One pair of epipolar lines (same row of the left and right image) through
 /// segmentation and matching, with the reference view of `params`.
 pub fn process_line(left: &[u8], right: &[u8], params: &Params) -> LineResult {
-    let (l, r) = (line_features(left), line_features(right));
+    let (l, r) = (line_features_with(left, params.hardware), line_features_with(right, params.hardware));
     let (reference, other) = match params.ref_view {
         RefView::Left => (l, r),
         RefView::Right => (r, l),

@@ -194,6 +194,9 @@ pub struct Params {
     pub ref_view: RefView,
     /// Interpolation at the line's ends.
     pub ends: EndRule,
+    /// Hardware parity: detect declivities as the streaming detector with
+    /// these sizes does (`crate::hardware`); `None` is the unlimited method.
+    pub hardware: Option<crate::hardware::HardwareLimits>,
 }
 
 impl Params {
@@ -211,7 +214,7 @@ impl Params {
 
     /// `mode`, left reference, holding ends, with the given search bound.
     pub fn with_mode(mode: Mode, dispmax: f64) -> Result<Self, GoldenError> {
-        let p = Params { mode, dispmax, ref_view: RefView::Left, ends: EndRule::Hold };
+        let p = Params { mode, dispmax, ref_view: RefView::Left, ends: EndRule::Hold, hardware: None };
         p.validate()?;
         Ok(p)
     }

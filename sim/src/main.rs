@@ -154,6 +154,11 @@ struct MethodArgs {
     /// Interpolation before the first and after the last match of a line.
     #[arg(long, value_enum, default_value_t = CliEnds::Hold)]
     ends: CliEnds,
+    /// Detect declivities as the hardware detector does (W_MAX = 1024 pixels stored per
+    /// line, N_MAX = 128 declivities kept per line); the same as without it on lines within
+    /// those limits.
+    #[arg(long)]
+    hardware_parity: bool,
 }
 
 #[derive(Args, Debug)]
@@ -261,6 +266,7 @@ impl MethodArgs {
                 CliEnds::Hold => EndRule::Hold,
                 CliEnds::None => EndRule::Empty,
             },
+            hardware: self.hardware_parity.then(sim::detector::hardware_limits),
         };
         p.validate()?;
         Ok(p)
