@@ -342,40 +342,6 @@ impl Logic for AdaptiveThreshold {
                 self.testing.d.next = self.cnt.q.val() >= 2;
                 self.first_test.d.next = self.cnt.q.val() == 2;
                 self.last_test.d.next = self.cnt.q.val() == self.pre_last_scan.val();
-                if self.counting.q.val() {
-                    // Bin v = cnt - 2 is in the output register: add it to
-                    // the running count and clear it.
-                    if self.bank.q.val() {
-                        self.hist1.write_enable.next = true;
-                        self.hist1.write_address.next = self.bin.val();
-                        self.hist1.write_data.next = 0.into();
-                    } else {
-                        self.hist0.write_enable.next = true;
-                        self.hist0.write_address.next = self.bin.val();
-                        self.hist0.write_data.next = 0.into();
-                    }
-                    self.cum.d.next = self.cum.q.val() + self.h.val();
-                    self.hv.d.next = self.h.val();
-                    self.hv_nz.d.next = self.h.val() != 0;
-                }
-                if self.testing.q.val() {
-                    // Bin v = cnt - 3 is tested: the first non-empty bin
-                    // whose running count reaches n/2 holds the median.
-                    self.ramp.d.next = self.ramp.q.val() + self.k_step.val();
-                    if !self.found.q.val() & self.hv_nz.q.val() & (self.reach.val() >= self.n.q.val()) {
-                        self.found.d.next = true;
-                        self.zero_bin.d.next = self.first_test.q.val();
-                        self.term1.d.next = self.ramp.q.val();
-                        // The fraction (n - 2·below) / (2h), divided next.
-                        self.rem.d.next = bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.num.val());
-                        self.den.d.next = self.hv.q.val() << 1;
-                    }
-                    if self.last_test.q.val() {
-                        self.step.d.next = 0.into();
-                        self.quotient.d.next = 0.into();
-                        self.state.d.next = ThresholdState::Divide;
-                    }
-                }
             }
             ThresholdState::Divide => {
                 // One quotient bit per clock: rem < 2·den throughout.
@@ -419,6 +385,46 @@ impl Logic for AdaptiveThreshold {
             }
             _ => {
                 self.state.d.next = ThresholdState::Idle;
+            }
+        }
+        // The scan's counting and testing, outside the state match: the
+        // phase flags hold only while scanning (cleared before and after).
+        if self.counting.q.val() {
+            // Bin v = cnt - 2 is in the output register: add it to
+            // the running count and clear it.
+            if self.bank.q.val() {
+                self.hist1.write_enable.next = true;
+                self.hist1.write_address.next = self.bin.val();
+                self.hist1.write_data.next = 0.into();
+            } else {
+                self.hist0.write_enable.next = true;
+                self.hist0.write_address.next = self.bin.val();
+                self.hist0.write_data.next = 0.into();
+            }
+            self.cum.d.next = self.cum.q.val() + self.h.val();
+            self.hv.d.next = self.h.val();
+            self.hv_nz.d.next = self.h.val() != 0;
+        }
+        if self.testing.q.val() {
+            // Bin v = cnt - 3 is tested: the first non-empty bin
+            // whose running count reaches n/2 holds the median.
+            self.ramp.d.next = self.ramp.q.val() + self.k_step.val();
+            if !self.found.q.val() & self.hv_nz.q.val() & (self.reach.val() >= self.n.q.val()) {
+                self.found.d.next = true;
+                self.zero_bin.d.next = self.first_test.q.val();
+                self.term1.d.next = self.ramp.q.val();
+                // The fraction (n - 2·below) / (2h), divided next.
+                self.rem.d.next = bit_cast::<REM_BITS, HIST_COUNT_BITS>(self.num.val());
+                self.den.d.next = self.hv.q.val() << 1;
+            }
+            if self.last_test.q.val() {
+                self.step.d.next = 0.into();
+                self.quotient.d.next = 0.into();
+                self.counting.d.next = false;
+                self.testing.d.next = false;
+                self.first_test.d.next = false;
+                self.last_test.d.next = false;
+                self.state.d.next = ThresholdState::Divide;
             }
         }
     }

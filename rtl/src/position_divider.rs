@@ -13,6 +13,14 @@
 //! one LSB. rust-hdl has no divider; this one is long division, one quotient
 //! bit per pipeline stage, so it accepts a division every clock.
 //!
+//! Like rust-hdl's own `RAM` and `DFF`, this block is a primitive: its Rust
+//! model (`update`) and its Verilog (`hdl`, written out stage by stage from
+//! the same parameters) are two descriptions of one circuit, and the
+//! co-simulation tests hold them to each other clock by clock. Written as
+//! generated rust-hdl logic it took 70 sub-blocks, and rust-hdl's simulator,
+//! which re-evaluates every block until nothing changes, spent a third of the
+//! detector's simulation time in them.
+//!
 //! ## Ports
 //! - `in_valid`, `in_dividend` (`S1 · 2^(POS_FRAC_BITS-1)`, [`DIVIDEND_BITS`]),
 //!   `in_divisor` (`S0 > 0`, [`S0_BITS`]) and four 32-bit tag lanes
@@ -23,8 +31,9 @@
 //! Latency [`DIVIDER_LATENCY`] = [`POS_BITS`] clocks (one per quotient bit),
 //! throughput one division per clock, no back-pressure: a bubble
 //! (`in_valid` low) travels through as a bubble. The tags wait in four small
-//! RAMs written every clock and read [`POS_BITS`] clocks later (distributed
-//! RAM instead of `4 × 32 × POS_BITS` flip-flops). The quotient must fit in
+//! memories written every clock and read [`POS_BITS`] clocks later
+//! (distributed RAM instead of `4 × 32 × POS_BITS` flip-flops). Every
+//! register starts at zero. The quotient must fit in
 //! [`POS_BITS`] bits, which holds for any position `X_i < W_MAX`: then
 //! `dividend >> POS_BITS < divisor`. A zero divisor gives an all-ones
 //! quotient (it never happens on a declivity, which has a non-zero gradient).
@@ -36,85 +45,36 @@ use rust_hdl::prelude::*;
 pub const DIVIDER_LATENCY: usize = POS_BITS;
 /// Bits of a trial remainder: one above the divisor.
 pub const TRIAL_BITS: usize = S0_BITS + 1;
-
-/// One step of long division: shift the next dividend bit into the
-/// remainder, subtract the divisor if it fits; the dividend's remaining low
-/// bits and the quotient share one register (`lq`), bits leaving at the top
-/// as quotient bits enter at the bottom. The result is registered.
-#[derive(LogicBlock)]
-pub struct DivisionStep {
-    pub clock: Signal<In, Clock>,
-    pub in_valid: Signal<In, Bit>,
-    pub in_rem: Signal<In, Bits<S0_BITS>>,
-    pub in_lq: Signal<In, Bits<POS_BITS>>,
-    pub in_den: Signal<In, Bits<S0_BITS>>,
-    pub out_valid: Signal<Out, Bit>,
-    pub out_rem: Signal<Out, Bits<S0_BITS>>,
-    pub out_lq: Signal<Out, Bits<POS_BITS>>,
-    pub out_den: Signal<Out, Bits<S0_BITS>>,
-    valid: DFF<Bit>,
-    rem: DFF<Bits<S0_BITS>>,
-    lq: DFF<Bits<POS_BITS>>,
-    den: DFF<Bits<S0_BITS>>,
-    trial: Signal<Local, Bits<TRIAL_BITS>>,
-    divisor: Signal<Local, Bits<TRIAL_BITS>>,
-    msb: Constant<Bits<8>>,
-}
-
-impl Default for DivisionStep {
-    fn default() -> Self {
-        Self {
-            clock: Default::default(),
-            in_valid: Default::default(),
-            in_rem: Default::default(),
-            in_lq: Default::default(),
-            in_den: Default::default(),
-            out_valid: Default::default(),
-            out_rem: Default::default(),
-            out_lq: Default::default(),
-            out_den: Default::default(),
-            valid: Default::default(),
-            rem: Default::default(),
-            lq: Default::default(),
-            den: Default::default(),
-            trial: Default::default(),
-            divisor: Default::default(),
-            msb: Constant::new(((POS_BITS - 1) as u64).into()),
-        }
-    }
-}
-
-impl Logic for DivisionStep {
-    #[hdl_gen]
-    fn update(&mut self) {
-        dff_setup!(self, clock, valid, rem, lq, den);
-        self.out_valid.next = self.valid.q.val();
-        self.out_rem.next = self.rem.q.val();
-        self.out_lq.next = self.lq.q.val();
-        self.out_den.next = self.den.q.val();
-        self.valid.d.next = self.in_valid.val();
-        self.den.d.next = self.in_den.val();
-        // Doubling by addition: rust-hdl 0.46 simulates shifts through big
-        // integers, additions natively (the Verilog is the same).
-        self.trial.next = bit_cast::<TRIAL_BITS, S0_BITS>(self.in_rem.val())
-            + bit_cast::<TRIAL_BITS, S0_BITS>(self.in_rem.val())
-            + bit_cast::<TRIAL_BITS, 1>(self.in_lq.val().get_bit(self.msb.val().index()).into());
-        self.divisor.next = bit_cast::<TRIAL_BITS, S0_BITS>(self.in_den.val());
-        if self.trial.val() >= self.divisor.val() {
-            self.rem.d.next = bit_cast::<S0_BITS, TRIAL_BITS>(self.trial.val() - self.divisor.val());
-            self.lq.d.next = self.in_lq.val() + self.in_lq.val() + 1;
-        } else {
-            self.rem.d.next = bit_cast::<S0_BITS, TRIAL_BITS>(self.trial.val());
-            self.lq.d.next = self.in_lq.val() + self.in_lq.val();
-        }
-    }
-}
-
-/// Address bits of the tag delay RAMs: 2^TAG_ADDR_BITS > DIVIDER_LATENCY.
+/// Entries of the tag delay memories (more than [`DIVIDER_LATENCY`]).
+const TAG_DEPTH: usize = 16;
+/// Address bits of the tag delay memories.
 const TAG_ADDR_BITS: usize = 4;
 
-/// The pipelined divider: [`POS_BITS`] [`DivisionStep`]s in a row, the tags
-/// beside them in RAM.
+/// One stage's registers: the partial remainder, the divisor, and in one
+/// register (`lq`) the dividend's remaining low bits and the quotient so far
+/// (bits leave at the top as quotient bits enter at the bottom).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+struct Stage {
+    valid: bool,
+    rem: u64,
+    lq: u64,
+    den: u64,
+}
+
+/// One step of long division: shift the next dividend bit into the
+/// remainder, subtract the divisor if it fits, append the quotient bit.
+fn step(valid: bool, rem: u64, lq: u64, den: u64) -> Stage {
+    let lq_mask = (1u64 << POS_BITS) - 1;
+    let trial = (rem << 1) | (lq >> (POS_BITS - 1)) & 1;
+    let fits = trial >= den;
+    Stage {
+        valid,
+        rem: (if fits { trial - den } else { trial }) & ((1u64 << S0_BITS) - 1),
+        lq: ((lq << 1) | fits as u64) & lq_mask,
+        den,
+    }
+}
+
 #[derive(LogicBlock)]
 pub struct PositionDivider {
     pub clock: Signal<In, Clock>,
@@ -131,16 +91,9 @@ pub struct PositionDivider {
     pub out_tag1: Signal<Out, Bits<32>>,
     pub out_tag2: Signal<Out, Bits<32>>,
     pub out_tag3: Signal<Out, Bits<32>>,
-    steps: [DivisionStep; POS_BITS],
-    tags0: RAM<Bits<32>, TAG_ADDR_BITS>,
-    tags1: RAM<Bits<32>, TAG_ADDR_BITS>,
-    tags2: RAM<Bits<32>, TAG_ADDR_BITS>,
-    tags3: RAM<Bits<32>, TAG_ADDR_BITS>,
-    /// Write pointer; the read pointer trails it by `DIVIDER_LATENCY - 1`
-    /// (the read is synchronous).
-    wptr: DFF<Bits<TAG_ADDR_BITS>>,
-    quotient_bits: Constant<Bits<8>>,
-    read_lag: Constant<Bits<TAG_ADDR_BITS>>,
+    _stages: [Stage; POS_BITS],
+    _tags: [[u32; 4]; TAG_DEPTH],
+    _wptr: usize,
 }
 
 impl Default for PositionDivider {
@@ -160,78 +113,99 @@ impl Default for PositionDivider {
             out_tag1: Default::default(),
             out_tag2: Default::default(),
             out_tag3: Default::default(),
-            steps: core::array::from_fn(|_| Default::default()),
-            tags0: Default::default(),
-            tags1: Default::default(),
-            tags2: Default::default(),
-            tags3: Default::default(),
-            wptr: Default::default(),
-            quotient_bits: Constant::new((POS_BITS as u64).into()),
-            read_lag: Constant::new(((DIVIDER_LATENCY - 1) as u64).into()),
+            _stages: [Stage::default(); POS_BITS],
+            _tags: [[0; 4]; TAG_DEPTH],
+            _wptr: 0,
         }
     }
 }
 
 impl Logic for PositionDivider {
-    #[hdl_gen]
     fn update(&mut self) {
-        for k in 0..POS_BITS {
-            self.steps[k].clock.next = self.clock.val();
+        if !self.clock.pos_edge() {
+            return;
         }
-        self.tags0.read_clock.next = self.clock.val();
-        self.tags0.write_clock.next = self.clock.val();
-        self.tags1.read_clock.next = self.clock.val();
-        self.tags1.write_clock.next = self.clock.val();
-        self.tags2.read_clock.next = self.clock.val();
-        self.tags2.write_clock.next = self.clock.val();
-        self.tags3.read_clock.next = self.clock.val();
-        self.tags3.write_clock.next = self.clock.val();
-        dff_setup!(self, clock, wptr);
-        // The dividend's bits above the quotient's are the first remainder
-        // (smaller than the divisor when the quotient fits).
-        // (Only on a valid item: rust-hdl simulates shifts slowly.)
-        self.steps[0].in_valid.next = self.in_valid.val();
-        self.steps[0].in_rem.next = 0.into();
-        self.steps[0].in_lq.next = 0.into();
-        if self.in_valid.val() {
-            self.steps[0].in_rem.next = bit_cast::<S0_BITS, DIVIDEND_BITS>(self.in_dividend.val() >> self.quotient_bits.val());
-            self.steps[0].in_lq.next = bit_cast::<POS_BITS, DIVIDEND_BITS>(self.in_dividend.val());
+        // Stages from the last to the first, each from its predecessor's
+        // value before the edge.
+        for k in (1..POS_BITS).rev() {
+            let p = self._stages[k - 1];
+            self._stages[k] = step(p.valid, p.rem, p.lq, p.den);
         }
-        self.steps[0].in_den.next = self.in_divisor.val();
-        for k in 1..POS_BITS {
-            self.steps[k].in_valid.next = self.steps[k - 1].out_valid.val();
-            self.steps[k].in_rem.next = self.steps[k - 1].out_rem.val();
-            self.steps[k].in_lq.next = self.steps[k - 1].out_lq.val();
-            self.steps[k].in_den.next = self.steps[k - 1].out_den.val();
-        }
-        // Tags: written every clock, read DIVIDER_LATENCY - 1 clocks later
-        // so they leave with their quotient.
-        self.wptr.d.next = self.wptr.q.val() + 1;
-        self.tags0.write_address.next = self.wptr.q.val();
-        self.tags1.write_address.next = self.wptr.q.val();
-        self.tags2.write_address.next = self.wptr.q.val();
-        self.tags3.write_address.next = self.wptr.q.val();
-        self.tags0.write_enable.next = true;
-        self.tags1.write_enable.next = true;
-        self.tags2.write_enable.next = true;
-        self.tags3.write_enable.next = true;
-        self.tags0.write_data.next = self.in_tag0.val();
-        self.tags1.write_data.next = self.in_tag1.val();
-        self.tags2.write_data.next = self.in_tag2.val();
-        self.tags3.write_data.next = self.in_tag3.val();
-        self.tags0.read_address.next = self.wptr.q.val() - self.read_lag.val();
-        self.tags1.read_address.next = self.wptr.q.val() - self.read_lag.val();
-        self.tags2.read_address.next = self.wptr.q.val() - self.read_lag.val();
-        self.tags3.read_address.next = self.wptr.q.val() - self.read_lag.val();
-        for k in (POS_BITS - 1)..POS_BITS {
-            self.out_valid.next = self.steps[k].out_valid.val();
-            self.out_quotient.next = self.steps[k].out_lq.val();
-        }
-        self.out_tag0.next = self.tags0.read_data.val();
-        self.out_tag1.next = self.tags1.read_data.val();
-        self.out_tag2.next = self.tags2.read_data.val();
-        self.out_tag3.next = self.tags3.read_data.val();
+        let valid = self.in_valid.val();
+        let dividend = if valid { self.in_dividend.val().to_u64() } else { 0 };
+        self._stages[0] = step(valid, dividend >> POS_BITS, dividend & ((1u64 << POS_BITS) - 1), self.in_divisor.val().to_u64());
+        // Tags: read the entry written DIVIDER_LATENCY - 1 clocks ago, then
+        // write this clock's.
+        let read = self._tags[(self._wptr + TAG_DEPTH - (DIVIDER_LATENCY - 1)) % TAG_DEPTH];
+        self._tags[self._wptr] =
+            [self.in_tag0.val(), self.in_tag1.val(), self.in_tag2.val(), self.in_tag3.val()].map(|t| t.to_u64() as u32);
+        self._wptr = (self._wptr + 1) % TAG_DEPTH;
+        let last = self._stages[POS_BITS - 1];
+        self.out_valid.next = last.valid;
+        self.out_quotient.next = last.lq.into();
+        self.out_tag0.next = (read[0] as u64).into();
+        self.out_tag1.next = (read[1] as u64).into();
+        self.out_tag2.next = (read[2] as u64).into();
+        self.out_tag3.next = (read[3] as u64).into();
     }
+
+    fn connect(&mut self) {
+        self.out_valid.connect();
+        self.out_quotient.connect();
+        self.out_tag0.connect();
+        self.out_tag1.connect();
+        self.out_tag2.connect();
+        self.out_tag3.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        Verilog::Custom(divider_verilog())
+    }
+}
+
+/// The Verilog body of [`PositionDivider`], stage by stage.
+fn divider_verilog() -> String {
+    let (n, s0, q, d, t) = (POS_BITS, S0_BITS, POS_BITS, DIVIDEND_BITS, TRIAL_BITS);
+    let mut v = String::new();
+    v += &format!("wire [{}:0] rem_in = in_valid ? in_dividend[{}:{}] : {}'d0;\n", s0 - 1, d - 1, q, s0);
+    v += &format!("wire [{}:0] lq_in = in_valid ? in_dividend[{}:0] : {}'d0;\n", q - 1, q - 1, q);
+    // The last stage's quotient and valid bit are the output registers; its
+    // remainder and divisor are not needed.
+    for k in 0..n {
+        if k + 1 < n {
+            v += &format!("reg valid_{k} = 1'b0;\nreg [{}:0] rem_{k} = {s0}'d0;\nreg [{}:0] lq_{k} = {q}'d0;\nreg [{}:0] den_{k} = {s0}'d0;\n", s0 - 1, q - 1, s0 - 1);
+        }
+        let (rem, lq, den) = if k == 0 {
+            ("rem_in".to_string(), "lq_in".to_string(), "in_divisor".to_string())
+        } else {
+            (format!("rem_{}", k - 1), format!("lq_{}", k - 1), format!("den_{}", k - 1))
+        };
+        v += &format!("wire [{}:0] trial_{k} = {{{rem}, {lq}[{}]}};\n", t - 1, q - 1);
+        v += &format!("wire fits_{k} = trial_{k} >= {{1'b0, {den}}};\n");
+    }
+    v += &format!("reg [31:0] tags0 [0:{}];\nreg [31:0] tags1 [0:{}];\nreg [31:0] tags2 [0:{}];\nreg [31:0] tags3 [0:{}];\n", TAG_DEPTH - 1, TAG_DEPTH - 1, TAG_DEPTH - 1, TAG_DEPTH - 1);
+    v += &format!("reg [{}:0] wptr = {}'d0;\n", TAG_ADDR_BITS - 1, TAG_ADDR_BITS);
+    v += &format!("wire [{}:0] rptr = wptr - {}'d{};\n", TAG_ADDR_BITS - 1, TAG_ADDR_BITS, DIVIDER_LATENCY - 1);
+    v += "integer i;\ninitial begin\n";
+    v += &format!("    for (i = 0; i < {TAG_DEPTH}; i = i + 1) begin\n        tags0[i] = 32'd0; tags1[i] = 32'd0; tags2[i] = 32'd0; tags3[i] = 32'd0;\n    end\n");
+    v += "    out_tag0 = 32'd0; out_tag1 = 32'd0; out_tag2 = 32'd0; out_tag3 = 32'd0;\n";
+    v += &format!("    out_valid = 1'b0; out_quotient = {q}'d0;\nend\n");
+    v += "always @(posedge clock) begin\n";
+    for k in 0..n {
+        let (valid, den) = if k == 0 { ("in_valid".to_string(), "in_divisor".to_string()) } else { (format!("valid_{}", k - 1), format!("den_{}", k - 1)) };
+        let lq = if k == 0 { "lq_in".to_string() } else { format!("lq_{}", k - 1) };
+        if k + 1 < n {
+            v += &format!("    valid_{k} <= {valid};\n    den_{k} <= {den};\n");
+            v += &format!("    rem_{k} <= fits_{k} ? trial_{k} - {{1'b0, {den}}} : trial_{k};\n");
+            v += &format!("    lq_{k} <= {{{lq}[{}:0], fits_{k}}};\n", q - 2);
+        } else {
+            v += &format!("    out_valid <= {valid};\n    out_quotient <= {{{lq}[{}:0], fits_{k}}};\n", q - 2);
+        }
+    }
+    v += "    out_tag0 <= tags0[rptr]; out_tag1 <= tags1[rptr]; out_tag2 <= tags2[rptr]; out_tag3 <= tags3[rptr];\n";
+    v += "    tags0[wptr] <= in_tag0; tags1[wptr] <= in_tag1; tags2[wptr] <= in_tag2; tags3[wptr] <= in_tag3;\n";
+    v += "    wptr <= wptr + 1'b1;\nend\n";
+    v
 }
 
 #[cfg(test)]
