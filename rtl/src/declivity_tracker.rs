@@ -37,19 +37,11 @@
 //! the stream stay aligned.
 
 use crate::params::*;
+use crate::pixel_window::PixelWindow;
 use rust_hdl::prelude::*;
 
-/// Taps of the pixel window; the centre's pixel is `x`, taps 3 and 2 hold
-/// `x + 1` and `x + 2`, taps 5 and 6 hold `x - 1` and `x - 2`.
-pub const TRACKER_TAPS: usize = 7;
 /// The window tap where a pixel's gradient is examined.
-pub const TRACKER_CENTER: usize = 4;
-/// Taps of the per-pixel flags and line values, which are read up to the
-/// centre only (the first-pixel flag one further, to clamp `x - 2`).
-const CENTER_TAPS: usize = TRACKER_CENTER + 1;
-const FIRST_TAPS: usize = TRACKER_CENTER + 2;
-/// Taps of the integer threshold (read at tap 2).
-const THR_TAPS: usize = 3;
+pub const TRACKER_CENTER: usize = crate::pixel_window::WINDOW_CENTER;
 /// Bits of a grey level plus the integer threshold (no overflow).
 const CMP_BITS: usize = DT_INT_BITS + 1;
 
@@ -90,16 +82,8 @@ pub struct DeclivityTracker {
     pub item_tag1: Signal<Out, Bits<32>>,
     pub item_tag2: Signal<Out, Bits<32>>,
     pub item_tag3: Signal<Out, Bits<32>>,
-    // The window.
-    t_valid: [DFF<Bit>; CENTER_TAPS],
-    t_first: [DFF<Bit>; FIRST_TAPS],
-    t_last: [DFF<Bit>; CENTER_TAPS],
-    t_pix: [DFF<Bits<PIXEL_BITS>>; TRACKER_TAPS],
-    t_x: [DFF<Bits<X_BITS>>; CENTER_TAPS],
-    t_dt: [DFF<Bits<DT_BITS>>; CENTER_TAPS],
-    t_thr: [DFF<Bits<DT_INT_BITS>>; THR_TAPS],
-    t_wide: [DFF<Bit>; CENTER_TAPS],
-    t_sof: [DFF<Bit>; CENTER_TAPS],
+    // The window on the pixel stream.
+    window: PixelWindow,
     // Gradient pipeline: g at taps 2–4, g² at taps 3–4, g²(2x+1) at tap 4.
     g2: DFF<Bits<AMP_BITS>>,
     g3: DFF<Bits<AMP_BITS>>,
@@ -190,9 +174,6 @@ pub struct DeclivityTracker {
 
 impl Default for DeclivityTracker {
     fn default() -> Self {
-        fn taps<T: Default, const N: usize>() -> [T; N] {
-            core::array::from_fn(|_| T::default())
-        }
         let c8 = |v: usize| Constant::new((v as u64).into());
         Self {
             clock: Default::default(),
@@ -212,15 +193,7 @@ impl Default for DeclivityTracker {
             item_tag1: Default::default(),
             item_tag2: Default::default(),
             item_tag3: Default::default(),
-            t_valid: taps(),
-            t_first: taps(),
-            t_last: taps(),
-            t_pix: taps(),
-            t_x: taps(),
-            t_dt: taps(),
-            t_thr: taps(),
-            t_wide: taps(),
-            t_sof: taps(),
+            window: Default::default(),
             g2: Default::default(),
             g3: Default::default(),
             g4: Default::default(),
@@ -301,107 +274,74 @@ impl Default for DeclivityTracker {
 impl Logic for DeclivityTracker {
     #[hdl_gen]
     fn update(&mut self) {
-        for i in 0..TRACKER_TAPS {
-            self.t_pix[i].clock.next = self.clock.val();
-        }
-        for i in 0..FIRST_TAPS {
-            self.t_first[i].clock.next = self.clock.val();
-        }
-        for i in 0..THR_TAPS {
-            self.t_thr[i].clock.next = self.clock.val();
-        }
-        for i in 0..CENTER_TAPS {
-            self.t_valid[i].clock.next = self.clock.val();
-            self.t_last[i].clock.next = self.clock.val();
-            self.t_x[i].clock.next = self.clock.val();
-            self.t_dt[i].clock.next = self.clock.val();
-            self.t_wide[i].clock.next = self.clock.val();
-            self.t_sof[i].clock.next = self.clock.val();
-        }
+        self.window.clock.next = self.clock.val();
         dff_setup!(
             self, clock, g2, g3, g4, gabs2, gsq3, gsq4, w4, nz4, up4, char4, at_thr3, at_thr4, run_thr, seen, rising, start, start_level, left0, left1, left2, s0, s1,
             end_reg, upd1, upd2, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
             o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
         );
         // ---- The window shifts every clock; bubbles travel as bubbles.
-        self.t_valid[0].d.next = self.in_valid.val();
-        self.t_first[0].d.next = self.in_first.val();
-        self.t_last[0].d.next = self.in_last.val();
-        self.t_pix[0].d.next = self.in_pix.val();
-        self.t_x[0].d.next = self.in_x.val();
-        self.t_dt[0].d.next = self.in_dt.val();
-        self.t_thr[0].d.next = self.in_thr.val();
-        self.t_wide[0].d.next = self.in_wide.val();
-        self.t_sof[0].d.next = self.in_sof.val();
-        for i in 1..TRACKER_TAPS {
-            self.t_pix[i].d.next = self.t_pix[i - 1].q.val();
-        }
-        for i in 1..FIRST_TAPS {
-            self.t_first[i].d.next = self.t_first[i - 1].q.val();
-        }
-        for i in 1..THR_TAPS {
-            self.t_thr[i].d.next = self.t_thr[i - 1].q.val();
-        }
-        for i in 1..CENTER_TAPS {
-            self.t_valid[i].d.next = self.t_valid[i - 1].q.val();
-            self.t_last[i].d.next = self.t_last[i - 1].q.val();
-            self.t_x[i].d.next = self.t_x[i - 1].q.val();
-            self.t_dt[i].d.next = self.t_dt[i - 1].q.val();
-            self.t_wide[i].d.next = self.t_wide[i - 1].q.val();
-            self.t_sof[i].d.next = self.t_sof[i - 1].q.val();
-        }
+        self.window.in_valid.next = self.in_valid.val();
+        self.window.in_first.next = self.in_first.val();
+        self.window.in_last.next = self.in_last.val();
+        self.window.in_pix.next = self.in_pix.val();
+        self.window.in_x.next = self.in_x.val();
+        self.window.in_dt.next = self.in_dt.val();
+        self.window.in_thr.next = self.in_thr.val();
+        self.window.in_wide.next = self.in_wide.val();
+        self.window.in_sof.next = self.in_sof.val();
         // ---- Gradient pipeline. g(x) = I(x+1) - I(x) while x is at tap 1
         // (zero at a line's last pixel), g² at tap 2, g²(2x+1) at tap 3.
         self.g2.d.next = 0.into();
-        if self.t_valid[1].q.val() & !self.t_last[1].q.val() {
-            self.g2.d.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[0].q.val())
-                - bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[1].q.val());
+        if self.window.valid1.val() & !self.window.last1.val() {
+            self.g2.d.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.window.pix0.val())
+                - bit_cast::<AMP_BITS, PIXEL_BITS>(self.window.pix1.val());
         }
         self.g3.d.next = self.g2.q.val();
         self.g4.d.next = self.g3.q.val();
         // |g(x)| registered beside g(x), as the difference of the larger and
         // the smaller level (no negation in front of the multiplier).
         self.gabs2.d.next = 0.into();
-        if self.t_valid[1].q.val() & !self.t_last[1].q.val() {
-            self.gabs2.d.next = self.t_pix[0].q.val() - self.t_pix[1].q.val();
-            if self.t_pix[1].q.val() > self.t_pix[0].q.val() {
-                self.gabs2.d.next = self.t_pix[1].q.val() - self.t_pix[0].q.val();
+        if self.window.valid1.val() & !self.window.last1.val() {
+            self.gabs2.d.next = self.window.pix0.val() - self.window.pix1.val();
+            if self.window.pix1.val() > self.window.pix0.val() {
+                self.gabs2.d.next = self.window.pix1.val() - self.window.pix0.val();
             }
         }
         self.gabs.next = bit_cast::<16, PIXEL_BITS>(self.gabs2.q.val());
         self.sq_full.next = self.gabs.val() * self.gabs.val();
         self.gsq3.d.next = bit_cast::<S0_BITS, 32>(self.sq_full.val());
         self.gsq4.d.next = self.gsq3.q.val();
-        self.odd_x.next = bit_cast::<16, X_BITS>(self.t_x[3].q.val()) + bit_cast::<16, X_BITS>(self.t_x[3].q.val()) + 1;
+        self.odd_x.next = bit_cast::<16, X_BITS>(self.window.x3.val()) + bit_cast::<16, X_BITS>(self.window.x3.val()) + 1;
         self.sq16.next = bit_cast::<16, S0_BITS>(self.gsq3.q.val());
         self.w_full.next = self.sq16.val() * self.odd_x.val();
         self.w4.d.next = bit_cast::<S1_BITS, 32>(self.w_full.val());
 
         // ---- The centre: pixel x at tap 4.
-        self.seen_eff.next = self.seen.q.val() & !self.t_first[4].q.val();
+        self.seen_eff.next = self.seen.q.val() & !self.window.first4.val();
         self.count_eff.next = self.count.q.val();
         self.full_eff.next = self.full.q.val();
-        if self.t_first[4].q.val() {
+        if self.window.first4.val() {
             self.count_eff.next = 0.into();
             self.full_eff.next = false;
         }
-        self.x_next.next = self.t_x[4].q.val() + 1;
-        self.amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val())
+        self.x_next.next = self.window.x4.val() + 1;
+        self.amp.next = bit_cast::<AMP_BITS, PIXEL_BITS>(self.window.pix4.val())
             - bit_cast::<AMP_BITS, PIXEL_BITS>(self.start_level.q.val());
-        self.close_run.next = self.t_valid[4].q.val()
-            & !self.t_last[4].q.val()
+        self.close_run.next = self.window.valid4.val()
+            & !self.window.last4.val()
             & self.nz4.q.val()
             & self.seen_eff.val()
             & (self.up4.q.val() != self.rising.q.val());
-        self.close_line.next = self.t_valid[4].q.val() & self.t_last[4].q.val() & self.seen_eff.val();
+        self.close_line.next = self.window.valid4.val() & self.window.last4.val() & self.seen_eff.val();
         self.keep.next = (self.close_run.val() | self.close_line.val()) & self.char4.q.val() & (self.count_eff.val() < self.n_max.val());
         self.drop.next = (self.close_run.val() | self.close_line.val()) & self.char4.q.val() & (self.count_eff.val() >= self.n_max.val());
-        self.start_new.next = self.t_valid[4].q.val()
-            & !self.t_last[4].q.val()
+        self.start_new.next = self.window.valid4.val()
+            & !self.window.last4.val()
             & self.nz4.q.val()
             & (!self.seen_eff.val() | (self.up4.q.val() != self.rising.q.val()));
-        self.extend.next = self.t_valid[4].q.val()
-            & !self.t_last[4].q.val()
+        self.extend.next = self.window.valid4.val()
+            & !self.window.last4.val()
             & self.nz4.q.val()
             & self.seen_eff.val()
             & (self.up4.q.val() == self.rising.q.val());
@@ -413,11 +353,11 @@ impl Logic for DeclivityTracker {
         // to one side, for both possible start levels (the declivity under
         // way, or one starting at x - 1), chosen last. The sums `I + ⌊d_t⌋`
         // are registered: at taps 3 and 4, and for the declivity's start.
-        self.lvl_a.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[3].q.val());
+        self.lvl_a.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.window.pix3.val());
         self.lvl_run.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.start_level.q.val());
-        self.lvl_new.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[4].q.val());
-        self.thr.next = bit_cast::<CMP_BITS, DT_INT_BITS>(self.t_thr[2].q.val());
-        self.at_thr3.d.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.t_pix[2].q.val()) + self.thr.val();
+        self.lvl_new.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.window.pix4.val());
+        self.thr.next = bit_cast::<CMP_BITS, DT_INT_BITS>(self.window.thr2.val());
+        self.at_thr3.d.next = bit_cast::<CMP_BITS, PIXEL_BITS>(self.window.pix2.val()) + self.thr.val();
         self.at_thr4.d.next = self.at_thr3.q.val();
         self.char4.d.next = (self.lvl_a.val() > self.run_thr.q.val()) | (self.lvl_run.val() > self.at_thr3.q.val());
         if self.start_new.val() {
@@ -426,24 +366,24 @@ impl Logic for DeclivityTracker {
 
         // Neighbour levels: x + 1 and x + 2 clamped at the line's end, x - 1
         // and x - 2 clamped at its start.
-        self.p1.next = self.t_pix[3].q.val();
-        self.p2.next = self.t_pix[2].q.val();
-        if self.t_last[3].q.val() {
-            self.p2.next = self.t_pix[3].q.val();
+        self.p1.next = self.window.pix3.val();
+        self.p2.next = self.window.pix2.val();
+        if self.window.last3.val() {
+            self.p2.next = self.window.pix3.val();
         }
-        self.pm1.next = self.t_pix[5].q.val();
-        self.pm2.next = self.t_pix[6].q.val();
-        if self.t_first[5].q.val() {
-            self.pm2.next = self.t_pix[5].q.val();
+        self.pm1.next = self.window.pix5.val();
+        self.pm2.next = self.window.pix6.val();
+        if self.window.first5.val() {
+            self.pm2.next = self.window.pix5.val();
         }
-        if self.t_first[4].q.val() {
-            self.pm1.next = self.t_pix[4].q.val();
-            self.pm2.next = self.t_pix[4].q.val();
+        if self.window.first4.val() {
+            self.pm1.next = self.window.pix4.val();
+            self.pm2.next = self.window.pix4.val();
         }
         // I(end + k): the run from end to x is flat, so only end = x and
         // end = x - 1 reach past x.
-        self.right1.next = self.t_pix[4].q.val();
-        self.right2.next = self.t_pix[4].q.val();
+        self.right1.next = self.window.pix4.val();
+        self.right2.next = self.window.pix4.val();
         if self.close_run.val() & self.upd1.q.val() {
             self.right1.next = self.p1.val();
             self.right2.next = self.p2.val();
@@ -453,7 +393,7 @@ impl Logic for DeclivityTracker {
         }
 
         // ---- State.
-        if self.t_valid[4].q.val() {
+        if self.window.valid4.val() {
             self.count.d.next = self.count_eff.val() + bit_cast::<COUNT_BITS, 1>(self.keep.val().into());
             self.full.d.next = self.full_eff.val() | self.drop.val();
             self.seen.d.next = self.seen_eff.val();
@@ -463,10 +403,10 @@ impl Logic for DeclivityTracker {
         if self.start_new.val() {
             self.seen.d.next = true;
             self.rising.d.next = self.up4.q.val();
-            self.start.d.next = self.t_x[4].q.val();
-            self.start_level.d.next = self.t_pix[4].q.val();
+            self.start.d.next = self.window.x4.val();
+            self.start_level.d.next = self.window.pix4.val();
             self.run_thr.d.next = self.at_thr4.q.val();
-            self.left0.d.next = self.t_pix[4].q.val();
+            self.left0.d.next = self.window.pix4.val();
             self.left1.d.next = self.pm1.val();
             self.left2.d.next = self.pm2.val();
             self.s0.d.next = self.gsq4.q.val();
@@ -478,13 +418,13 @@ impl Logic for DeclivityTracker {
             self.s1.d.next = self.s1.q.val() + self.w4.q.val();
             self.end_reg.d.next = self.x_next.val();
         }
-        self.mk_pending.d.next = self.t_valid[4].q.val() & self.t_last[4].q.val();
-        if self.t_valid[4].q.val() & self.t_last[4].q.val() {
+        self.mk_pending.d.next = self.window.valid4.val() & self.window.last4.val();
+        if self.window.valid4.val() & self.window.last4.val() {
             self.mk_count.d.next = self.count_eff.val() + bit_cast::<COUNT_BITS, 1>(self.keep.val().into());
             self.mk_full.d.next = self.full_eff.val() | self.drop.val();
-            self.mk_wide.d.next = self.t_wide[4].q.val();
-            self.mk_sof.d.next = self.t_sof[4].q.val();
-            self.mk_dt.d.next = self.t_dt[4].q.val();
+            self.mk_wide.d.next = self.window.wide4.val();
+            self.mk_sof.d.next = self.window.sof4.val();
+            self.mk_dt.d.next = self.window.dt4.val();
         }
 
         // ---- The item: a kept record, else a pending marker.
@@ -504,10 +444,10 @@ impl Logic for DeclivityTracker {
             self.o_tag1.d.next = bit_cast::<32, PIXEL_BITS>(self.left0.q.val())
                 | (bit_cast::<32, PIXEL_BITS>(self.left1.q.val()) << self.level_shift.val())
                 | (bit_cast::<32, PIXEL_BITS>(self.left2.q.val()) << (self.level_shift.val() << 1));
-            self.o_tag2.d.next = bit_cast::<32, PIXEL_BITS>(self.t_pix[4].q.val())
+            self.o_tag2.d.next = bit_cast::<32, PIXEL_BITS>(self.window.pix4.val())
                 | (bit_cast::<32, PIXEL_BITS>(self.right1.val()) << self.level_shift.val())
                 | (bit_cast::<32, PIXEL_BITS>(self.right2.val()) << (self.level_shift.val() << 1));
-            self.o_tag3.d.next = bit_cast::<32, DT_BITS>(self.t_dt[4].q.val());
+            self.o_tag3.d.next = bit_cast::<32, DT_BITS>(self.window.dt4.val());
         }
         if self.mk_pending.q.val() {
             self.o_tag0.d.next = bit_cast::<32, 1>(true.into()) << self.marker_shift.val();

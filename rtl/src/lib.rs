@@ -14,6 +14,7 @@
 //! context-sized expressions compute exactly what the Rust simulation does.
 
 pub mod params;
+pub mod pixel_window;
 pub mod adaptive_threshold;
 pub mod declivity_detector;
 pub mod declivity_tracker;
