@@ -1,9 +1,12 @@
 //! # sim — what users run
 //!
 //! Reading images and pair folders ([`io`]), evaluation against ground truth
-//! ([`eval`]), the pictures of the paper's figures ([`pictures`]), and the
-//! `declivity` command-line tool built on them. Later: cycle-accurate drivers
-//! of the `rtl` blocks, co-simulation and synthesis reports.
+//! ([`eval`]), the pictures of the paper's figures ([`pictures`]), the
+//! cycle-accurate direct drive of the rtl declivity detector and its
+//! comparison with golden ([`detector`]), the Verilog of the blocks
+//! ([`verilog`]), co-simulation under Icarus and Verilator ([`cosim`]),
+//! ECP5 synthesis reports ([`synth`]), and the `declivity` command-line tool
+//! built on them.
 
 pub mod bundled;
 pub mod cosim;

@@ -98,7 +98,7 @@ struct RtlDetectArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-    /// Folder for the overlay picture [default: ./declivity-out/rtl-<image stem>].
+    /// Folder for the overlay picture [default: ./declivity-out/rtl-IMAGE_STEM].
     #[arg(long)]
     out: Option<PathBuf>,
     /// Write a VCD waveform of the lines given by --lines to this file.
