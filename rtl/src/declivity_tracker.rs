@@ -11,9 +11,10 @@
 //! ## Ports
 //! - In: a pixel stream `in_valid`, `in_first`, `in_last`, `in_pix`, `in_x`
 //!   (the pixel's index in its line) with the line's `in_dt` (`d_t` in fixed
-//!   point) and `in_thr` (`⌊d_t⌋`), `in_wide` (line cut at `W_MAX`) and `in_sof` (first line of a
-//!   frame). A line's pixels must come on consecutive clocks; lines may be
-//!   back to back or apart.
+//!   point), `in_thr` (`⌊d_t⌋`), `in_wide` (line cut at `W_MAX`) and
+//!   `in_sof` (first line of a frame). A line's pixels must come on
+//!   consecutive clocks; lines may be back to back or apart. They pass
+//!   through a [`PixelWindow`].
 //! - Out: items for the eq. 3 divider ([`crate::position_divider`]):
 //!   `item_valid`, `item_dividend` (`Σ g²(2x+1) · 2^(POS_FRAC_BITS-1)`),
 //!   `item_divisor` (`Σ g²`) and four tag lanes laid out as [`TagLayout`]
