@@ -50,7 +50,7 @@
 //! golden's hardware-parity mode (`golden::hardware`) does the same.
 
 use crate::adaptive_threshold::{AdaptiveThreshold, THRESHOLD_LATENCY};
-use crate::declivity_tracker::{DeclivityTracker, TagLayout, TRACKER_CENTER};
+use crate::declivity_tracker::{DeclivityTracker, TRACKER_CENTER};
 use crate::params::*;
 use crate::position_divider::{PositionDivider, DIVIDER_LATENCY};
 use rust_hdl::prelude::*;
@@ -190,19 +190,12 @@ pub struct DeclivityDetector {
     read_state: Signal<Local, Bits<2>>,
     read_width: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
     start_read: Signal<Local, Bit>,
-    tag0: Signal<Local, Bits<32>>,
-    tag1: Signal<Local, Bits<32>>,
-    tag2: Signal<Local, Bits<32>>,
     // Constants.
     w_max: Constant<Bits<LINE_BUF_ADDR_BITS>>,
     bank_free: Constant<Bits<2>>,
     bank_full: Constant<Bits<2>>,
     bank_ready: Constant<Bits<2>>,
     dt_frac: Constant<Bits<8>>,
-    end_shift: Constant<Bits<8>>,
-    amp_shift: Constant<Bits<8>>,
-    marker_shift: Constant<Bits<8>>,
-    level_shift: Constant<Bits<8>>,
 }
 
 impl Default for DeclivityDetector {
@@ -283,18 +276,11 @@ impl Default for DeclivityDetector {
             read_state: Default::default(),
             read_width: Default::default(),
             start_read: Default::default(),
-            tag0: Default::default(),
-            tag1: Default::default(),
-            tag2: Default::default(),
             w_max: Constant::new((W_MAX as u64).into()),
             bank_free: Constant::new(BANK_FREE.into()),
             bank_full: Constant::new(BANK_FULL.into()),
             bank_ready: Constant::new(BANK_READY.into()),
             dt_frac: c8(DT_FRAC_BITS),
-            end_shift: c8(TagLayout::END_SHIFT),
-            amp_shift: c8(TagLayout::AMP_SHIFT),
-            marker_shift: c8(TagLayout::MARKER_SHIFT),
-            level_shift: c8(TagLayout::LEVEL_SHIFT),
         }
     }
 }
@@ -486,10 +472,7 @@ impl Logic for DeclivityDetector {
         self.divider.in_tag2.next = self.tracker.item_tag2.val();
         self.divider.in_tag3.next = self.tracker.item_tag3.val();
 
-        // ---- Outputs: the divider's registers, unpacked.
-        self.tag0.next = self.divider.out_tag0.val();
-        self.tag1.next = self.divider.out_tag1.val();
-        self.tag2.next = self.divider.out_tag2.val();
+        // ---- Outputs: the divider's registers, zero between beats.
         self.m_valid.next = self.divider.out_valid.val();
         self.m_last.next = false;
         self.m_start.next = 0.into();
@@ -507,25 +490,23 @@ impl Logic for DeclivityDetector {
         self.m_wide.next = false;
         self.m_full.next = false;
         self.m_sof.next = false;
-        // Unpacked only on a valid beat (outputs are zero between beats),
-        // which also keeps the simulation's shifts to the beats.
         if self.divider.out_valid.val() {
-            self.m_last.next = (self.tag0.val() >> self.marker_shift.val()) != 0;
-            self.m_start.next = bit_cast::<X_BITS, 32>(self.tag0.val());
-            self.m_end.next = bit_cast::<X_BITS, 32>(self.tag0.val() >> self.end_shift.val());
-            self.m_amp.next = bit_cast::<AMP_BITS, 32>(self.tag0.val() >> self.amp_shift.val());
+            self.m_last.next = self.divider.out_marker.val();
+            self.m_start.next = self.divider.out_start.val();
+            self.m_end.next = self.divider.out_end.val();
+            self.m_amp.next = self.divider.out_amp.val();
             self.m_pos.next = self.divider.out_quotient.val();
-            self.m_left0.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val());
-            self.m_left1.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val() >> self.level_shift.val());
-            self.m_left2.next = bit_cast::<PIXEL_BITS, 32>(self.tag1.val() >> (self.level_shift.val() << 1));
-            self.m_right0.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val());
-            self.m_right1.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val() >> self.level_shift.val());
-            self.m_right2.next = bit_cast::<PIXEL_BITS, 32>(self.tag2.val() >> (self.level_shift.val() << 1));
-            self.m_dt.next = bit_cast::<DT_BITS, 32>(self.divider.out_tag3.val());
-            self.m_count.next = bit_cast::<COUNT_BITS, 32>(self.tag1.val());
-            self.m_wide.next = self.tag2.val().get_bit(0);
-            self.m_full.next = self.tag2.val().get_bit(1);
-            self.m_sof.next = self.tag2.val().get_bit(2);
+            self.m_left0.next = self.divider.out_left0.val();
+            self.m_left1.next = self.divider.out_left1.val();
+            self.m_left2.next = self.divider.out_left2.val();
+            self.m_right0.next = self.divider.out_right0.val();
+            self.m_right1.next = self.divider.out_right1.val();
+            self.m_right2.next = self.divider.out_right2.val();
+            self.m_dt.next = self.divider.out_dt.val();
+            self.m_count.next = self.divider.out_count.val();
+            self.m_wide.next = self.divider.out_wide.val();
+            self.m_full.next = self.divider.out_full.val();
+            self.m_sof.next = self.divider.out_sof.val();
         }
     }
 }

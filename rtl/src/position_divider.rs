@@ -25,7 +25,10 @@
 //! - `in_valid`, `in_dividend` (`S1 · 2^(POS_FRAC_BITS-1)`, [`DIVIDEND_BITS`]),
 //!   `in_divisor` (`S0 > 0`, [`S0_BITS`]) and four 32-bit tag lanes
 //!   `in_tag0..3` that travel with the division untouched.
-//! - `out_valid`, `out_quotient` ([`POS_BITS`]) and `out_tag0..3`.
+//! - `out_valid`, `out_quotient` ([`POS_BITS`]) and the record's fields,
+//!   unpacked from the tags as [`TagLayout`] lays them out: `out_marker`,
+//!   `out_start`, `out_end`, `out_amp`, `out_left0..2`, `out_right0..2`,
+//!   `out_count`, `out_wide`, `out_full`, `out_sof`, `out_dt`.
 //!
 //! ## Timing
 //! Latency [`DIVIDER_LATENCY`] = [`POS_BITS`] clocks (one per quotient bit),
@@ -38,6 +41,7 @@
 //! `dividend >> POS_BITS < divisor`. A zero divisor gives an all-ones
 //! quotient (it never happens on a declivity, which has a non-zero gradient).
 
+use crate::declivity_tracker::TagLayout;
 use crate::params::*;
 use rust_hdl::prelude::*;
 
@@ -87,10 +91,21 @@ pub struct PositionDivider {
     pub in_tag3: Signal<In, Bits<32>>,
     pub out_valid: Signal<Out, Bit>,
     pub out_quotient: Signal<Out, Bits<POS_BITS>>,
-    pub out_tag0: Signal<Out, Bits<32>>,
-    pub out_tag1: Signal<Out, Bits<32>>,
-    pub out_tag2: Signal<Out, Bits<32>>,
-    pub out_tag3: Signal<Out, Bits<32>>,
+    pub out_marker: Signal<Out, Bit>,
+    pub out_start: Signal<Out, Bits<X_BITS>>,
+    pub out_end: Signal<Out, Bits<X_BITS>>,
+    pub out_amp: Signal<Out, Bits<AMP_BITS>>,
+    pub out_left0: Signal<Out, Bits<PIXEL_BITS>>,
+    pub out_left1: Signal<Out, Bits<PIXEL_BITS>>,
+    pub out_left2: Signal<Out, Bits<PIXEL_BITS>>,
+    pub out_right0: Signal<Out, Bits<PIXEL_BITS>>,
+    pub out_right1: Signal<Out, Bits<PIXEL_BITS>>,
+    pub out_right2: Signal<Out, Bits<PIXEL_BITS>>,
+    pub out_count: Signal<Out, Bits<COUNT_BITS>>,
+    pub out_wide: Signal<Out, Bit>,
+    pub out_full: Signal<Out, Bit>,
+    pub out_sof: Signal<Out, Bit>,
+    pub out_dt: Signal<Out, Bits<DT_BITS>>,
     _stages: [Stage; POS_BITS],
     _tags: [[u32; 4]; TAG_DEPTH],
     _wptr: usize,
@@ -109,10 +124,21 @@ impl Default for PositionDivider {
             in_tag3: Default::default(),
             out_valid: Default::default(),
             out_quotient: Default::default(),
-            out_tag0: Default::default(),
-            out_tag1: Default::default(),
-            out_tag2: Default::default(),
-            out_tag3: Default::default(),
+            out_marker: Default::default(),
+            out_start: Default::default(),
+            out_end: Default::default(),
+            out_amp: Default::default(),
+            out_left0: Default::default(),
+            out_left1: Default::default(),
+            out_left2: Default::default(),
+            out_right0: Default::default(),
+            out_right1: Default::default(),
+            out_right2: Default::default(),
+            out_count: Default::default(),
+            out_wide: Default::default(),
+            out_full: Default::default(),
+            out_sof: Default::default(),
+            out_dt: Default::default(),
             _stages: [Stage::default(); POS_BITS],
             _tags: [[0; 4]; TAG_DEPTH],
             _wptr: 0,
@@ -143,19 +169,43 @@ impl Logic for PositionDivider {
         let last = self._stages[POS_BITS - 1];
         self.out_valid.next = last.valid;
         self.out_quotient.next = last.lq.into();
-        self.out_tag0.next = (read[0] as u64).into();
-        self.out_tag1.next = (read[1] as u64).into();
-        self.out_tag2.next = (read[2] as u64).into();
-        self.out_tag3.next = (read[3] as u64).into();
+        // The record's fields, out of the tag lanes (TagLayout).
+        let field = |lane: u32, shift: usize, bits: usize| ((lane as u64) >> shift) & ((1u64 << bits) - 1);
+        self.out_marker.next = field(read[0], TagLayout::MARKER_SHIFT, 1) == 1;
+        self.out_start.next = field(read[0], 0, X_BITS).into();
+        self.out_end.next = field(read[0], TagLayout::END_SHIFT, X_BITS).into();
+        self.out_amp.next = field(read[0], TagLayout::AMP_SHIFT, AMP_BITS).into();
+        self.out_left0.next = field(read[1], 0, PIXEL_BITS).into();
+        self.out_left1.next = field(read[1], TagLayout::LEVEL_SHIFT, PIXEL_BITS).into();
+        self.out_left2.next = field(read[1], 2 * TagLayout::LEVEL_SHIFT, PIXEL_BITS).into();
+        self.out_right0.next = field(read[2], 0, PIXEL_BITS).into();
+        self.out_right1.next = field(read[2], TagLayout::LEVEL_SHIFT, PIXEL_BITS).into();
+        self.out_right2.next = field(read[2], 2 * TagLayout::LEVEL_SHIFT, PIXEL_BITS).into();
+        self.out_count.next = field(read[1], 0, COUNT_BITS).into();
+        self.out_wide.next = field(read[2], 0, 1) == 1;
+        self.out_full.next = field(read[2], 1, 1) == 1;
+        self.out_sof.next = field(read[2], 2, 1) == 1;
+        self.out_dt.next = field(read[3], 0, DT_BITS).into();
     }
 
     fn connect(&mut self) {
         self.out_valid.connect();
         self.out_quotient.connect();
-        self.out_tag0.connect();
-        self.out_tag1.connect();
-        self.out_tag2.connect();
-        self.out_tag3.connect();
+        self.out_marker.connect();
+        self.out_start.connect();
+        self.out_end.connect();
+        self.out_amp.connect();
+        self.out_left0.connect();
+        self.out_left1.connect();
+        self.out_left2.connect();
+        self.out_right0.connect();
+        self.out_right1.connect();
+        self.out_right2.connect();
+        self.out_count.connect();
+        self.out_wide.connect();
+        self.out_full.connect();
+        self.out_sof.connect();
+        self.out_dt.connect();
     }
 
     fn hdl(&self) -> Verilog {
@@ -166,6 +216,26 @@ impl Logic for PositionDivider {
 /// The Verilog body of [`PositionDivider`], stage by stage.
 fn divider_verilog() -> String {
     let (n, s0, q, d, t) = (POS_BITS, S0_BITS, POS_BITS, DIVIDEND_BITS, TRIAL_BITS);
+    // The record's fields: (port, tag lane, shift, bits), as TagLayout lays
+    // them out.
+    let level = TagLayout::LEVEL_SHIFT;
+    let fields: [(&str, usize, usize, usize); 15] = [
+        ("out_marker", 0, TagLayout::MARKER_SHIFT, 1),
+        ("out_start", 0, 0, X_BITS),
+        ("out_end", 0, TagLayout::END_SHIFT, X_BITS),
+        ("out_amp", 0, TagLayout::AMP_SHIFT, AMP_BITS),
+        ("out_left0", 1, 0, PIXEL_BITS),
+        ("out_left1", 1, level, PIXEL_BITS),
+        ("out_left2", 1, 2 * level, PIXEL_BITS),
+        ("out_right0", 2, 0, PIXEL_BITS),
+        ("out_right1", 2, level, PIXEL_BITS),
+        ("out_right2", 2, 2 * level, PIXEL_BITS),
+        ("out_count", 1, 0, COUNT_BITS),
+        ("out_wide", 2, 0, 1),
+        ("out_full", 2, 1, 1),
+        ("out_sof", 2, 2, 1),
+        ("out_dt", 3, 0, DT_BITS),
+    ];
     let mut v = String::new();
     v += &format!("wire [{}:0] rem_in = in_valid ? in_dividend[{}:{}] : {}'d0;\n", s0 - 1, d - 1, q, s0);
     v += &format!("wire [{}:0] lq_in = in_valid ? in_dividend[{}:0] : {}'d0;\n", q - 1, q - 1, q);
@@ -188,7 +258,9 @@ fn divider_verilog() -> String {
     v += &format!("wire [{}:0] rptr = wptr - {}'d{};\n", TAG_ADDR_BITS - 1, TAG_ADDR_BITS, DIVIDER_LATENCY - 1);
     v += "integer i;\ninitial begin\n";
     v += &format!("    for (i = 0; i < {TAG_DEPTH}; i = i + 1) begin\n        tags0[i] = 32'd0; tags1[i] = 32'd0; tags2[i] = 32'd0; tags3[i] = 32'd0;\n    end\n");
-    v += "    out_tag0 = 32'd0; out_tag1 = 32'd0; out_tag2 = 32'd0; out_tag3 = 32'd0;\n";
+    for (name, _, _, bits) in &fields {
+        v += &format!("    {name} = {bits}'d0;\n");
+    }
     v += &format!("    out_valid = 1'b0; out_quotient = {q}'d0;\nend\n");
     v += "always @(posedge clock) begin\n";
     for k in 0..n {
@@ -202,7 +274,9 @@ fn divider_verilog() -> String {
             v += &format!("    out_valid <= {valid};\n    out_quotient <= {{{lq}[{}:0], fits_{k}}};\n", q - 2);
         }
     }
-    v += "    out_tag0 <= tags0[rptr]; out_tag1 <= tags1[rptr]; out_tag2 <= tags2[rptr]; out_tag3 <= tags3[rptr];\n";
+    for (name, lane, shift, bits) in &fields {
+        v += &format!("    {name} <= tags{lane}[rptr][{}:{shift}];\n", shift + bits - 1);
+    }
     v += "    tags0[wptr] <= in_tag0; tags1[wptr] <= in_tag1; tags2[wptr] <= in_tag2; tags3[wptr] <= in_tag3;\n";
     v += "    wptr <= wptr + 1'b1;\nend\n";
     v
@@ -239,12 +313,14 @@ mod tests {
                 uut.in_dividend.next = (n as u64).into();
                 uut.in_divisor.next = d.into();
                 uut.in_tag0.next = (cycle as u64).into();
+                uut.in_tag3.next = (3 * cycle as u64).into();
             } else {
                 uut.in_valid.next = false;
             }
             assert!(simulate(&mut uut, 100));
             if uut.out_valid.val() {
-                got.push((uut.out_tag0.val().to_u64(), uut.out_quotient.val().to_u64()));
+                got.push((uut.out_start.val().to_u64(), uut.out_quotient.val().to_u64()));
+                assert_eq!(uut.out_dt.val().to_u64(), 3 * uut.out_start.val().to_u64(), "lane 3 rides with lane 0");
             }
             clock(&mut uut);
         }
