@@ -435,6 +435,9 @@ fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
 fn rtl_detect(a: RtlDetectArgs) -> Result<(), SimError> {
     use sim::detector::{as_features, detect_image, marker_latency_estimate, DetectorSim};
     let loaded = load_grey(&a.image)?;
+    if let Some(note) = &loaded.converted {
+        eprintln!("note: {}: {note}", a.image.display());
+    }
     let image = loaded.image;
     if let Some(r) = &a.lines {
         if r.end > image.height() {
