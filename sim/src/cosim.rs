@@ -84,7 +84,6 @@ use std::fmt::Write as _;
 use std::io;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use rust_hdl::core::block::Block;
@@ -1223,30 +1222,9 @@ struct WorkDir {
 
 impl WorkDir {
     fn new(root: Option<&Path>, tag: &str) -> Result<WorkDir, CosimError> {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let root = root
-            .map(Path::to_path_buf)
-            .unwrap_or_else(std::env::temp_dir);
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map(|d| d.subsec_nanos())
-            .unwrap_or(0);
-        for attempt in 0..100 {
-            let path = root.join(format!(
-                "cosim-{tag}-{}-{}-{nanos:x}-{attempt}",
-                std::process::id(),
-                COUNTER.fetch_add(1, Ordering::Relaxed)
-            ));
-            match std::fs::create_dir_all(&root).and_then(|_| std::fs::create_dir(&path)) {
-                Ok(()) => return Ok(WorkDir { path, keep: false }),
-                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-                Err(e) => return Err(io_err(&path)(e)),
-            }
-        }
-        Err(CosimError::Io {
-            path: root,
-            source: io::Error::other("cannot make a unique work directory"),
-        })
+        let root = root.map(Path::to_path_buf).unwrap_or_else(std::env::temp_dir);
+        let path = crate::workdir::unique_dir(&root, &format!("cosim-{tag}")).map_err(io_err(&root))?;
+        Ok(WorkDir { path, keep: false })
     }
 
     fn write(&self, name: &str, text: &str) -> Result<(), CosimError> {

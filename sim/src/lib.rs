@@ -18,5 +18,6 @@ pub mod io;
 pub mod pictures;
 pub mod synth;
 pub mod verilog;
+pub mod workdir;
 
 pub use error::SimError;

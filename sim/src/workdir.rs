@@ -1,0 +1,28 @@
+//! Scratch directories for the outside tools (co-simulation, lint, synthesis):
+//! each run gets a directory of its own, so tests running in parallel and
+//! repeated runs never share files.
+
+use std::io;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Creates and returns a new directory `<root>/<prefix>-<pid>-<n>-<nanos>`
+/// (creating `root` if needed); never one that already exists.
+pub fn unique_dir(root: &Path, prefix: &str) -> io::Result<PathBuf> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    std::fs::create_dir_all(root)?;
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.subsec_nanos())
+        .unwrap_or(0);
+    for _ in 0..100 {
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let path = root.join(format!("{prefix}-{}-{n}-{nanos:x}", std::process::id()));
+        match std::fs::create_dir(&path) {
+            Ok(()) => return Ok(path),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(io::Error::other(format!("{}: cannot make a unique work directory", root.display())))
+}
