@@ -5,9 +5,8 @@
 //! Everything drives the rtl block cycle by cycle through `sim::detector`
 //! (direct drive, no testbench threads): lines are streamed with
 //! `run_lines` and each line's records are compared with golden by
-//! `compare_line`. Where the clock of every record is needed, a small timed
-//! driver below ([`run_timed`]) does the same as `run_lines` and keeps the
-//! clocks.
+//! `compare_line`. Where the clock of every record is needed, [`run_timed`]
+//! arranges `run_lines`' clocks per line.
 //!
 //! - Agreement: proptest properties over generated lines (random walks,
 //!   steps, plateaus, Gaussian noise, flat lines, 0/255 extremes), widths 1
@@ -32,7 +31,7 @@ use rand_distr::{Distribution, Normal};
 use rtl::declivity_detector::{marker_latency, MIN_LINE_PERIOD};
 use rtl::params::{DT_FRAC_BITS, N_MAX, W_MAX};
 use sim::detector::{
-    compare_line, golden_lines, run_lines, DetectorRun, DetectorSim, HwLine, LineComparison, PixelBeat, RecordBeat,
+    compare_line, golden_lines, run_lines, DetectorRun, DetectorSim, HwLine, LineComparison, RecordBeat,
 };
 use std::cell::RefCell;
 use std::time::Instant;
@@ -43,16 +42,16 @@ use std::time::Instant;
 
 /// A `gap` closure for `run_lines`: `tvalid` low with probability `p` on
 /// each clock, from a seeded generator (reproducible with the case).
-fn random_gaps(p: f64, seed: u64) -> impl FnMut() -> bool {
+fn random_gaps(p: f64, seed: u64) -> impl FnMut(u64) -> bool {
     let mut rng = seeded(seed);
-    move || p > 0.0 && rng.gen_bool(p)
+    move |_| p > 0.0 && rng.gen_bool(p)
 }
 
 /// Streams `lines` through a fresh detector and golden; checks that every
 /// line came out, and returns the run, golden's lines and the comparisons.
 fn stream_and_compare(
     lines: &[Vec<u8>],
-    gap: impl FnMut() -> bool,
+    gap: impl FnMut(u64) -> bool,
 ) -> Result<(DetectorRun, Vec<LimitedLine>, Vec<LineComparison>), TestCaseError> {
     let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
     let mut sim = DetectorSim::new();
@@ -127,65 +126,25 @@ struct TimedRun {
     stalls_inside_lines: u64,
 }
 
-/// `run_lines` with clocks: streams `lines` back to back through `sim`
-/// (`tuser` on the first pixel), `tvalid` low where `gap(clock)` says so,
-/// and keeps the clock of every output beat and where each stall fell.
-fn run_timed(sim: &mut DetectorSim, lines: &[&[u8]], mut gap: impl FnMut(u64) -> bool) -> TimedRun {
-    let mut run = TimedRun::default();
-    let mut records = Vec::new();
-    let mut firsts = Vec::new();
-    let mut lasts = Vec::new();
-    let (mut li, mut xi) = (0usize, 0usize);
-    let limit = sim.cycle + 4 * lines.iter().map(|l| l.len() as u64 + 1024).sum::<u64>();
-    while run.lines.len() < lines.len() {
-        assert!(
-            sim.cycle < limit,
-            "the detector hangs: {} of {} markers after {} clocks",
-            run.lines.len(),
-            lines.len(),
-            sim.cycle
-        );
-        let mut beat = PixelBeat::default();
-        if li < lines.len() && !gap(sim.cycle) {
-            let line = lines[li];
-            beat = PixelBeat { tdata: line[xi], tvalid: true, tuser: li == 0 && xi == 0, tlast: xi + 1 == line.len() };
-        }
-        let cycle = sim.cycle;
-        let (accepted, out) = sim.cycle(beat);
-        if beat.tvalid && !accepted {
-            if xi == 0 {
-                run.stalls_between_lines += 1;
-            } else {
-                run.stalls_inside_lines += 1;
-            }
-        }
-        if accepted {
-            if xi == 0 {
-                firsts.push(cycle);
-            }
-            xi += 1;
-            if xi == lines[li].len() {
-                lasts.push(cycle);
-                li += 1;
-                xi = 0;
-            }
-        }
-        if let Some(out) = out {
-            if out.marker {
-                let k = run.lines.len();
-                run.lines.push(TimedLine {
-                    records: std::mem::take(&mut records),
-                    marker: out,
-                    marker_cycle: cycle,
-                    first_pixel_cycle: firsts[k],
-                    last_pixel_cycle: lasts[k],
-                });
-            } else {
-                records.push((cycle, out));
-            }
-        }
+/// [`run_lines`] with its clocks arranged per line (a hang fails the test).
+fn run_timed(sim: &mut DetectorSim, lines: &[&[u8]], gap: impl FnMut(u64) -> bool) -> TimedRun {
+    let run = run_lines(sim, lines, gap, |_| {}).unwrap_or_else(|e| panic!("{e}"));
+    TimedRun {
+        stalls_between_lines: run.stall_cycles - run.stalls_inside_lines,
+        stalls_inside_lines: run.stalls_inside_lines,
+        lines: run
+            .lines
+            .into_iter()
+            .enumerate()
+            .map(|(k, l)| TimedLine {
+                records: l.record_cycles.into_iter().zip(l.records).collect(),
+                marker: l.marker,
+                marker_cycle: l.marker_cycle,
+                first_pixel_cycle: run.first_pixel_cycle[k],
+                last_pixel_cycle: run.last_pixel_cycle[k],
+            })
+            .collect(),
     }
-    run
 }
 
 /// The pixel at which the tracker closes the declivity ending at `end`
@@ -510,7 +469,7 @@ fn a_line_of_exactly_n_max_declivities_is_not_full_and_one_more_is() {
     // first one from the flat part), each a characteristic declivity.
     for (n, full) in [(N_MAX, false), (N_MAX + 1, true)] {
         let line = zigzag_after_flat(300, 300 + n, 50, 150);
-        let (run, gold, cmp) = stream_and_compare(&[line.clone()], || false).unwrap();
+        let (run, gold, cmp) = stream_and_compare(&[line.clone()], |_| false).unwrap();
         let all = golden::declivity::characteristic_declivities(&line, gold[0].dt).len();
         assert_eq!(all, n, "the test line has {n} characteristic declivities");
         let h = &run.lines[0];
@@ -565,7 +524,7 @@ fn run_pair(dir: &std::path::Path) -> PairResult {
         let lines: Vec<&[u8]> = (0..img.height()).map(|y| img.row(y)).collect();
         let start = sim.cycle;
         let run =
-            run_lines(&mut sim, &lines, || false, |_| {}).unwrap_or_else(|e| panic!("{} view {v}: {e}", pair.name));
+            run_lines(&mut sim, &lines, |_| false, |_| {}).unwrap_or_else(|e| panic!("{} view {v}: {e}", pair.name));
         r.cycles += sim.cycle - start;
         r.pixels += run.pixels;
         r.stalls += run.stall_cycles;
@@ -723,6 +682,7 @@ fn short_lines_one_every_min_line_period_clocks_never_stall_and_keep_marker_late
             assert_eq!(t.marker_cycle - t.last_pixel_cycle, marker_latency(width) as u64, "width {width}: line {k}");
             let h = HwLine {
                 records: t.records.iter().map(|r| r.1).collect(),
+                record_cycles: t.records.iter().map(|r| r.0).collect(),
                 marker: t.marker,
                 marker_cycle: t.marker_cycle,
             };
@@ -737,7 +697,7 @@ fn back_to_back_lines_of_one_width_of_at_least_min_line_period_stream_at_exactly
     let mut rng = seeded(0xb2b);
     for (width, count) in [(MIN_LINE_PERIOD, 40), (MIN_LINE_PERIOD + 1, 12), (384, 24), (741, 8), (W_MAX, 8)] {
         let lines: Vec<Vec<u8>> = (0..count).map(|_| block_line(&mut rng, width)).collect();
-        let (run, gold, cmp) = stream_and_compare(&lines, || false).unwrap();
+        let (run, gold, cmp) = stream_and_compare(&lines, |_| false).unwrap();
         assert_eq!(run.stall_cycles, 0, "width {width}");
         assert_eq!(run.px_per_clk(), 1.0, "width {width}: {} px in {} clocks", run.pixels, run.input_cycles);
         for (y, c) in cmp.iter().enumerate() {
@@ -767,7 +727,7 @@ fn back_to_back_lines_of_mixed_widths_start_on_the_clocks_of_the_documented_recu
     ];
     for widths in cases {
         let lines: Vec<Vec<u8>> = widths.iter().map(|&w| block_line(&mut rng, w)).collect();
-        let (run, gold, cmp) = stream_and_compare(&lines, || false).unwrap();
+        let (run, gold, cmp) = stream_and_compare(&lines, |_| false).unwrap();
         for (y, c) in cmp.iter().enumerate() {
             assert_eq!(c.mismatches, 0, "{}", describe_difference(y, &lines[y], &run.lines[y], &gold[y], c));
         }
@@ -786,7 +746,7 @@ fn back_to_back_lines_shorter_than_min_line_period_stall_between_lines_only_and_
     for (width, count) in [(MIN_LINE_PERIOD / 2, 16), (100, 12), (3, 12), (1, 12)] {
         let mut rng = seeded(width as u64);
         let lines: Vec<Vec<u8>> = (0..count).map(|_| block_line(&mut rng, width)).collect();
-        let (run, gold, cmp) = stream_and_compare(&lines, || false).unwrap();
+        let (run, gold, cmp) = stream_and_compare(&lines, |_| false).unwrap();
         assert!(run.stall_cycles > 0, "width {width}: no stalls below MIN_LINE_PERIOD");
         assert!(run.px_per_clk() < 1.0);
         for (y, c) in cmp.iter().enumerate() {
@@ -800,7 +760,7 @@ fn back_to_back_lines_shorter_than_min_line_period_stall_between_lines_only_and_
         let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
         let timed = run_timed(&mut DetectorSim::new(), &refs, |_| false);
         assert_eq!(timed.stalls_inside_lines, 0, "width {width}: tready low inside a line");
-        assert_eq!(timed.stalls_between_lines, run.stall_cycles, "width {width}: the two drivers agree");
+        assert_eq!(timed.stalls_between_lines, run.stall_cycles, "width {width}: every stall falls between lines");
     }
 }
 
@@ -812,7 +772,7 @@ fn lines_one_pixel_shorter_than_min_line_period_back_to_back_stall() {
     let mut rng = seeded(0x279);
     let width = MIN_LINE_PERIOD - 1;
     let lines: Vec<Vec<u8>> = (0..40).map(|_| block_line(&mut rng, width)).collect();
-    let (run, _, cmp) = stream_and_compare(&lines, || false).unwrap();
+    let (run, _, cmp) = stream_and_compare(&lines, |_| false).unwrap();
     assert!(cmp.iter().all(|c| c.mismatches == 0));
     assert!(
         run.stall_cycles > 0,

@@ -48,6 +48,8 @@ pub struct RecordBeat {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct HwLine {
     pub records: Vec<RecordBeat>,
+    /// Clock of each record.
+    pub record_cycles: Vec<u64>,
     /// The marker.
     pub marker: RecordBeat,
     /// Clock of the marker.
@@ -186,6 +188,11 @@ pub struct DetectorRun {
     pub pixels: u64,
     /// Clocks with `tvalid` high and `tready` low.
     pub stall_cycles: u64,
+    /// Of those, the clocks on a line's second or later pixel (the detector
+    /// documents that it never stalls inside a line).
+    pub stalls_inside_lines: u64,
+    /// Clock at which each line's first pixel was accepted.
+    pub first_pixel_cycle: Vec<u64>,
     /// Clock at which each line's last pixel was accepted.
     pub last_pixel_cycle: Vec<u64>,
 }
@@ -211,13 +218,13 @@ pub struct DetectorHang {
 }
 
 /// Streams `lines` through `sim` back to back (the first pixel carries
-/// `tuser`), with `tvalid` low on the clocks where `gap()` says so, and
-/// collects each line's records; `progress` is called with the number of
-/// lines done.
+/// `tuser`), with `tvalid` low on the clocks `c` where `gap(c)` says so, and
+/// collects each line's records with their clocks; `progress` is called with
+/// the number of lines done.
 pub fn run_lines(
     sim: &mut DetectorSim,
     lines: &[&[u8]],
-    mut gap: impl FnMut() -> bool,
+    mut gap: impl FnMut(u64) -> bool,
     mut progress: impl FnMut(usize),
 ) -> Result<DetectorRun, DetectorHang> {
     let mut run = DetectorRun::default();
@@ -230,7 +237,7 @@ pub fn run_lines(
     let max_idle = 4 * (lines.iter().map(|l| l.len()).max().unwrap_or(0) as u64) + 4096;
     while run.lines.len() < lines.len() {
         let mut beat = PixelBeat::default();
-        if li < lines.len() && !gap() {
+        if li < lines.len() && !gap(sim.cycle) {
             let line = lines[li];
             beat = PixelBeat { tdata: line[xi], tvalid: true, tuser: li == 0 && xi == 0, tlast: xi + 1 == line.len() };
         }
@@ -238,9 +245,13 @@ pub fn run_lines(
         let (accepted, out) = sim.cycle(beat);
         if beat.tvalid && !accepted {
             run.stall_cycles += 1;
+            run.stalls_inside_lines += (xi > 0) as u64;
         }
         if accepted {
             first_accept.get_or_insert(cycle);
+            if xi == 0 {
+                run.first_pixel_cycle.push(cycle);
+            }
             last_accept = cycle;
             run.pixels += 1;
             xi += 1;
@@ -260,6 +271,7 @@ pub fn run_lines(
                 idle = 0;
             } else {
                 current.records.push(out);
+                current.record_cycles.push(cycle);
             }
         }
         if idle > max_idle {
@@ -403,7 +415,7 @@ pub fn detect_image(
 ) -> Result<(DetectReport, Vec<HwLine>), DetectorHang> {
     let lines: Vec<&[u8]> = (0..image.height()).map(|y| image.row(y)).collect();
     let t0 = std::time::Instant::now();
-    let run = run_lines(sim, &lines, || false, progress)?;
+    let run = run_lines(sim, &lines, |_| false, progress)?;
     let secs = t0.elapsed().as_secs_f64();
     let gold = golden_lines(&lines);
     let mut report = DetectReport {
