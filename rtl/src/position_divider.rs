@@ -185,7 +185,7 @@ impl Logic for PositionDivider {
         self.out_wide.next = field(read[2], 0, 1) == 1;
         self.out_full.next = field(read[2], 1, 1) == 1;
         self.out_sof.next = field(read[2], 2, 1) == 1;
-        self.out_dt.next = field(read[3], 0, DT_BITS).into();
+        self.out_dt.next = field(read[TagLayout::DT_LANE], 0, DT_BITS).into();
     }
 
     fn connect(&mut self) {
@@ -234,7 +234,7 @@ fn divider_verilog() -> String {
         ("out_wide", 2, 0, 1),
         ("out_full", 2, 1, 1),
         ("out_sof", 2, 2, 1),
-        ("out_dt", 3, 0, DT_BITS),
+        ("out_dt", TagLayout::DT_LANE, 0, DT_BITS),
     ];
     let mut v = String::new();
     v += &format!("wire [{}:0] rem_in = in_valid ? in_dividend[{}:{}] : {}'d0;\n", s0 - 1, d - 1, q, s0);
