@@ -19,6 +19,10 @@ pub mod adaptive_threshold;
 pub mod declivity_detector;
 pub mod declivity_tracker;
 pub mod position_divider;
+pub mod gain_cell;
+pub mod systolic_matcher;
+pub mod traceback;
+pub mod declivity_matcher;
 
 pub use rust_hdl;
 

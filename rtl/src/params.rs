@@ -80,6 +80,44 @@ pub const S1_BITS: usize = S0_BITS + W_MAX_BITS + 1;
 /// Bits of the eq. 3 dividend `Σ g²(2x+1) · 2^(POS_FRAC_BITS-1)`.
 pub const DIVIDEND_BITS: usize = S1_BITS + POS_FRAC_BITS - 1;
 
+// ---- The matcher (paper §III–IV, eq. 4–9).
+
+/// Bits of a declivity index `0 .. N_MAX` in a line (row `i`, column `j`).
+pub const INDEX_BITS: usize = 7;
+/// Bits of an anti-diagonal index `i + j ≤ 2 (N_MAX - 1)` of the matching
+/// table.
+pub const DIAG_BITS: usize = INDEX_BITS + 1;
+/// Bits of a neighbour level as the matcher compares it: `2·I - e + 512`,
+/// where `e` is the declivity's end-level sum `I(x_i) + I(x_{i+1})` in the
+/// offset-compensated rule and 0 in the paper's. Doubling keeps the
+/// compensated levels integers; the offset makes them non-negative
+/// (`[2, 1022]`), so that a distance is a plain unsigned difference.
+pub const LEVEL_BITS: usize = PIXEL_BITS + 2;
+/// The offset of [`LEVEL_BITS`] levels.
+pub const LEVEL_OFFSET: u64 = 1 << (PIXEL_BITS + 1);
+/// Bits of a doubled photometric distance `2·lpd` or `2·rpd` (eq. 4–5):
+/// three differences of at most `2·510`.
+pub const DIST_BITS: usize = 12;
+/// Bits of the doubled distances subtracted from `f(gmax)` (at most both
+/// sides).
+pub const DIST_SUM_BITS: usize = DIST_BITS + 1;
+/// Fraction bits of a gain: the unit is `2^-(DT_FRAC_BITS + 1)` grey levels,
+/// so `2·gmax = d_t,ref + d_t,other` (eq. 8) is exact and every local gain
+/// of eq. 7 is an integer in this unit.
+pub const GAIN_FRAC_BITS: usize = DT_FRAC_BITS + 1;
+/// Bits of a local gain (two's complement): `3·2·gmax < 3·2^(DT_BITS+1)`
+/// above, `-32·(2·lpd + 2·rpd) > -2^18` below.
+pub const GAIN_BITS: usize = DT_BITS + 4;
+/// Bits of a path gain `P(i, j) ≥ 0`: at most `N_MAX` nodes of the largest
+/// gain.
+pub const PATH_BITS: usize = GAIN_BITS - 1 + INDEX_BITS;
+/// Bits of `G(i, j) = g + P(i-1, j-1)` (two's complement).
+pub const SCORE_BITS: usize = PATH_BITS + 1;
+/// Bits of the search bound `dispmax` of eq. 6, in the position format
+/// ([`POS_FRAC_BITS`] fraction bits); larger bounds are clamped to the
+/// largest, which no disparity inside a line reaches.
+pub const DISPMAX_BITS: usize = POS_BITS;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -102,5 +140,14 @@ mod tests {
         assert!(255u64 * 255 * (2 * W_MAX as u64 - 1) < 1 << S1_BITS);
         assert!(DIVIDEND_BITS <= 32 && POS_BITS <= 32);
         assert!(N_MAX < 1 << COUNT_BITS);
+        // The matcher's formats hold their worst cases.
+        assert_eq!(N_MAX, 1 << INDEX_BITS);
+        assert!(2 * (N_MAX - 1) < 1 << DIAG_BITS);
+        assert!(LEVEL_OFFSET + 2 * 255 < 1 << LEVEL_BITS && LEVEL_OFFSET >= 2 * 255);
+        assert!(3 * 2 * 510 < 1 << DIST_BITS);
+        let gain_max = 3 * 2 * ((1u64 << DT_BITS) - 1);
+        let gain_min = (1u64 << GAIN_FRAC_BITS) / 2 * 2 * 3 * 2 * 510;
+        assert!(gain_max < 1 << (GAIN_BITS - 1) && gain_min <= 1 << (GAIN_BITS - 1));
+        assert!(N_MAX as u64 * gain_max < 1 << PATH_BITS);
     }
 }

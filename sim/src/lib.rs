@@ -15,6 +15,7 @@ pub mod detector;
 pub mod error;
 pub mod eval;
 pub mod io;
+pub mod matcher;
 pub mod pictures;
 pub mod synth;
 pub mod verilog;

@@ -1,0 +1,749 @@
+//! The matcher (`DESIGN.md` §3, paper §III–IV): the two detectors' record
+//! streams of a line pair in, the matches of the optimal path out.
+//!
+//! - **Loader**: each side's records go into one bank of its record memory
+//!   (two banks of `N_MAX` entries per field), the neighbour levels already
+//!   in the [`LEVEL_BITS`] format of the gain rule. A line pair is complete
+//!   when both markers have arrived; it then waits in a one-line slot for
+//!   the engine, and the next pair loads into the other bank.
+//! - **Engine**: sweeps the pair through the [`SystolicMatcher`] (the
+//!   reference declivities broadcast to their cells one per clock just ahead
+//!   of the wavefront, the other view's streamed into cell 0), then runs the
+//!   [`Traceback`] and turns its pairs into matches with their positions.
+//!
+//! The gain rule is a generation-time choice: [`GainRule::Paper`] is eq. 4–8
+//! as written, [`GainRule::Robust`] the default mode of golden (`Robust`:
+//! offset-compensated distances, one polarity, one-sided nodes scored on
+//! their similar side). The reference view is the left one.
+//!
+//! ## Ports
+//! - In, per side (`r_` reference = left, `o_` other = right), named as the
+//!   detector's outputs: `valid`, `last` (the line's marker), `pos`, `amp`,
+//!   `left0..2`, `right0..2`; on the marker `dt`, `wide`, `full` and, for the
+//!   reference, `sof`. Out: `r_ready`, `o_ready`: records and markers are
+//!   taken only while ready (a side is not ready from its marker until the
+//!   pair is handed to the engine, nor while a complete pair waits). A
+//!   side's records beyond `N` (the cells; [`N_MAX`] in the sensor) are
+//!   dropped and the line flagged full.
+//! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits.
+//! - Out, a stream without back-pressure: `m_valid` with `m_last` low is a
+//!   match, reference order: `m_ref`, `m_other` (indices in their lines),
+//!   `m_x_ref` (`X_i`), `m_disp` (`X_i - X_j`, [`POS_FRAC_BITS`] fraction
+//!   bits); `m_valid` with `m_last` high ends the line: `m_count` (matches),
+//!   `m_n`, `m_m` (declivities of each side), `m_wide`, `m_full` (either
+//!   side), `m_sof`.
+//!
+//! ## Timing
+//! With the engine idle, a pair whose second marker is taken at clock `t`
+//! waits in the slot from `t + 1` and is taken by the engine at `t + 2`;
+//! its marker leaves [`line_cycles`] clocks after that (the sweep,
+//! [`sweep_cycles`], the traceback, [`traceback_cycles`], two output
+//! registers), its matches on the clocks just before, one per clock. The
+//! engine takes the next pair the clock after the traceback ends. Loading
+//! the next pair overlaps the engine's work on this one; the worst line,
+//! `n = m = N_MAX`, costs at most `line_cycles(N_MAX, N_MAX, 0, N_MAX)`
+//! = 652 clocks.
+
+use crate::gain_cell::CELL_DEPTH;
+use crate::params::*;
+use crate::systolic_matcher::SystolicMatcher;
+use crate::traceback::{traceback_cycles, Traceback};
+use rust_hdl::prelude::*;
+
+/// The local-gain rule the matcher is generated for (golden's modes that
+/// change eq. 4–8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GainRule {
+    /// Eq. 4–8 as the paper writes them (`golden` mode `paper`).
+    Paper,
+    /// Offset-compensated distances between declivities of one polarity,
+    /// one-sided nodes scored on their similar side (`golden` modes
+    /// `relative` + `one-sided`, as in the default `robust`).
+    #[default]
+    Robust,
+}
+
+impl GainRule {
+    /// Distances relative to each declivity's end-level mean, and nodes only
+    /// between declivities of one polarity.
+    pub fn relative(self) -> bool {
+        matches!(self, GainRule::Robust)
+    }
+
+    /// One-sided nodes scored on their similar side.
+    pub fn one_sided(self) -> bool {
+        matches!(self, GainRule::Robust)
+    }
+}
+
+/// Clocks of a sweep of `n` reference and `m` other declivities, from the
+/// clock after the engine takes the pair to the traceback's `start` (on
+/// the sweep's last clock): `n + m - 1` wavefronts, one clock of record
+/// memory read and the cells' depth, which cover the last wavefront.
+pub const fn sweep_cycles(n: usize, m: usize) -> usize {
+    n + m + CELL_DEPTH
+}
+
+/// Clocks from the engine taking a line pair to its marker on the outputs:
+/// the sweep, the traceback (its walk stopping on anti-diagonal
+/// `stop_diag` with `k` pairs; see [`traceback_cycles`]) and two of output
+/// registers (position read, difference).
+pub const fn line_cycles(n: usize, m: usize, stop_diag: usize, k: usize) -> usize {
+    sweep_cycles(n, m) + traceback_cycles(n, m, stop_diag, k) + 2
+}
+
+const ENG_IDLE: u64 = 0;
+const ENG_SWEEP: u64 = 1;
+const ENG_TRACE: u64 = 2;
+
+#[derive(LogicBlock)]
+pub struct DeclivityMatcher<const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub r_valid: Signal<In, Bit>,
+    pub r_last: Signal<In, Bit>,
+    pub r_pos: Signal<In, Bits<POS_BITS>>,
+    pub r_amp: Signal<In, Bits<AMP_BITS>>,
+    pub r_left0: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_left1: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_left2: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_right0: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_right1: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_right2: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_dt: Signal<In, Bits<DT_BITS>>,
+    pub r_wide: Signal<In, Bit>,
+    pub r_full: Signal<In, Bit>,
+    pub r_sof: Signal<In, Bit>,
+    pub r_ready: Signal<Out, Bit>,
+    pub o_valid: Signal<In, Bit>,
+    pub o_last: Signal<In, Bit>,
+    pub o_pos: Signal<In, Bits<POS_BITS>>,
+    pub o_amp: Signal<In, Bits<AMP_BITS>>,
+    pub o_left0: Signal<In, Bits<PIXEL_BITS>>,
+    pub o_left1: Signal<In, Bits<PIXEL_BITS>>,
+    pub o_left2: Signal<In, Bits<PIXEL_BITS>>,
+    pub o_right0: Signal<In, Bits<PIXEL_BITS>>,
+    pub o_right1: Signal<In, Bits<PIXEL_BITS>>,
+    pub o_right2: Signal<In, Bits<PIXEL_BITS>>,
+    pub o_dt: Signal<In, Bits<DT_BITS>>,
+    pub o_wide: Signal<In, Bit>,
+    pub o_full: Signal<In, Bit>,
+    pub o_ready: Signal<Out, Bit>,
+    pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
+    pub m_valid: Signal<Out, Bit>,
+    pub m_last: Signal<Out, Bit>,
+    pub m_ref: Signal<Out, Bits<INDEX_BITS>>,
+    pub m_other: Signal<Out, Bits<INDEX_BITS>>,
+    pub m_x_ref: Signal<Out, Bits<POS_BITS>>,
+    pub m_disp: Signal<Out, Bits<POS_BITS>>,
+    pub m_count: Signal<Out, Bits<COUNT_BITS>>,
+    pub m_n: Signal<Out, Bits<COUNT_BITS>>,
+    pub m_m: Signal<Out, Bits<COUNT_BITS>>,
+    pub m_wide: Signal<Out, Bit>,
+    pub m_full: Signal<Out, Bit>,
+    pub m_sof: Signal<Out, Bit>,
+    pub array: SystolicMatcher<N>,
+    pub traceback: Traceback,
+    // Record memories, two banks each (bank bit on top of the index).
+    r_pos_mem: RAM<Bits<POS_BITS>, DIAG_BITS>,
+    r_lev0_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    r_lev1_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    r_lev2_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    r_lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    r_lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    r_lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    r_rise_mem: RAM<Bit, DIAG_BITS>,
+    o_pos_mem: RAM<Bits<POS_BITS>, DIAG_BITS>,
+    o_lev0_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    o_lev1_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    o_lev2_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    o_lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    o_lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    o_lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    o_rise_mem: RAM<Bit, DIAG_BITS>,
+    // Loader.
+    lbank: DFF<Bit>,
+    r_count: DFF<Bits<COUNT_BITS>>,
+    o_count: DFF<Bits<COUNT_BITS>>,
+    r_done: DFF<Bit>,
+    o_done: DFF<Bit>,
+    r_dt_reg: DFF<Bits<DT_BITS>>,
+    o_dt_reg: DFF<Bits<DT_BITS>>,
+    r_flags_wide: DFF<Bit>,
+    r_flags_full: DFF<Bit>,
+    o_flags_wide: DFF<Bit>,
+    o_flags_full: DFF<Bit>,
+    r_sof_reg: DFF<Bit>,
+    // The waiting pair.
+    pend: DFF<Bit>,
+    pend_bank: DFF<Bit>,
+    pend_n: DFF<Bits<COUNT_BITS>>,
+    pend_m: DFF<Bits<COUNT_BITS>>,
+    pend_dt_sum: DFF<Bits<{ DT_BITS + 1 }>>,
+    pend_wide: DFF<Bit>,
+    pend_full: DFF<Bit>,
+    pend_sof: DFF<Bit>,
+    // Engine.
+    eng: DFF<Bits<2>>,
+    ebank: DFF<Bit>,
+    en: DFF<Bits<COUNT_BITS>>,
+    em: DFF<Bits<COUNT_BITS>>,
+    sc: DFF<Bits<{ DIAG_BITS + 1 }>>,
+    sweep_end: DFF<Bits<{ DIAG_BITS + 1 }>>,
+    below2_reg: DFF<Bits<DIST_BITS>>,
+    f1_reg: DFF<Bits<GAIN_BITS>>,
+    f3_reg: DFF<Bits<GAIN_BITS>>,
+    e_wide: DFF<Bit>,
+    e_full: DFF<Bit>,
+    e_sof: DFF<Bit>,
+    ld_valid_d: DFF<Bit>,
+    ld_index_d: DFF<Bits<INDEX_BITS>>,
+    c_valid_d: DFF<Bit>,
+    c_j_d: DFF<Bits<INDEX_BITS>>,
+    // Output pipeline: RAM read, then the output registers.
+    q_valid: DFF<Bit>,
+    q_last: DFF<Bit>,
+    q_i: DFF<Bits<INDEX_BITS>>,
+    q_j: DFF<Bits<INDEX_BITS>>,
+    q_count: DFF<Bits<COUNT_BITS>>,
+    out_valid: DFF<Bit>,
+    out_last: DFF<Bit>,
+    out_ref: DFF<Bits<INDEX_BITS>>,
+    out_other: DFF<Bits<INDEX_BITS>>,
+    out_x_ref: DFF<Bits<POS_BITS>>,
+    out_disp: DFF<Bits<POS_BITS>>,
+    out_count: DFF<Bits<COUNT_BITS>>,
+    out_n: DFF<Bits<COUNT_BITS>>,
+    out_m: DFF<Bits<COUNT_BITS>>,
+    out_wide: DFF<Bit>,
+    out_full: DFF<Bit>,
+    out_sof: DFF<Bit>,
+    // Combinational.
+    r_take: Signal<Local, Bit>,
+    o_take: Signal<Local, Bit>,
+    r_addr: Signal<Local, Bits<DIAG_BITS>>,
+    o_addr: Signal<Local, Bits<DIAG_BITS>>,
+    r_ends: Signal<Local, Bits<LEVEL_BITS>>,
+    o_ends: Signal<Local, Bits<LEVEL_BITS>>,
+    handoff: Signal<Local, Bit>,
+    take: Signal<Local, Bit>,
+    dt_sum: Signal<Local, Bits<{ DT_BITS + 1 }>>,
+    below_sum: Signal<Local, Bits<{ DT_BITS + 1 }>>,
+    sc_idx: Signal<Local, Bits<INDEX_BITS>>,
+    rd_bank_base: Signal<Local, Bits<DIAG_BITS>>,
+    r_rd: Signal<Local, Bits<DIAG_BITS>>,
+    o_rd: Signal<Local, Bits<DIAG_BITS>>,
+    // Constants.
+    relative: Constant<Bit>,
+    one_sided: Constant<Bit>,
+    level_offset: Constant<Bits<LEVEL_BITS>>,
+    bank_size: Constant<Bits<DIAG_BITS>>,
+    n_max: Constant<Bits<COUNT_BITS>>,
+    below_round: Constant<Bits<{ DT_BITS + 1 }>>,
+    eng_idle: Constant<Bits<2>>,
+    eng_sweep: Constant<Bits<2>>,
+    eng_trace: Constant<Bits<2>>,
+    sweep_tail: Constant<Bits<{ DIAG_BITS + 1 }>>,
+    amp_msb: Constant<Bits<8>>,
+    dt_frac: Constant<Bits<8>>,
+}
+
+impl<const N: usize> DeclivityMatcher<N> {
+    /// A matcher of `N` cells with the gain rule `rule`.
+    pub fn new(rule: GainRule) -> Self {
+        DeclivityMatcher {
+            clock: Default::default(),
+            r_valid: Default::default(),
+            r_last: Default::default(),
+            r_pos: Default::default(),
+            r_amp: Default::default(),
+            r_left0: Default::default(),
+            r_left1: Default::default(),
+            r_left2: Default::default(),
+            r_right0: Default::default(),
+            r_right1: Default::default(),
+            r_right2: Default::default(),
+            r_dt: Default::default(),
+            r_wide: Default::default(),
+            r_full: Default::default(),
+            r_sof: Default::default(),
+            r_ready: Default::default(),
+            o_valid: Default::default(),
+            o_last: Default::default(),
+            o_pos: Default::default(),
+            o_amp: Default::default(),
+            o_left0: Default::default(),
+            o_left1: Default::default(),
+            o_left2: Default::default(),
+            o_right0: Default::default(),
+            o_right1: Default::default(),
+            o_right2: Default::default(),
+            o_dt: Default::default(),
+            o_wide: Default::default(),
+            o_full: Default::default(),
+            o_ready: Default::default(),
+            dispmax: Default::default(),
+            m_valid: Default::default(),
+            m_last: Default::default(),
+            m_ref: Default::default(),
+            m_other: Default::default(),
+            m_x_ref: Default::default(),
+            m_disp: Default::default(),
+            m_count: Default::default(),
+            m_n: Default::default(),
+            m_m: Default::default(),
+            m_wide: Default::default(),
+            m_full: Default::default(),
+            m_sof: Default::default(),
+            array: Default::default(),
+            traceback: Default::default(),
+            r_pos_mem: Default::default(),
+            r_lev0_mem: Default::default(),
+            r_lev1_mem: Default::default(),
+            r_lev2_mem: Default::default(),
+            r_lev3_mem: Default::default(),
+            r_lev4_mem: Default::default(),
+            r_lev5_mem: Default::default(),
+            r_rise_mem: Default::default(),
+            o_pos_mem: Default::default(),
+            o_lev0_mem: Default::default(),
+            o_lev1_mem: Default::default(),
+            o_lev2_mem: Default::default(),
+            o_lev3_mem: Default::default(),
+            o_lev4_mem: Default::default(),
+            o_lev5_mem: Default::default(),
+            o_rise_mem: Default::default(),
+            lbank: Default::default(),
+            r_count: Default::default(),
+            o_count: Default::default(),
+            r_done: Default::default(),
+            o_done: Default::default(),
+            r_dt_reg: Default::default(),
+            o_dt_reg: Default::default(),
+            r_flags_wide: Default::default(),
+            r_flags_full: Default::default(),
+            o_flags_wide: Default::default(),
+            o_flags_full: Default::default(),
+            r_sof_reg: Default::default(),
+            pend: Default::default(),
+            pend_bank: Default::default(),
+            pend_n: Default::default(),
+            pend_m: Default::default(),
+            pend_dt_sum: Default::default(),
+            pend_wide: Default::default(),
+            pend_full: Default::default(),
+            pend_sof: Default::default(),
+            eng: Default::default(),
+            ebank: Default::default(),
+            en: Default::default(),
+            em: Default::default(),
+            sc: Default::default(),
+            sweep_end: Default::default(),
+            below2_reg: Default::default(),
+            f1_reg: Default::default(),
+            f3_reg: Default::default(),
+            e_wide: Default::default(),
+            e_full: Default::default(),
+            e_sof: Default::default(),
+            ld_valid_d: Default::default(),
+            ld_index_d: Default::default(),
+            c_valid_d: Default::default(),
+            c_j_d: Default::default(),
+            q_valid: Default::default(),
+            q_last: Default::default(),
+            q_i: Default::default(),
+            q_j: Default::default(),
+            q_count: Default::default(),
+            out_valid: Default::default(),
+            out_last: Default::default(),
+            out_ref: Default::default(),
+            out_other: Default::default(),
+            out_x_ref: Default::default(),
+            out_disp: Default::default(),
+            out_count: Default::default(),
+            out_n: Default::default(),
+            out_m: Default::default(),
+            out_wide: Default::default(),
+            out_full: Default::default(),
+            out_sof: Default::default(),
+            r_take: Default::default(),
+            o_take: Default::default(),
+            r_addr: Default::default(),
+            o_addr: Default::default(),
+            r_ends: Default::default(),
+            o_ends: Default::default(),
+            handoff: Default::default(),
+            take: Default::default(),
+            dt_sum: Default::default(),
+            below_sum: Default::default(),
+            sc_idx: Default::default(),
+            rd_bank_base: Default::default(),
+            r_rd: Default::default(),
+            o_rd: Default::default(),
+            relative: Constant::new(rule.relative()),
+            one_sided: Constant::new(rule.one_sided()),
+            level_offset: Constant::new(((LEVEL_OFFSET) as u64).into()),
+            bank_size: Constant::new(((N_MAX as u64) as u64).into()),
+            n_max: Constant::new(((N as u64) as u64).into()),
+            below_round: Constant::new((((1u64 << DT_FRAC_BITS) - 1) as u64).into()),
+            eng_idle: Constant::new(((ENG_IDLE) as u64).into()),
+            eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
+            eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
+            sweep_tail: Constant::new((((CELL_DEPTH - 1) as u64) as u64).into()),
+            amp_msb: Constant::new((((AMP_BITS - 1) as u64) as u64).into()),
+            dt_frac: Constant::new(((DT_FRAC_BITS as u64) as u64).into()),
+        }
+    }
+}
+
+impl<const N: usize> Default for DeclivityMatcher<N> {
+    fn default() -> Self {
+        Self::new(GainRule::default())
+    }
+}
+
+impl<const N: usize> Logic for DeclivityMatcher<N> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.array.clock.next = self.clock.val();
+        self.traceback.clock.next = self.clock.val();
+        self.r_pos_mem.read_clock.next = self.clock.val();
+        self.r_pos_mem.write_clock.next = self.clock.val();
+        self.r_lev0_mem.read_clock.next = self.clock.val();
+        self.r_lev0_mem.write_clock.next = self.clock.val();
+        self.r_lev1_mem.read_clock.next = self.clock.val();
+        self.r_lev1_mem.write_clock.next = self.clock.val();
+        self.r_lev2_mem.read_clock.next = self.clock.val();
+        self.r_lev2_mem.write_clock.next = self.clock.val();
+        self.r_lev3_mem.read_clock.next = self.clock.val();
+        self.r_lev3_mem.write_clock.next = self.clock.val();
+        self.r_lev4_mem.read_clock.next = self.clock.val();
+        self.r_lev4_mem.write_clock.next = self.clock.val();
+        self.r_lev5_mem.read_clock.next = self.clock.val();
+        self.r_lev5_mem.write_clock.next = self.clock.val();
+        self.r_rise_mem.read_clock.next = self.clock.val();
+        self.r_rise_mem.write_clock.next = self.clock.val();
+        self.o_pos_mem.read_clock.next = self.clock.val();
+        self.o_pos_mem.write_clock.next = self.clock.val();
+        self.o_lev0_mem.read_clock.next = self.clock.val();
+        self.o_lev0_mem.write_clock.next = self.clock.val();
+        self.o_lev1_mem.read_clock.next = self.clock.val();
+        self.o_lev1_mem.write_clock.next = self.clock.val();
+        self.o_lev2_mem.read_clock.next = self.clock.val();
+        self.o_lev2_mem.write_clock.next = self.clock.val();
+        self.o_lev3_mem.read_clock.next = self.clock.val();
+        self.o_lev3_mem.write_clock.next = self.clock.val();
+        self.o_lev4_mem.read_clock.next = self.clock.val();
+        self.o_lev4_mem.write_clock.next = self.clock.val();
+        self.o_lev5_mem.read_clock.next = self.clock.val();
+        self.o_lev5_mem.write_clock.next = self.clock.val();
+        self.o_rise_mem.read_clock.next = self.clock.val();
+        self.o_rise_mem.write_clock.next = self.clock.val();
+        dff_setup!(
+            self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
+            o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
+            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, f1_reg, f3_reg, e_wide, e_full,
+            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_j_d, q_valid, q_last, q_i, q_j, q_count, out_valid,
+            out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
+            out_sof
+        );
+
+        // ---- Loader: a side takes records until its marker, while no
+        // complete pair waits.
+        self.r_ready.next = !self.r_done.q.val() & !self.pend.q.val();
+        self.o_ready.next = !self.o_done.q.val() & !self.pend.q.val();
+        self.r_take.next = self.r_valid.val() & !self.r_last.val() & !self.r_done.q.val() & !self.pend.q.val();
+        self.o_take.next = self.o_valid.val() & !self.o_last.val() & !self.o_done.q.val() & !self.pend.q.val();
+        self.r_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.r_count.q.val());
+        if self.lbank.q.val() {
+            self.r_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.r_count.q.val()) + self.bank_size.val();
+        }
+        self.o_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.o_count.q.val());
+        if self.lbank.q.val() {
+            self.o_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.o_count.q.val()) + self.bank_size.val();
+        }
+        // Levels 2·I + 512 - e, e the end-level sum in the relative rule.
+        self.r_ends.next = 0.into();
+        self.o_ends.next = 0.into();
+        if self.relative.val() {
+            self.r_ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left0.val())
+                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right0.val());
+            self.o_ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left0.val())
+                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right0.val());
+        }
+        self.r_pos_mem.write_address.next = self.r_addr.val();
+        self.r_lev0_mem.write_address.next = self.r_addr.val();
+        self.r_lev1_mem.write_address.next = self.r_addr.val();
+        self.r_lev2_mem.write_address.next = self.r_addr.val();
+        self.r_lev3_mem.write_address.next = self.r_addr.val();
+        self.r_lev4_mem.write_address.next = self.r_addr.val();
+        self.r_lev5_mem.write_address.next = self.r_addr.val();
+        self.r_rise_mem.write_address.next = self.r_addr.val();
+        self.o_pos_mem.write_address.next = self.o_addr.val();
+        self.o_lev0_mem.write_address.next = self.o_addr.val();
+        self.o_lev1_mem.write_address.next = self.o_addr.val();
+        self.o_lev2_mem.write_address.next = self.o_addr.val();
+        self.o_lev3_mem.write_address.next = self.o_addr.val();
+        self.o_lev4_mem.write_address.next = self.o_addr.val();
+        self.o_lev5_mem.write_address.next = self.o_addr.val();
+        self.o_rise_mem.write_address.next = self.o_addr.val();
+        self.r_pos_mem.write_data.next = self.r_pos.val();
+        self.r_lev0_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left0.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left0.val())
+            + self.level_offset.val()
+            - self.r_ends.val();
+        self.r_lev1_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left1.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left1.val())
+            + self.level_offset.val()
+            - self.r_ends.val();
+        self.r_lev2_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left2.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left2.val())
+            + self.level_offset.val()
+            - self.r_ends.val();
+        self.r_lev3_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right0.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right0.val())
+            + self.level_offset.val()
+            - self.r_ends.val();
+        self.r_lev4_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right1.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right1.val())
+            + self.level_offset.val()
+            - self.r_ends.val();
+        self.r_lev5_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right2.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right2.val())
+            + self.level_offset.val()
+            - self.r_ends.val();
+        self.r_rise_mem.write_data.next = !self.r_amp.val().get_bit(self.amp_msb.val().index());
+        self.o_pos_mem.write_data.next = self.o_pos.val();
+        self.o_lev0_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left0.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left0.val())
+            + self.level_offset.val()
+            - self.o_ends.val();
+        self.o_lev1_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left1.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left1.val())
+            + self.level_offset.val()
+            - self.o_ends.val();
+        self.o_lev2_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left2.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left2.val())
+            + self.level_offset.val()
+            - self.o_ends.val();
+        self.o_lev3_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right0.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right0.val())
+            + self.level_offset.val()
+            - self.o_ends.val();
+        self.o_lev4_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right1.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right1.val())
+            + self.level_offset.val()
+            - self.o_ends.val();
+        self.o_lev5_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right2.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right2.val())
+            + self.level_offset.val()
+            - self.o_ends.val();
+        self.o_rise_mem.write_data.next = !self.o_amp.val().get_bit(self.amp_msb.val().index());
+        // Records beyond N_MAX are dropped (the line is then full).
+        self.r_pos_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_lev0_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_lev1_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_lev2_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_lev3_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_lev4_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_lev5_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_rise_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.o_pos_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_lev0_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_lev1_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_lev2_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_lev3_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_lev4_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_lev5_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_rise_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        if self.r_take.val() {
+            if self.r_count.q.val() < self.n_max.val() {
+                self.r_count.d.next = self.r_count.q.val() + 1;
+            } else {
+                self.r_flags_full.d.next = true;
+            }
+        }
+        if self.o_take.val() {
+            if self.o_count.q.val() < self.n_max.val() {
+                self.o_count.d.next = self.o_count.q.val() + 1;
+            } else {
+                self.o_flags_full.d.next = true;
+            }
+        }
+        if self.r_valid.val() & self.r_last.val() & !self.r_done.q.val() & !self.pend.q.val() {
+            self.r_done.d.next = true;
+            self.r_dt_reg.d.next = self.r_dt.val();
+            self.r_flags_wide.d.next = self.r_wide.val();
+            self.r_flags_full.d.next = self.r_flags_full.q.val() | self.r_full.val();
+            self.r_sof_reg.d.next = self.r_sof.val();
+        }
+        if self.o_valid.val() & self.o_last.val() & !self.o_done.q.val() & !self.pend.q.val() {
+            self.o_done.d.next = true;
+            self.o_dt_reg.d.next = self.o_dt.val();
+            self.o_flags_wide.d.next = self.o_wide.val();
+            self.o_flags_full.d.next = self.o_flags_full.q.val() | self.o_full.val();
+        }
+        // Both markers in and the slot free: the pair waits for the engine.
+        self.handoff.next = self.r_done.q.val() & self.o_done.q.val() & !self.pend.q.val();
+        self.dt_sum.next = bit_cast::<{ DT_BITS + 1 }, DT_BITS>(self.r_dt_reg.q.val())
+            + bit_cast::<{ DT_BITS + 1 }, DT_BITS>(self.o_dt_reg.q.val());
+        if self.handoff.val() {
+            self.pend.d.next = true;
+            self.pend_bank.d.next = self.lbank.q.val();
+            self.pend_n.d.next = self.r_count.q.val();
+            self.pend_m.d.next = self.o_count.q.val();
+            self.pend_dt_sum.d.next = self.dt_sum.val();
+            self.pend_wide.d.next = self.r_flags_wide.q.val() | self.o_flags_wide.q.val();
+            self.pend_full.d.next = self.r_flags_full.q.val() | self.o_flags_full.q.val();
+            self.pend_sof.d.next = self.r_sof_reg.q.val();
+            self.lbank.d.next = !self.lbank.q.val();
+            self.r_done.d.next = false;
+            self.o_done.d.next = false;
+            self.r_count.d.next = 0.into();
+            self.o_count.d.next = 0.into();
+            self.r_flags_full.d.next = false;
+            self.o_flags_full.d.next = false;
+        }
+
+        // ---- Engine.
+        self.take.next = (self.eng.q.val() == self.eng_idle.val()) & self.pend.q.val();
+        // ⌈2·gmax⌉ = ⌈(d_t,ref + d_t,other) / 2^DT_FRAC_BITS⌉.
+        self.below_sum.next = self.pend_dt_sum.q.val() + self.below_round.val();
+        if self.take.val() {
+            self.pend.d.next = false;
+            self.eng.d.next = self.eng_sweep.val();
+            self.ebank.d.next = self.pend_bank.q.val();
+            self.en.d.next = self.pend_n.q.val();
+            self.em.d.next = self.pend_m.q.val();
+            self.sc.d.next = 0.into();
+            self.sweep_end.d.next = bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.pend_n.q.val())
+                + bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.pend_m.q.val())
+                + self.sweep_tail.val();
+            self.below2_reg.d.next = self.below_sum.val().get_bits::<DIST_BITS>(self.dt_frac.val().index());
+            self.f1_reg.d.next = bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val());
+            self.f3_reg.d.next = bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val())
+                + bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val())
+                + bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val());
+            self.e_wide.d.next = self.pend_wide.q.val();
+            self.e_full.d.next = self.pend_full.q.val();
+            self.e_sof.d.next = self.pend_sof.q.val();
+        }
+        // Sweep: clock sc reads reference sc and column sc; the next clock
+        // broadcasts the reference and feeds the column to cell 0.
+        self.sc_idx.next = bit_cast::<INDEX_BITS, { DIAG_BITS + 1 }>(self.sc.q.val());
+        self.rd_bank_base.next = 0.into();
+        if self.ebank.q.val() {
+            self.rd_bank_base.next = self.bank_size.val();
+        }
+        self.r_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.sc_idx.val()) + self.rd_bank_base.val();
+        self.o_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.sc_idx.val()) + self.rd_bank_base.val();
+        self.ld_valid_d.d.next = false;
+        self.c_valid_d.d.next = false;
+        self.ld_index_d.d.next = self.sc_idx.val();
+        self.c_j_d.d.next = self.sc_idx.val();
+        self.traceback.start.next = false;
+        if self.eng.q.val() == self.eng_sweep.val() {
+            self.sc.d.next = self.sc.q.val() + 1;
+            self.ld_valid_d.d.next = self.sc.q.val() < bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.en.q.val());
+            self.c_valid_d.d.next = self.sc.q.val() < bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.em.q.val());
+            if self.sc.q.val() == self.sweep_end.q.val() {
+                self.traceback.start.next = true;
+                self.eng.d.next = self.eng_trace.val();
+            }
+        }
+        if self.eng.q.val() == self.eng_trace.val() {
+            if self.traceback.out_last.val() {
+                self.eng.d.next = self.eng_idle.val();
+            }
+            // The traceback's pairs read their positions.
+            self.r_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.traceback.out_i.val()) + self.rd_bank_base.val();
+            self.o_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.traceback.out_j.val()) + self.rd_bank_base.val();
+        }
+        self.r_pos_mem.read_address.next = self.r_rd.val();
+        self.r_lev0_mem.read_address.next = self.r_rd.val();
+        self.r_lev1_mem.read_address.next = self.r_rd.val();
+        self.r_lev2_mem.read_address.next = self.r_rd.val();
+        self.r_lev3_mem.read_address.next = self.r_rd.val();
+        self.r_lev4_mem.read_address.next = self.r_rd.val();
+        self.r_lev5_mem.read_address.next = self.r_rd.val();
+        self.r_rise_mem.read_address.next = self.r_rd.val();
+        self.o_pos_mem.read_address.next = self.o_rd.val();
+        self.o_lev0_mem.read_address.next = self.o_rd.val();
+        self.o_lev1_mem.read_address.next = self.o_rd.val();
+        self.o_lev2_mem.read_address.next = self.o_rd.val();
+        self.o_lev3_mem.read_address.next = self.o_rd.val();
+        self.o_lev4_mem.read_address.next = self.o_rd.val();
+        self.o_lev5_mem.read_address.next = self.o_rd.val();
+        self.o_rise_mem.read_address.next = self.o_rd.val();
+
+        // ---- The array.
+        self.array.ld_valid.next = self.ld_valid_d.q.val();
+        self.array.ld_index.next = self.ld_index_d.q.val();
+        self.array.ld_pos.next = self.r_pos_mem.read_data.val();
+        self.array.ld_lev0.next = self.r_lev0_mem.read_data.val();
+        self.array.ld_lev1.next = self.r_lev1_mem.read_data.val();
+        self.array.ld_lev2.next = self.r_lev2_mem.read_data.val();
+        self.array.ld_lev3.next = self.r_lev3_mem.read_data.val();
+        self.array.ld_lev4.next = self.r_lev4_mem.read_data.val();
+        self.array.ld_lev5.next = self.r_lev5_mem.read_data.val();
+        self.array.ld_rising.next = self.r_rise_mem.read_data.val();
+        self.array.c_valid.next = self.c_valid_d.q.val();
+        self.array.c_first.next = !self.c_j_d.q.val().any();
+        self.array.c_j.next = self.c_j_d.q.val();
+        self.array.c_pos.next = self.o_pos_mem.read_data.val();
+        self.array.c_lev0.next = self.o_lev0_mem.read_data.val();
+        self.array.c_lev1.next = self.o_lev1_mem.read_data.val();
+        self.array.c_lev2.next = self.o_lev2_mem.read_data.val();
+        self.array.c_lev3.next = self.o_lev3_mem.read_data.val();
+        self.array.c_lev4.next = self.o_lev4_mem.read_data.val();
+        self.array.c_lev5.next = self.o_lev5_mem.read_data.val();
+        self.array.c_rising.next = self.o_rise_mem.read_data.val();
+        self.array.dispmax.next = self.dispmax.val();
+        self.array.below2.next = self.below2_reg.q.val();
+        self.array.f1.next = self.f1_reg.q.val();
+        self.array.f3.next = self.f3_reg.q.val();
+        self.array.same_polarity.next = self.relative.val();
+        self.array.one_sided.next = self.one_sided.val();
+        self.array.tb_diag.next = self.traceback.tb_diag.val();
+        self.array.tb_row.next = self.traceback.tb_row.val();
+
+        // ---- Traceback.
+        self.traceback.n.next = self.en.q.val();
+        self.traceback.m.next = self.em.q.val();
+        self.traceback.tb_choice.next = self.array.tb_choice.val();
+
+        // ---- Output: positions read, then X_i - X_j registered.
+        self.q_valid.d.next = self.traceback.out_valid.val();
+        self.q_last.d.next = self.traceback.out_last.val();
+        self.q_i.d.next = self.traceback.out_i.val();
+        self.q_j.d.next = self.traceback.out_j.val();
+        self.q_count.d.next = self.traceback.out_count.val();
+        self.out_valid.d.next = self.q_valid.q.val() | self.q_last.q.val();
+        self.out_last.d.next = self.q_last.q.val();
+        if self.q_valid.q.val() {
+            self.out_ref.d.next = self.q_i.q.val();
+            self.out_other.d.next = self.q_j.q.val();
+            self.out_x_ref.d.next = self.r_pos_mem.read_data.val();
+            self.out_disp.d.next = self.r_pos_mem.read_data.val() - self.o_pos_mem.read_data.val();
+        }
+        if self.q_last.q.val() {
+            self.out_count.d.next = self.q_count.q.val();
+            self.out_n.d.next = self.en.q.val();
+            self.out_m.d.next = self.em.q.val();
+            self.out_wide.d.next = self.e_wide.q.val();
+            self.out_full.d.next = self.e_full.q.val();
+            self.out_sof.d.next = self.e_sof.q.val();
+        }
+        self.m_valid.next = self.out_valid.q.val();
+        self.m_last.next = self.out_last.q.val();
+        self.m_ref.next = self.out_ref.q.val();
+        self.m_other.next = self.out_other.q.val();
+        self.m_x_ref.next = self.out_x_ref.q.val();
+        self.m_disp.next = self.out_disp.q.val();
+        self.m_count.next = self.out_count.q.val();
+        self.m_n.next = self.out_n.q.val();
+        self.m_m.next = self.out_m.q.val();
+        self.m_wide.next = self.out_wide.q.val();
+        self.m_full.next = self.out_full.q.val();
+        self.m_sof.next = self.out_sof.q.val();
+    }
+}
