@@ -26,8 +26,9 @@
 //!   the declivity (position `X_i`, levels left 0–2 then right 0–2,
 //!   polarity).
 //! - `c_valid`, `c_first` (column 0 of a line), `c_j`, `c_pos`, `c_lev0..5`,
-//!   `c_rising`: the column stream from the previous cell, and the same
-//!   fields registered on `o_*` for the next one.
+//!   `c_rising`: the column in this cell's slot of the array's column
+//!   pipeline (registers of the [`crate::systolic_matcher::SystolicMatcher`],
+//!   which moves the column to the next cell's slot on the next clock).
 //! - `up_p`: the previous cell's `P` (0 for the first cell); out `p`.
 //! - Per line: `dispmax`, `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
@@ -35,11 +36,13 @@
 //! - Traceback: `tb_diag` (anti-diagonal `i + j`) and `tb_row`; the cell
 //!   reads its choice of column `tb_diag - index` and shows it on
 //!   `tb_choice` one clock later when `tb_row` is its index (zero, i.e.
-//!   `start`, otherwise, so the array's outputs can be OR-ed).
+//!   `start`, otherwise, so the array's outputs can be OR-ed), and its `P`
+//!   on `tb_gain` (after a sweep, `P(i, M)`: for `i = N - 1` the optimal
+//!   path's gain).
 //!
 //! ## Timing
-//! A column moves one cell per clock. The column in the cell's `c_*`
-//! registers at clock `t` has its `P` on `p` and its choice written at the
+//! A column moves one cell per clock. The column in the cell's slot at
+//! clock `t` has its `P` on `p` and its choice written at the
 //! end of clock `t +` [`CELL_DEPTH`] `- 1`: stage A (search area,
 //! differences), B (distances), C (tests of eq. 7), D (gain), E
 //! (`G = g + P(i-1, j-1)`, start or node), F (up, left). Stage E reads
@@ -51,8 +54,7 @@
 use crate::params::*;
 use rust_hdl::prelude::*;
 
-/// Clocks from a column entering a cell's `c_*` registers to its `P`
-/// leaving on `p` (stages A–F).
+/// Clocks from a column in a cell's slot to its `P` on `p` (stages A–F).
 pub const CELL_DEPTH: usize = 6;
 
 /// The 2-bit choices, as `golden::dp::Choice` numbers them.
@@ -78,7 +80,7 @@ pub struct GainCell {
     pub ld_lev4: Signal<In, Bits<LEVEL_BITS>>,
     pub ld_lev5: Signal<In, Bits<LEVEL_BITS>>,
     pub ld_rising: Signal<In, Bit>,
-    // Column stream in.
+    // The column in this cell's slot.
     pub c_valid: Signal<In, Bit>,
     pub c_first: Signal<In, Bit>,
     pub c_j: Signal<In, Bits<INDEX_BITS>>,
@@ -90,18 +92,6 @@ pub struct GainCell {
     pub c_lev4: Signal<In, Bits<LEVEL_BITS>>,
     pub c_lev5: Signal<In, Bits<LEVEL_BITS>>,
     pub c_rising: Signal<In, Bit>,
-    // Column stream out (registered).
-    pub o_valid: Signal<Out, Bit>,
-    pub o_first: Signal<Out, Bit>,
-    pub o_j: Signal<Out, Bits<INDEX_BITS>>,
-    pub o_pos: Signal<Out, Bits<POS_BITS>>,
-    pub o_lev0: Signal<Out, Bits<LEVEL_BITS>>,
-    pub o_lev1: Signal<Out, Bits<LEVEL_BITS>>,
-    pub o_lev2: Signal<Out, Bits<LEVEL_BITS>>,
-    pub o_lev3: Signal<Out, Bits<LEVEL_BITS>>,
-    pub o_lev4: Signal<Out, Bits<LEVEL_BITS>>,
-    pub o_lev5: Signal<Out, Bits<LEVEL_BITS>>,
-    pub o_rising: Signal<Out, Bit>,
     // The recurrence.
     pub up_p: Signal<In, Bits<PATH_BITS>>,
     pub p: Signal<Out, Bits<PATH_BITS>>,
@@ -116,6 +106,7 @@ pub struct GainCell {
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
     pub tb_row: Signal<In, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<Out, Bits<2>>,
+    pub tb_gain: Signal<Out, Bits<PATH_BITS>>,
     choices: RAM<Bits<2>, INDEX_BITS>,
     index: Constant<Bits<INDEX_BITS>>,
     index8: Constant<Bits<DIAG_BITS>>,
@@ -136,18 +127,6 @@ pub struct GainCell {
     r_lev4: DFF<Bits<LEVEL_BITS>>,
     r_lev5: DFF<Bits<LEVEL_BITS>>,
     r_rising: DFF<Bit>,
-    // The column registers (also the outputs).
-    c_valid_r: DFF<Bit>,
-    c_first_r: DFF<Bit>,
-    c_j_r: DFF<Bits<INDEX_BITS>>,
-    c_pos_r: DFF<Bits<POS_BITS>>,
-    c_lev0_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev1_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev2_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev3_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev4_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev5_r: DFF<Bits<LEVEL_BITS>>,
-    c_rising_r: DFF<Bit>,
     // Stage A: search area, polarity, level differences.
     a_valid: DFF<Bit>,
     a_first: DFF<Bit>,
@@ -238,17 +217,6 @@ impl GainCell {
             c_lev4: Default::default(),
             c_lev5: Default::default(),
             c_rising: Default::default(),
-            o_valid: Default::default(),
-            o_first: Default::default(),
-            o_j: Default::default(),
-            o_pos: Default::default(),
-            o_lev0: Default::default(),
-            o_lev1: Default::default(),
-            o_lev2: Default::default(),
-            o_lev3: Default::default(),
-            o_lev4: Default::default(),
-            o_lev5: Default::default(),
-            o_rising: Default::default(),
             up_p: Default::default(),
             p: Default::default(),
             dispmax: Default::default(),
@@ -260,6 +228,7 @@ impl GainCell {
             tb_diag: Default::default(),
             tb_row: Default::default(),
             tb_choice: Default::default(),
+            tb_gain: Default::default(),
             choices: Default::default(),
             index: Constant::new((index as u64).into()),
             index8: Constant::new((index as u64).into()),
@@ -279,17 +248,6 @@ impl GainCell {
             r_lev4: Default::default(),
             r_lev5: Default::default(),
             r_rising: Default::default(),
-            c_valid_r: Default::default(),
-            c_first_r: Default::default(),
-            c_j_r: Default::default(),
-            c_pos_r: Default::default(),
-            c_lev0_r: Default::default(),
-            c_lev1_r: Default::default(),
-            c_lev2_r: Default::default(),
-            c_lev3_r: Default::default(),
-            c_lev4_r: Default::default(),
-            c_lev5_r: Default::default(),
-            c_rising_r: Default::default(),
             a_valid: Default::default(),
             a_first: Default::default(),
             a_j: Default::default(),
@@ -360,8 +318,7 @@ impl Logic for GainCell {
         self.choices.read_clock.next = self.clock.val();
         self.choices.write_clock.next = self.clock.val();
         dff_setup!(
-            self, clock, r_pos, r_lev0, r_lev1, r_lev2, r_lev3, r_lev4, r_lev5, r_rising, c_valid_r, c_first_r,
-            c_j_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r, a_valid,
+            self, clock, r_pos, r_lev0, r_lev1, r_lev2, r_lev3, r_lev4, r_lev5, r_rising, a_valid,
             a_first, a_j, a_area, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, b_valid, b_first, b_j, b_ok, b_l2,
             b_r2, c2_valid, c2_first, c2_j, c2_node, c2_both, c2_dist, d_valid, d_first, d_j, d_node, d_g,
             e_valid, e_first, e_j, e_best, e_node, p_reg
@@ -379,63 +336,37 @@ impl Logic for GainCell {
             self.r_rising.d.next = self.ld_rising.val();
         }
 
-        // ---- The column registers: every clock (a bubble moves as one).
-        self.c_valid_r.d.next = self.c_valid.val();
-        if self.c_valid.val() {
-            self.c_first_r.d.next = self.c_first.val();
-            self.c_j_r.d.next = self.c_j.val();
-            self.c_pos_r.d.next = self.c_pos.val();
-            self.c_lev0_r.d.next = self.c_lev0.val();
-            self.c_lev1_r.d.next = self.c_lev1.val();
-            self.c_lev2_r.d.next = self.c_lev2.val();
-            self.c_lev3_r.d.next = self.c_lev3.val();
-            self.c_lev4_r.d.next = self.c_lev4.val();
-            self.c_lev5_r.d.next = self.c_lev5.val();
-            self.c_rising_r.d.next = self.c_rising.val();
-        }
-        self.o_valid.next = self.c_valid_r.q.val();
-        self.o_first.next = self.c_first_r.q.val();
-        self.o_j.next = self.c_j_r.q.val();
-        self.o_pos.next = self.c_pos_r.q.val();
-        self.o_lev0.next = self.c_lev0_r.q.val();
-        self.o_lev1.next = self.c_lev1_r.q.val();
-        self.o_lev2.next = self.c_lev2_r.q.val();
-        self.o_lev3.next = self.c_lev3_r.q.val();
-        self.o_lev4.next = self.c_lev4_r.q.val();
-        self.o_lev5.next = self.c_lev5_r.q.val();
-        self.o_rising.next = self.c_rising_r.q.val();
-
         // ---- A: eq. 6 (left reference: d = X_i - X_j) and |level differences|.
-        self.diff_pos.next = self.r_pos.q.val() - self.c_pos_r.q.val();
-        self.a_valid.d.next = self.c_valid_r.q.val();
-        if self.c_valid_r.q.val() {
-            self.a_first.d.next = self.c_first_r.q.val();
-            self.a_j.d.next = self.c_j_r.q.val();
-            self.a_area.d.next = (self.r_pos.q.val() > self.c_pos_r.q.val()) & (self.diff_pos.val() < self.dispmax.val());
-            self.a_same.d.next = !self.same_polarity.val() | (self.r_rising.q.val() == self.c_rising_r.q.val());
-            self.a_e0.d.next = self.r_lev0.q.val() - self.c_lev0_r.q.val();
-            if self.c_lev0_r.q.val() > self.r_lev0.q.val() {
-                self.a_e0.d.next = self.c_lev0_r.q.val() - self.r_lev0.q.val();
+        self.diff_pos.next = self.r_pos.q.val() - self.c_pos.val();
+        self.a_valid.d.next = self.c_valid.val();
+        if self.c_valid.val() {
+            self.a_first.d.next = self.c_first.val();
+            self.a_j.d.next = self.c_j.val();
+            self.a_area.d.next = (self.r_pos.q.val() > self.c_pos.val()) & (self.diff_pos.val() < self.dispmax.val());
+            self.a_same.d.next = !self.same_polarity.val() | (self.r_rising.q.val() == self.c_rising.val());
+            self.a_e0.d.next = self.r_lev0.q.val() - self.c_lev0.val();
+            if self.c_lev0.val() > self.r_lev0.q.val() {
+                self.a_e0.d.next = self.c_lev0.val() - self.r_lev0.q.val();
             }
-            self.a_e1.d.next = self.r_lev1.q.val() - self.c_lev1_r.q.val();
-            if self.c_lev1_r.q.val() > self.r_lev1.q.val() {
-                self.a_e1.d.next = self.c_lev1_r.q.val() - self.r_lev1.q.val();
+            self.a_e1.d.next = self.r_lev1.q.val() - self.c_lev1.val();
+            if self.c_lev1.val() > self.r_lev1.q.val() {
+                self.a_e1.d.next = self.c_lev1.val() - self.r_lev1.q.val();
             }
-            self.a_e2.d.next = self.r_lev2.q.val() - self.c_lev2_r.q.val();
-            if self.c_lev2_r.q.val() > self.r_lev2.q.val() {
-                self.a_e2.d.next = self.c_lev2_r.q.val() - self.r_lev2.q.val();
+            self.a_e2.d.next = self.r_lev2.q.val() - self.c_lev2.val();
+            if self.c_lev2.val() > self.r_lev2.q.val() {
+                self.a_e2.d.next = self.c_lev2.val() - self.r_lev2.q.val();
             }
-            self.a_e3.d.next = self.r_lev3.q.val() - self.c_lev3_r.q.val();
-            if self.c_lev3_r.q.val() > self.r_lev3.q.val() {
-                self.a_e3.d.next = self.c_lev3_r.q.val() - self.r_lev3.q.val();
+            self.a_e3.d.next = self.r_lev3.q.val() - self.c_lev3.val();
+            if self.c_lev3.val() > self.r_lev3.q.val() {
+                self.a_e3.d.next = self.c_lev3.val() - self.r_lev3.q.val();
             }
-            self.a_e4.d.next = self.r_lev4.q.val() - self.c_lev4_r.q.val();
-            if self.c_lev4_r.q.val() > self.r_lev4.q.val() {
-                self.a_e4.d.next = self.c_lev4_r.q.val() - self.r_lev4.q.val();
+            self.a_e4.d.next = self.r_lev4.q.val() - self.c_lev4.val();
+            if self.c_lev4.val() > self.r_lev4.q.val() {
+                self.a_e4.d.next = self.c_lev4.val() - self.r_lev4.q.val();
             }
-            self.a_e5.d.next = self.r_lev5.q.val() - self.c_lev5_r.q.val();
-            if self.c_lev5_r.q.val() > self.r_lev5.q.val() {
-                self.a_e5.d.next = self.c_lev5_r.q.val() - self.r_lev5.q.val();
+            self.a_e5.d.next = self.r_lev5.q.val() - self.c_lev5.val();
+            if self.c_lev5.val() > self.r_lev5.q.val() {
+                self.a_e5.d.next = self.c_lev5.val() - self.r_lev5.q.val();
             }
         }
 
@@ -549,8 +480,10 @@ impl Logic for GainCell {
         self.read_col.next = self.tb_diag.val() - self.index8.val();
         self.choices.read_address.next = bit_cast::<INDEX_BITS, DIAG_BITS>(self.read_col.val());
         self.tb_choice.next = 0.into();
+        self.tb_gain.next = 0.into();
         if self.tb_row.val() == self.index.val() {
             self.tb_choice.next = self.choices.read_data.val();
+            self.tb_gain.next = self.p_reg.q.val();
         }
     }
 }

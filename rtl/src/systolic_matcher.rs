@@ -8,15 +8,17 @@
 //! ## Ports
 //! - `ld_*`: the reference-declivity broadcast, to every cell (the cell
 //!   whose index is `ld_index` takes it).
-//! - `c_*`: the column stream into cell 0.
+//! - `c_*`: the column stream, into the first slot of the column pipeline
+//!   (one register slot per cell, slot i read by cell i).
 //! - `dispmax`, `below2`, `f1`, `f3`, `same_polarity`, `one_sided`: to every
 //!   cell (see [`GainCell`]).
 //! - `tb_diag`, `tb_row` in; `tb_choice` out: the choice of cell `tb_row`
 //!   in anti-diagonal `tb_diag` read one clock earlier, the OR of the
-//!   cells' outputs (the others show zero).
+//!   cells' outputs (the others show zero); `tb_gain`, cell `tb_row`'s `P`
+//!   the same way.
 //!
 //! ## Timing
-//! Column `j` entering cell 0's registers at clock `t` gives `P(i, j)` at the
+//! Column `j` offered on `c_*` at clock `t - 1` sits in slot 0 at `t` and gives `P(i, j)` at the
 //! end of clock `t + i +` [`CELL_DEPTH`] `- 1`. Cell 0's `P(i-1, ·)` is the
 //! border, 0. Eq. 9 in `N + M - 1` wavefronts plus the cells' depth.
 
@@ -57,8 +59,22 @@ pub struct SystolicMatcher<const N: usize> {
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
     pub tb_row: Signal<In, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<Out, Bits<2>>,
+    pub tb_gain: Signal<Out, Bits<PATH_BITS>>,
     pub cells: [GainCell; N],
+    // The column pipeline: slot i is cell i's column.
+    col_valid: [DFF<Bit>; N],
+    col_first: [DFF<Bit>; N],
+    col_j: [DFF<Bits<INDEX_BITS>>; N],
+    col_pos: [DFF<Bits<POS_BITS>>; N],
+    col_lev0: [DFF<Bits<LEVEL_BITS>>; N],
+    col_lev1: [DFF<Bits<LEVEL_BITS>>; N],
+    col_lev2: [DFF<Bits<LEVEL_BITS>>; N],
+    col_lev3: [DFF<Bits<LEVEL_BITS>>; N],
+    col_lev4: [DFF<Bits<LEVEL_BITS>>; N],
+    col_lev5: [DFF<Bits<LEVEL_BITS>>; N],
+    col_rising: [DFF<Bit>; N],
     choice_or: Signal<Local, Bits<2>>,
+    gain_or: Signal<Local, Bits<PATH_BITS>>,
 }
 
 impl<const N: usize> Default for SystolicMatcher<N> {
@@ -96,8 +112,21 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             tb_diag: Default::default(),
             tb_row: Default::default(),
             tb_choice: Default::default(),
+            tb_gain: Default::default(),
             cells: core::array::from_fn(GainCell::new),
+            col_valid: core::array::from_fn(|_| Default::default()),
+            col_first: core::array::from_fn(|_| Default::default()),
+            col_j: core::array::from_fn(|_| Default::default()),
+            col_pos: core::array::from_fn(|_| Default::default()),
+            col_lev0: core::array::from_fn(|_| Default::default()),
+            col_lev1: core::array::from_fn(|_| Default::default()),
+            col_lev2: core::array::from_fn(|_| Default::default()),
+            col_lev3: core::array::from_fn(|_| Default::default()),
+            col_lev4: core::array::from_fn(|_| Default::default()),
+            col_lev5: core::array::from_fn(|_| Default::default()),
+            col_rising: core::array::from_fn(|_| Default::default()),
             choice_or: Default::default(),
+            gain_or: Default::default(),
         }
     }
 }
@@ -126,39 +155,86 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].tb_diag.next = self.tb_diag.val();
             self.cells[i].tb_row.next = self.tb_row.val();
         }
-        // Cell 0 takes the stream; its P(i-1, ·) is the border.
+        // The column pipeline: slot 0 takes the stream, slot i the column
+        // of slot i - 1; a bubble moves as one. Cell i reads slot i.
+        for i in 0..N {
+            self.col_valid[i].clock.next = self.clock.val();
+            self.col_first[i].clock.next = self.clock.val();
+            self.col_j[i].clock.next = self.clock.val();
+            self.col_pos[i].clock.next = self.clock.val();
+            self.col_lev0[i].clock.next = self.clock.val();
+            self.col_lev1[i].clock.next = self.clock.val();
+            self.col_lev2[i].clock.next = self.clock.val();
+            self.col_lev3[i].clock.next = self.clock.val();
+            self.col_lev4[i].clock.next = self.clock.val();
+            self.col_lev5[i].clock.next = self.clock.val();
+            self.col_rising[i].clock.next = self.clock.val();
+            self.col_valid[i].d.next = self.col_valid[i].q.val();
+            self.col_first[i].d.next = self.col_first[i].q.val();
+            self.col_j[i].d.next = self.col_j[i].q.val();
+            self.col_pos[i].d.next = self.col_pos[i].q.val();
+            self.col_lev0[i].d.next = self.col_lev0[i].q.val();
+            self.col_lev1[i].d.next = self.col_lev1[i].q.val();
+            self.col_lev2[i].d.next = self.col_lev2[i].q.val();
+            self.col_lev3[i].d.next = self.col_lev3[i].q.val();
+            self.col_lev4[i].d.next = self.col_lev4[i].q.val();
+            self.col_lev5[i].d.next = self.col_lev5[i].q.val();
+            self.col_rising[i].d.next = self.col_rising[i].q.val();
+        }
         for i in 0..1 {
-            self.cells[i].c_valid.next = self.c_valid.val();
-            self.cells[i].c_first.next = self.c_first.val();
-            self.cells[i].c_j.next = self.c_j.val();
-            self.cells[i].c_pos.next = self.c_pos.val();
-            self.cells[i].c_lev0.next = self.c_lev0.val();
-            self.cells[i].c_lev1.next = self.c_lev1.val();
-            self.cells[i].c_lev2.next = self.c_lev2.val();
-            self.cells[i].c_lev3.next = self.c_lev3.val();
-            self.cells[i].c_lev4.next = self.c_lev4.val();
-            self.cells[i].c_lev5.next = self.c_lev5.val();
-            self.cells[i].c_rising.next = self.c_rising.val();
+            self.col_valid[i].d.next = self.c_valid.val();
+            if self.c_valid.val() {
+                self.col_first[i].d.next = self.c_first.val();
+                self.col_j[i].d.next = self.c_j.val();
+                self.col_pos[i].d.next = self.c_pos.val();
+                self.col_lev0[i].d.next = self.c_lev0.val();
+                self.col_lev1[i].d.next = self.c_lev1.val();
+                self.col_lev2[i].d.next = self.c_lev2.val();
+                self.col_lev3[i].d.next = self.c_lev3.val();
+                self.col_lev4[i].d.next = self.c_lev4.val();
+                self.col_lev5[i].d.next = self.c_lev5.val();
+                self.col_rising[i].d.next = self.c_rising.val();
+            }
             self.cells[i].up_p.next = 0.into();
         }
         for i in 1..N {
-            self.cells[i].c_valid.next = self.cells[i - 1].o_valid.val();
-            self.cells[i].c_first.next = self.cells[i - 1].o_first.val();
-            self.cells[i].c_j.next = self.cells[i - 1].o_j.val();
-            self.cells[i].c_pos.next = self.cells[i - 1].o_pos.val();
-            self.cells[i].c_lev0.next = self.cells[i - 1].o_lev0.val();
-            self.cells[i].c_lev1.next = self.cells[i - 1].o_lev1.val();
-            self.cells[i].c_lev2.next = self.cells[i - 1].o_lev2.val();
-            self.cells[i].c_lev3.next = self.cells[i - 1].o_lev3.val();
-            self.cells[i].c_lev4.next = self.cells[i - 1].o_lev4.val();
-            self.cells[i].c_lev5.next = self.cells[i - 1].o_lev5.val();
-            self.cells[i].c_rising.next = self.cells[i - 1].o_rising.val();
+            self.col_valid[i].d.next = self.col_valid[i - 1].q.val();
+            if self.col_valid[i - 1].q.val() {
+                self.col_first[i].d.next = self.col_first[i - 1].q.val();
+                self.col_j[i].d.next = self.col_j[i - 1].q.val();
+                self.col_pos[i].d.next = self.col_pos[i - 1].q.val();
+                self.col_lev0[i].d.next = self.col_lev0[i - 1].q.val();
+                self.col_lev1[i].d.next = self.col_lev1[i - 1].q.val();
+                self.col_lev2[i].d.next = self.col_lev2[i - 1].q.val();
+                self.col_lev3[i].d.next = self.col_lev3[i - 1].q.val();
+                self.col_lev4[i].d.next = self.col_lev4[i - 1].q.val();
+                self.col_lev5[i].d.next = self.col_lev5[i - 1].q.val();
+                self.col_rising[i].d.next = self.col_rising[i - 1].q.val();
+            }
             self.cells[i].up_p.next = self.cells[i - 1].p.val();
+        }
+        for i in 0..N {
+            self.cells[i].c_valid.next = self.col_valid[i].q.val();
+            self.cells[i].c_first.next = self.col_first[i].q.val();
+            self.cells[i].c_j.next = self.col_j[i].q.val();
+            self.cells[i].c_pos.next = self.col_pos[i].q.val();
+            self.cells[i].c_lev0.next = self.col_lev0[i].q.val();
+            self.cells[i].c_lev1.next = self.col_lev1[i].q.val();
+            self.cells[i].c_lev2.next = self.col_lev2[i].q.val();
+            self.cells[i].c_lev3.next = self.col_lev3[i].q.val();
+            self.cells[i].c_lev4.next = self.col_lev4[i].q.val();
+            self.cells[i].c_lev5.next = self.col_lev5[i].q.val();
+            self.cells[i].c_rising.next = self.col_rising[i].q.val();
         }
         self.choice_or.next = 0.into();
         for i in 0..N {
             self.choice_or.next = self.choice_or.val() | self.cells[i].tb_choice.val();
         }
         self.tb_choice.next = self.choice_or.val();
+        self.gain_or.next = 0.into();
+        for i in 0..N {
+            self.gain_or.next = self.gain_or.val() | self.cells[i].tb_gain.val();
+        }
+        self.tb_gain.next = self.gain_or.val();
     }
 }

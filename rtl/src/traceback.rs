@@ -17,7 +17,6 @@
 //! - To the array: `tb_diag`, `tb_row`; from it, `tb_choice`.
 //! - Out: `out_valid`, `out_i`, `out_j` (a matched pair, reference order),
 //!   then `out_last` with `out_count` (pairs of the line) for one clock.
-//!   `busy` is high from `start` to `out_last`.
 //!
 //! ## Timing
 //! After `start` at clock `t`, the walk reads anti-diagonal `n + m - 2`
@@ -71,7 +70,6 @@ pub struct Traceback {
     pub out_j: Signal<Out, Bits<INDEX_BITS>>,
     pub out_last: Signal<Out, Bit>,
     pub out_count: Signal<Out, Bits<COUNT_BITS>>,
-    pub busy: Signal<Out, Bit>,
     stack_i: RAM<Bits<INDEX_BITS>, INDEX_BITS>,
     stack_j: RAM<Bits<INDEX_BITS>, INDEX_BITS>,
     state: DFF<Bits<2>>,
@@ -112,7 +110,6 @@ impl Default for Traceback {
             out_j: Default::default(),
             out_last: Default::default(),
             out_count: Default::default(),
-            busy: Default::default(),
             stack_i: Default::default(),
             stack_j: Default::default(),
             state: Default::default(),
@@ -150,7 +147,6 @@ impl Logic for Traceback {
 
         self.tb_diag.next = self.diag.q.val();
         self.tb_row.next = self.wi.q.val();
-        self.busy.next = self.state.q.val() != self.st_idle.val();
         self.push.next = false;
         self.stop.next = false;
         self.issue.next = false;

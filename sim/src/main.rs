@@ -114,6 +114,12 @@ struct VerilogArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
+    /// Cells of the matcher's systolic array (4, 8, 16, 32, 64 or 128 = N_MAX; --top matcher only).
+    #[arg(long, default_value_t = rtl::params::N_MAX)]
+    cells: usize,
+    /// Gain rule the matcher is generated for (--top matcher only).
+    #[arg(long, value_enum, default_value_t = CliRule::Robust)]
+    rule: CliRule,
     /// Output folder (created if missing).
     #[arg(long, default_value = "declivity-out/verilog")]
     out: PathBuf,
@@ -124,6 +130,12 @@ struct SynthArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
+    /// Cells of the matcher's systolic array (4, 8, 16, 32, 64 or 128 = N_MAX; --top matcher only).
+    #[arg(long, default_value_t = rtl::params::N_MAX)]
+    cells: usize,
+    /// Gain rule the matcher is generated for (--top matcher only).
+    #[arg(long, value_enum, default_value_t = CliRule::Robust)]
+    rule: CliRule,
     /// Target clock for place and route, MHz.
     #[arg(long, default_value_t = 125.0)]
     mhz: f64,
@@ -235,6 +247,35 @@ impl ValueEnum for CliMode {
     fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
         Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.summary()))
     }
+}
+
+/// The matcher's gain rule on the command line.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+enum CliRule {
+    /// Eq. 4-8 as the paper writes them (golden's `paper` mode).
+    Paper,
+    /// Offset-compensated distances, one polarity, one-sided nodes (golden's default `robust`
+    /// mode; its other changes act after the matcher).
+    Robust,
+}
+
+impl CliRule {
+    fn rule(self) -> rtl::declivity_matcher::GainRule {
+        match self {
+            CliRule::Paper => rtl::declivity_matcher::GainRule::Paper,
+            CliRule::Robust => rtl::declivity_matcher::GainRule::Robust,
+        }
+    }
+}
+
+/// The Verilog of a block as the command line asks for it.
+fn block_verilog(top: sim::verilog::Top, cells: usize, rule: CliRule) -> Result<String, SimError> {
+    if top != sim::verilog::Top::Matcher && (cells != rtl::params::N_MAX || rule != CliRule::Robust) {
+        return Err(SimError::Argument("--cells and --rule apply to --top matcher only".into()));
+    }
+    sim::verilog::generate_with(top, cells, rule.rule()).ok_or_else(|| {
+        SimError::Argument(format!("--cells {cells}: the matcher is generated with {:?} cells", sim::verilog::MATCHER_CELLS))
+    })
 }
 
 #[derive(ValueEnum, Debug, Clone, Copy)]
@@ -502,14 +543,14 @@ fn rtl_detect(a: RtlDetectArgs) -> Result<(), SimError> {
 fn verilog_cmd(a: VerilogArgs) -> Result<(), SimError> {
     std::fs::create_dir_all(&a.out).map_err(|source| SimError::Io { path: a.out.clone(), source })?;
     let path = a.out.join(format!("{}.v", a.top.name()));
-    let v = sim::verilog::generate(a.top);
+    let v = block_verilog(a.top, a.cells, a.rule)?;
     std::fs::write(&path, &v).map_err(|source| SimError::Io { path: path.clone(), source })?;
     println!("{} ({} lines, top module `top`)", path.display(), v.lines().count());
     Ok(())
 }
 
 fn synth_cmd(a: SynthArgs) -> Result<(), SimError> {
-    let v = sim::verilog::generate(a.top);
+    let v = block_verilog(a.top, a.cells, a.rule)?;
     if !a.json {
         eprintln!("synthesizing {} for ECP5-85K at {} MHz (a few minutes)...", a.top.name(), a.mhz);
     }

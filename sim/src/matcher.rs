@@ -17,7 +17,7 @@ use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
 use rtl::declivity_matcher::{DeclivityMatcher, GainRule};
-use rtl::params::{DT_FRAC_BITS, N_MAX, POS_FRAC_BITS};
+use rtl::params::{DT_FRAC_BITS, GAIN_FRAC_BITS, N_MAX, POS_FRAC_BITS};
 use rust_hdl::prelude::*;
 use serde::Serialize;
 
@@ -54,6 +54,8 @@ pub struct MatchBeat {
     /// `(X_i - X_j) · 2^POS_FRAC_BITS`.
     pub disp: u32,
     pub count: u32,
+    /// The path's gain `P(N, M)` in units of `2^-GAIN_FRAC_BITS` grey levels.
+    pub gain: u64,
     pub n: u32,
     pub m: u32,
     pub wide: bool,
@@ -104,9 +106,7 @@ impl<const N: usize> MatcherSim<N> {
     /// A matcher of `N` cells for `rule`, with the search bound
     /// `dispmax · 2^POS_FRAC_BITS`.
     pub fn new(rule: GainRule, dispmax: u32) -> Self {
-        let mut uut = Box::new(DeclivityMatcher::<N>::new(rule));
-        uut.connect_all();
-        MatcherSim { uut, cycle: 0, dispmax }
+        MatcherSim { uut: build_matcher::<N>(rule), cycle: 0, dispmax }
     }
 
     /// One clock: apply the two sides' beats, settle, sample; returns whether
@@ -142,12 +142,12 @@ impl<const N: usize> MatcherSim<N> {
         u.o_dt.next = (o.dt as u64).into();
         u.o_wide.next = o.wide;
         u.o_full.next = o.full;
-        assert!(simulate(u, 200), "the matcher's logic did not settle");
+        settle(u, SETTLE_LOW);
         let r_taken = r.valid && u.r_ready.val();
         let o_taken = o.valid && u.o_ready.val();
         let out = u.m_valid.val().then(|| read_beat(u));
         u.clock.next = true.into();
-        assert!(simulate(u, 200), "the matcher's logic did not settle");
+        settle(u, SETTLE_HIGH);
         self.cycle += 1;
         (r_taken, o_taken, out)
     }
@@ -209,6 +209,52 @@ impl<const N: usize> MatcherSim<N> {
     }
 }
 
+/// Passes over the matcher that the inputs (clock low) and a clock edge
+/// always need before the logic is stable.
+const SETTLE_LOW: usize = 4;
+const SETTLE_HIGH: usize = 8;
+
+/// Settles the logic: `passes` evaluations of every block without asking
+/// whether anything changed (rust-hdl's `simulate` asks after each, a walk
+/// over the whole design), then `simulate` until nothing changes. Extra
+/// passes over settled logic change nothing, so the result is the same.
+fn settle<const N: usize>(u: &mut DeclivityMatcher<N>, passes: usize) {
+    for _ in 0..passes {
+        u.update_all();
+    }
+    if std::env::var_os("PASSES").is_some() {
+        let mut k = 0;
+        loop {
+            u.update_all();
+            k += 1;
+            if !u.has_changed() {
+                break;
+            }
+        }
+        eprintln!("passes {passes}+{k}");
+        return;
+    }
+    assert!(simulate(u, 200), "the matcher's logic did not settle");
+}
+
+/// Builds and connects the matcher on a thread of its own: rust-hdl builds
+/// the block by value, and 128 cells of signals do not fit on a default
+/// stack.
+pub fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
+    std::thread::Builder::new()
+        .stack_size(BUILD_STACK)
+        .spawn(move || {
+            let mut uut = Box::new(DeclivityMatcher::<N>::new(rule));
+            uut.connect_all();
+            uut
+        })
+        .and_then(|h| h.join().map_err(|_| std::io::Error::other("building the matcher panicked")))
+        .expect("a thread to build the matcher")
+}
+
+/// Stack of the thread that builds the matcher.
+const BUILD_STACK: usize = 1 << 30;
+
 /// Beat `k` of a line: its records, then its marker.
 fn side_beat(line: &MatchLine, k: usize) -> SideBeat {
     match line.records.get(k) {
@@ -233,6 +279,7 @@ fn read_beat<const N: usize>(u: &DeclivityMatcher<N>) -> MatchBeat {
         x_ref: u.m_x_ref.val().to_u64() as u32,
         disp: u.m_disp.val().to_u64() as u32,
         count: u.m_count.val().to_u64() as u32,
+        gain: u.m_gain.val().to_u64(),
         n: u.m_n.val().to_u64() as u32,
         m: u.m_m.val().to_u64() as u32,
         wide: u.m_wide.val(),
@@ -369,10 +416,17 @@ pub fn agreement(golden: &GoldenMatch, rtl_pairs: &[(usize, usize)]) -> Agreemen
     }
 }
 
-/// Checks one line's beats against golden's path: the pairs, their
-/// positions and disparities, the marker's counts. Returns the first
+/// Checks one line's beats against its inputs and golden: the pairs'
+/// positions and disparities, the marker's counts and path gain (golden's
+/// optimum, exactly). Returns the first
 /// difference found.
-pub fn check_line(reference: &MatchLine, other: &MatchLine, got: &MatchedLine) -> Result<(), String> {
+pub fn check_line(
+    reference: &MatchLine,
+    other: &MatchLine,
+    got: &MatchedLine,
+    dispmax: u32,
+    rule: GainRule,
+) -> Result<(), String> {
     let (n, m) = (reference.records.len(), other.records.len());
     if got.marker.n as usize != n || got.marker.m as usize != m {
         return Err(format!("marker counts {}×{}, sent {n}×{m}", got.marker.n, got.marker.m));
@@ -389,7 +443,123 @@ pub fn check_line(reference: &MatchLine, other: &MatchLine, got: &MatchedLine) -
             return Err(format!("match ({i}, {j}): x_ref {} disp {}, want {} {}", b.x_ref, b.disp, r.pos, r.pos - o.pos));
         }
     }
+    let want = golden_match(reference, other, dispmax, rule).gain;
+    if got.marker.gain as f64 != want * (1u64 << GAIN_FRAC_BITS) as f64 {
+        return Err(format!("path gain {} LSB, golden's optimum {want}", got.marker.gain));
+    }
     Ok(())
+}
+
+/// The line pairs of two images as the matcher takes them: golden's
+/// declivities of each row in hardware-parity mode, quantized
+/// ([`quantize_line`]); the first row carries the start of frame.
+pub fn image_lines(left: &golden::GreyImage, right: &golden::GreyImage) -> Vec<(MatchLine, MatchLine)> {
+    use rayon::prelude::*;
+    let limits = Some(golden::hardware::HardwareLimits::default());
+    (0..left.height())
+        .into_par_iter()
+        .map(|y| {
+            let f = |img: &golden::GreyImage| quantize_line(&golden::line::line_features_with(img.row(y), limits));
+            let (mut l, r) = (f(left), f(right));
+            l.sof = y == 0;
+            (l, r)
+        })
+        .collect()
+}
+
+/// What `declivity rtl match` reports for one pair of images.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MatchReport {
+    pub image: String,
+    /// The gain rule the matcher was generated for.
+    pub rule: &'static str,
+    pub dispmax: f64,
+    pub lines: usize,
+    pub declivities_ref: usize,
+    pub declivities_other: usize,
+    pub matches_rtl: usize,
+    pub matches_golden: usize,
+    pub identical_lines: usize,
+    pub equal_gain_lines: usize,
+    pub mismatch_lines: usize,
+    /// Lines whose beats disagree with their inputs (positions, counts).
+    pub malformed_lines: usize,
+    /// The most clocks the engine spent on one line pair (taking it to its
+    /// marker).
+    pub max_cycles_per_line: u64,
+    /// The line of `max_cycles_per_line`.
+    pub max_cycles_line: usize,
+    pub cycles: u64,
+    pub sim_cycles_per_s: f64,
+}
+
+/// Per line: the rtl result, golden's and their agreement.
+#[derive(Debug, Clone)]
+pub struct LineOutcome {
+    pub rtl: MatchedLine,
+    pub golden: GoldenMatch,
+    pub agreement: Agreement,
+    /// Clocks from the engine taking the pair to its marker.
+    pub engine_cycles: u64,
+}
+
+/// Runs every line pair through the matcher and golden and compares them.
+pub fn match_lines<const N: usize>(
+    sim: &mut MatcherSim<N>,
+    rule: GainRule,
+    name: &str,
+    pairs: &[(MatchLine, MatchLine)],
+    progress: impl FnMut(),
+) -> (MatchReport, Vec<LineOutcome>) {
+    use rayon::prelude::*;
+    let c0 = sim.cycle;
+    let t0 = std::time::Instant::now();
+    let got = sim.run(pairs, false, progress);
+    let secs = t0.elapsed().as_secs_f64();
+    let cycles = sim.cycle - c0;
+    let dispmax = sim.dispmax;
+    let golden: Vec<GoldenMatch> = pairs.par_iter().map(|(r, o)| golden_match(r, o, dispmax, rule)).collect();
+    let mut report = MatchReport {
+        image: name.to_string(),
+        rule: golden_mode(rule).name(),
+        dispmax: dispmax as f64 / (1u32 << POS_FRAC_BITS) as f64,
+        lines: pairs.len(),
+        declivities_ref: pairs.iter().map(|p| p.0.records.len()).sum(),
+        declivities_other: pairs.iter().map(|p| p.1.records.len()).sum(),
+        matches_rtl: got.iter().map(|l| l.matches.len()).sum(),
+        matches_golden: golden.iter().map(|g| g.nodes.len()).sum(),
+        identical_lines: 0,
+        equal_gain_lines: 0,
+        mismatch_lines: 0,
+        malformed_lines: 0,
+        max_cycles_per_line: 0,
+        max_cycles_line: 0,
+        cycles,
+        sim_cycles_per_s: cycles as f64 / secs.max(1e-9),
+    };
+    let mut outcomes = Vec::with_capacity(pairs.len());
+    let mut prev_marker: Option<u64> = None;
+    for (k, ((rtl, golden), (r, o))) in got.into_iter().zip(golden).zip(pairs).enumerate() {
+        let agreement = agreement(&golden, &rtl.pairs());
+        match agreement {
+            Agreement::Identical => report.identical_lines += 1,
+            Agreement::EqualGain => report.equal_gain_lines += 1,
+            Agreement::Mismatch => report.mismatch_lines += 1,
+        }
+        report.malformed_lines += check_line(r, o, &rtl, dispmax, rule).is_err() as usize;
+        // The engine takes a pair two clocks after its second marker, or
+        // the clock after the previous pair's traceback ends (its marker
+        // leaves two clocks later).
+        let take = prev_marker.map_or(rtl.input_done_cycle + 2, |p| (rtl.input_done_cycle + 2).max(p - 1));
+        let engine_cycles = rtl.marker_cycle - take;
+        if engine_cycles > report.max_cycles_per_line {
+            report.max_cycles_per_line = engine_cycles;
+            report.max_cycles_line = k;
+        }
+        prev_marker = Some(rtl.marker_cycle);
+        outcomes.push(LineOutcome { rtl, golden, agreement, engine_cycles });
+    }
+    (report, outcomes)
 }
 
 #[cfg(test)]
@@ -436,8 +606,24 @@ mod tests {
         for ((r, o), g) in pairs.iter().zip(&got) {
             let want = golden_match(r, o, sim.dispmax, GainRule::Robust);
             eprintln!("golden {:?} rtl {:?}", want.nodes, g.pairs());
-            check_line(r, o, g).unwrap();
+            check_line(r, o, g, sim.dispmax, GainRule::Robust).unwrap();
             assert_eq!(agreement(&want, &g.pairs()), Agreement::Identical);
         }
+    }
+}
+
+#[cfg(test)]
+mod real {
+    use super::*;
+
+    #[test]
+    fn tsukuba_speed_probe() {
+        let dir = crate::io::shared_stereo_dir().join("tsukuba");
+        let pair = crate::io::load_pair_dir(&dir).unwrap();
+        let lines = image_lines(&pair.left, &pair.right);
+        let lines = &lines[..];
+        let mut sim = MatcherSim::<{ rtl::params::N_MAX }>::new(GainRule::Robust, (pair.dispmax * 16.0) as u32);
+        let (rep, _) = match_lines(&mut sim, GainRule::Robust, "tsukuba", lines, || {});
+        eprintln!("{}", serde_json::to_string_pretty(&rep).unwrap());
     }
 }

@@ -1,5 +1,6 @@
 //! Verilog of the rtl blocks, as rust-hdl generates it.
 
+use rtl::declivity_matcher::{DeclivityMatcher, GainRule};
 use rust_hdl::prelude::*;
 
 /// A block that `declivity verilog` and `declivity synth` can generate.
@@ -7,6 +8,10 @@ use rust_hdl::prelude::*;
 pub enum Top {
     /// The declivity detector of one camera (`rtl::declivity_detector`).
     Detector,
+    /// The matcher: systolic array of gain cells and traceback
+    /// (`rtl::declivity_matcher`), N_MAX = 128 cells unless --cells says
+    /// otherwise, the default gain rule (robust).
+    Matcher,
 }
 
 impl Top {
@@ -14,17 +19,48 @@ impl Top {
     pub fn name(self) -> &'static str {
         match self {
             Top::Detector => "detector",
+            Top::Matcher => "matcher",
         }
     }
 }
 
-/// The Verilog of `top`; its top module is named `top`.
+/// The array sizes the matcher can be generated with (`--cells`).
+pub const MATCHER_CELLS: [usize; 6] = [4, 8, 16, 32, 64, 128];
+
+/// The Verilog of `top` (the matcher with `N_MAX` cells and the default
+/// gain rule); its top module is named `top`.
 pub fn generate(top: Top) -> String {
+    generate_with(top, rtl::params::N_MAX, GainRule::default()).expect("N_MAX is a supported size")
+}
+
+/// The Verilog of `top`, the matcher with `cells` cells (one of
+/// [`MATCHER_CELLS`]) and the gain rule `rule`; `None` for another size.
+pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
     match top {
         Top::Detector => {
             let mut uut = rtl::declivity_detector::DeclivityDetector::default();
             uut.connect_all();
-            generate_verilog(&uut)
+            Some(generate_verilog(&uut))
         }
+        Top::Matcher => match cells {
+            4 => Some(matcher_verilog::<4>(rule)),
+            8 => Some(matcher_verilog::<8>(rule)),
+            16 => Some(matcher_verilog::<16>(rule)),
+            32 => Some(matcher_verilog::<32>(rule)),
+            64 => Some(matcher_verilog::<64>(rule)),
+            128 => Some(matcher_verilog::<128>(rule)),
+            _ => None,
+        },
     }
+}
+
+/// The matcher's Verilog, built on a thread with room for the block (see
+/// [`crate::matcher::build_matcher`]).
+fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
+    let uut: Box<DeclivityMatcher<N>> = crate::matcher::build_matcher::<N>(rule);
+    std::thread::Builder::new()
+        .stack_size(1 << 30)
+        .spawn(move || generate_verilog(&*uut))
+        .and_then(|h| h.join().map_err(|_| std::io::Error::other("generating the matcher's Verilog panicked")))
+        .expect("a thread to generate the Verilog")
 }
