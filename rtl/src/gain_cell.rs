@@ -29,7 +29,10 @@
 //!   `c_rising`: the column in this cell's slot of the array's column
 //!   pipeline (registers of the [`crate::systolic_matcher::SystolicMatcher`],
 //!   which moves the column to the next cell's slot on the next clock).
-//! - `up_p`: the previous cell's `P` (0 for the first cell); out `p`.
+//! - `up_p`: the previous cell's `P` (0 for the first cell); `own_p`: this
+//!   cell's; out `p_next`, loaded into `own_p` when `p_load` is high (the
+//!   `P` registers belong to the array, so that the last cell's leads
+//!   nowhere unused).
 //! - Per line: `dispmax`, `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
 //!   `same_polarity`, `one_sided`.
@@ -42,7 +45,7 @@
 //!
 //! ## Timing
 //! A column moves one cell per clock. The column in the cell's slot at
-//! clock `t` has its `P` on `p` and its choice written at the
+//! clock `t` has its `P` on `p_next` and its choice written at the
 //! end of clock `t +` [`CELL_DEPTH`] `- 1`: stage A (search area,
 //! differences), B (distances), C (tests of eq. 7), D (gain), E
 //! (`G = g + P(i-1, j-1)`, start or node), F (up, left). Stage E reads
@@ -54,7 +57,8 @@
 use crate::params::*;
 use rust_hdl::prelude::*;
 
-/// Clocks from a column in a cell's slot to its `P` on `p` (stages A–F).
+/// Clocks from a column in a cell's slot to its `P` on `p_next` (stages
+/// A–F; in the `P` register one clock later).
 pub const CELL_DEPTH: usize = 6;
 
 /// The 2-bit choices, as `golden::dp::Choice` numbers them.
@@ -92,9 +96,12 @@ pub struct GainCell {
     pub c_lev4: Signal<In, Bits<LEVEL_BITS>>,
     pub c_lev5: Signal<In, Bits<LEVEL_BITS>>,
     pub c_rising: Signal<In, Bit>,
-    // The recurrence.
+    // The recurrence: P of the previous cell and this one (the array's
+    // registers), and the next P of this one.
     pub up_p: Signal<In, Bits<PATH_BITS>>,
-    pub p: Signal<Out, Bits<PATH_BITS>>,
+    pub own_p: Signal<In, Bits<PATH_BITS>>,
+    pub p_next: Signal<Out, Bits<PATH_BITS>>,
+    pub p_load: Signal<Out, Bit>,
     // Per line and per design.
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
     pub below2: Signal<In, Bits<DIST_BITS>>,
@@ -165,8 +172,6 @@ pub struct GainCell {
     e_j: DFF<Bits<INDEX_BITS>>,
     e_best: DFF<Bits<PATH_BITS>>,
     e_node: DFF<Bit>,
-    // Stage F: P(i, j).
-    p_reg: DFF<Bits<PATH_BITS>>,
     // Combinational.
     diff_pos: Signal<Local, Bits<POS_BITS>>,
     l_sum: Signal<Local, Bits<DIST_BITS>>,
@@ -218,7 +223,9 @@ impl GainCell {
             c_lev5: Default::default(),
             c_rising: Default::default(),
             up_p: Default::default(),
-            p: Default::default(),
+            own_p: Default::default(),
+            p_next: Default::default(),
+            p_load: Default::default(),
             dispmax: Default::default(),
             below2: Default::default(),
             f1: Default::default(),
@@ -281,7 +288,6 @@ impl GainCell {
             e_j: Default::default(),
             e_best: Default::default(),
             e_node: Default::default(),
-            p_reg: Default::default(),
             diff_pos: Default::default(),
             l_sum: Default::default(),
             r_sum: Default::default(),
@@ -321,7 +327,7 @@ impl Logic for GainCell {
             self, clock, r_pos, r_lev0, r_lev1, r_lev2, r_lev3, r_lev4, r_lev5, r_rising, a_valid,
             a_first, a_j, a_area, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, b_valid, b_first, b_j, b_ok, b_l2,
             b_r2, c2_valid, c2_first, c2_j, c2_node, c2_both, c2_dist, d_valid, d_first, d_j, d_node, d_g,
-            e_valid, e_first, e_j, e_best, e_node, p_reg
+            e_valid, e_first, e_j, e_best, e_node
         );
 
         // ---- The reference declivity, from the broadcast.
@@ -458,7 +464,7 @@ impl Logic for GainCell {
             self.best1.next = self.up_p.val();
             self.choice1.next = self.choice_up.val();
         }
-        self.left.next = self.p_reg.q.val();
+        self.left.next = self.own_p.val();
         if self.e_first.q.val() {
             self.left.next = 0.into();
         }
@@ -468,10 +474,8 @@ impl Logic for GainCell {
             self.best2.next = self.left.val();
             self.choice2.next = self.choice_left.val();
         }
-        if self.e_valid.q.val() {
-            self.p_reg.d.next = self.best2.val();
-        }
-        self.p.next = self.p_reg.q.val();
+        self.p_next.next = self.best2.val();
+        self.p_load.next = self.e_valid.q.val();
         self.choices.write_address.next = self.e_j.q.val();
         self.choices.write_data.next = self.choice2.val();
         self.choices.write_enable.next = self.e_valid.q.val();
@@ -483,7 +487,7 @@ impl Logic for GainCell {
         self.tb_gain.next = 0.into();
         if self.tb_row.val() == self.index.val() {
             self.tb_choice.next = self.choices.read_data.val();
-            self.tb_gain.next = self.p_reg.q.val();
+            self.tb_gain.next = self.own_p.val();
         }
     }
 }

@@ -61,6 +61,8 @@ pub struct SystolicMatcher<const N: usize> {
     pub tb_choice: Signal<Out, Bits<2>>,
     pub tb_gain: Signal<Out, Bits<PATH_BITS>>,
     pub cells: [GainCell; N],
+    // P of each cell.
+    p_reg: [DFF<Bits<PATH_BITS>>; N],
     // The column pipeline: slot i is cell i's column.
     col_valid: [DFF<Bit>; N],
     col_first: [DFF<Bit>; N],
@@ -114,6 +116,7 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             tb_choice: Default::default(),
             tb_gain: Default::default(),
             cells: core::array::from_fn(GainCell::new),
+            p_reg: core::array::from_fn(|_| Default::default()),
             col_valid: core::array::from_fn(|_| Default::default()),
             col_first: core::array::from_fn(|_| Default::default()),
             col_j: core::array::from_fn(|_| Default::default()),
@@ -158,6 +161,12 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         // The column pipeline: slot 0 takes the stream, slot i the column
         // of slot i - 1; a bubble moves as one. Cell i reads slot i.
         for i in 0..N {
+            self.p_reg[i].clock.next = self.clock.val();
+            self.p_reg[i].d.next = self.p_reg[i].q.val();
+            if self.cells[i].p_load.val() {
+                self.p_reg[i].d.next = self.cells[i].p_next.val();
+            }
+            self.cells[i].own_p.next = self.p_reg[i].q.val();
             self.col_valid[i].clock.next = self.clock.val();
             self.col_first[i].clock.next = self.clock.val();
             self.col_j[i].clock.next = self.clock.val();
@@ -211,7 +220,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
                 self.col_lev5[i].d.next = self.col_lev5[i - 1].q.val();
                 self.col_rising[i].d.next = self.col_rising[i - 1].q.val();
             }
-            self.cells[i].up_p.next = self.cells[i - 1].p.val();
+            self.cells[i].up_p.next = self.p_reg[i - 1].q.val();
         }
         for i in 0..N {
             self.cells[i].c_valid.next = self.col_valid[i].q.val();
