@@ -509,12 +509,12 @@ pub fn match_lines<const N: usize>(
     rule: GainRule,
     name: &str,
     pairs: &[(MatchLine, MatchLine)],
-    progress: impl FnMut(),
+    mut progress: impl FnMut(),
 ) -> (MatchReport, Vec<LineOutcome>) {
     use rayon::prelude::*;
     let c0 = sim.cycle;
     let t0 = std::time::Instant::now();
-    let got = sim.run(pairs, false, progress);
+    let got = sim.run(pairs, false, &mut progress);
     let secs = t0.elapsed().as_secs_f64();
     let cycles = sim.cycle - c0;
     let dispmax = sim.dispmax;
@@ -559,6 +559,65 @@ pub fn match_lines<const N: usize>(
         prev_marker = Some(rtl.marker_cycle);
         outcomes.push(LineOutcome { rtl, golden, agreement, engine_cycles });
     }
+    (report, outcomes)
+}
+
+/// [`match_lines`] on every row of an image pair, the rows cut into
+/// `chunks` runs of consecutive rows, each on a matcher of its own on a
+/// thread of its own (rust-hdl simulates one block on one core; line pairs
+/// are independent, so the matches are those of one run; only the clocks
+/// at the seams differ). `progress` is called after every line, from any
+/// thread. The report's `cycles` is the sum over the runs and
+/// `sim_cycles_per_s` the clocks simulated per second of wall time.
+pub fn match_image<const N: usize>(
+    name: &str,
+    pairs: &[(MatchLine, MatchLine)],
+    rule: GainRule,
+    dispmax: u32,
+    chunks: usize,
+    progress: &(dyn Fn() + Sync),
+) -> (MatchReport, Vec<LineOutcome>) {
+    let t0 = std::time::Instant::now();
+    let chunks = chunks.clamp(1, pairs.len().max(1));
+    let size = pairs.len().div_ceil(chunks).max(1);
+    let parts: Vec<(MatchReport, Vec<LineOutcome>)> = std::thread::scope(|s| {
+        let handles: Vec<_> = pairs
+            .chunks(size)
+            .map(|part| {
+                s.spawn(move || {
+                    let mut sim = MatcherSim::<N>::new(rule, dispmax);
+                    match_lines(&mut sim, rule, name, part, progress)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("a matcher thread panicked")).collect()
+    });
+    let secs = t0.elapsed().as_secs_f64();
+    let mut iter = parts.into_iter();
+    let (mut report, mut outcomes) = iter.next().unwrap_or_else(|| {
+        let mut sim = MatcherSim::<N>::new(rule, dispmax);
+        match_lines(&mut sim, rule, name, &[], progress)
+    });
+    let mut offset = outcomes.len();
+    for (r, o) in iter {
+        report.declivities_ref += r.declivities_ref;
+        report.declivities_other += r.declivities_other;
+        report.matches_rtl += r.matches_rtl;
+        report.matches_golden += r.matches_golden;
+        report.identical_lines += r.identical_lines;
+        report.equal_gain_lines += r.equal_gain_lines;
+        report.mismatch_lines += r.mismatch_lines;
+        report.malformed_lines += r.malformed_lines;
+        if r.max_cycles_per_line > report.max_cycles_per_line {
+            report.max_cycles_per_line = r.max_cycles_per_line;
+            report.max_cycles_line = r.max_cycles_line + offset;
+        }
+        report.cycles += r.cycles;
+        offset += o.len();
+        outcomes.extend(o);
+    }
+    report.lines = pairs.len();
+    report.sim_cycles_per_s = report.cycles as f64 / secs.max(1e-9);
     (report, outcomes)
 }
 
@@ -621,9 +680,7 @@ mod real {
         let dir = crate::io::shared_stereo_dir().join("tsukuba");
         let pair = crate::io::load_pair_dir(&dir).unwrap();
         let lines = image_lines(&pair.left, &pair.right);
-        let lines = &lines[..];
-        let mut sim = MatcherSim::<{ rtl::params::N_MAX }>::new(GainRule::Robust, (pair.dispmax * 16.0) as u32);
-        let (rep, _) = match_lines(&mut sim, GainRule::Robust, "tsukuba", lines, || {});
+        let (rep, _) = match_image::<{ rtl::params::N_MAX }>("tsukuba", &lines[..60], GainRule::Robust, (pair.dispmax * 16.0) as u32, 2, &|| {});
         eprintln!("{}", serde_json::to_string_pretty(&rep).unwrap());
     }
 }
