@@ -1,0 +1,417 @@
+//! The rtl matcher (`rtl::declivity_matcher`: gain cells, systolic array,
+//! traceback) against golden's matcher (eq. 4–9, `golden::gain`,
+//! `golden::dp`), and its cycle counts against the formulas in its doc
+//! comments (`DESIGN.md` §4).
+//!
+//! Both models get the same declivities in the hardware's fixed-point
+//! formats (`sim::matcher`): every local gain is then an integer number of
+//! `2^-GAIN_FRAC_BITS` grey levels in both, golden's f64 sums of them are
+//! exact, and the gain tolerance is zero. So the properties are strict: the
+//! rtl path is golden's node for node (ties included: both break them in
+//! the order start, node, up, left), and the path gain on the marker is
+//! golden's optimum exactly. `sim::matcher::agreement` still counts a line
+//! whose path differs but has golden's optimal gain ("equal gain") apart
+//! from a true mismatch; the tests require identical lines.
+//!
+//! Generated line pairs cover what the issue lists: empty lines, one side
+//! empty, every node rejected, exactly as many declivities as cells, equal
+//! gains (repeated declivities), disparities on the search-area bounds,
+//! shifted copies (long paths) and random sets. They run on small arrays:
+//! the cells a line does not use never reach the outputs, and no clock
+//! count depends on the number of cells. The real pairs run on the
+//! `N_MAX` = 128-cell matcher.
+//!
+//! Run in release mode (`cargo test --release -p declivity-tests --test
+//! rtl_matcher`): rust-hdl simulates the 128-cell matcher at about 1.5–2 k
+//! clocks/s per core.
+
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use proptest::test_runner::TestCaseError;
+use rtl::declivity_matcher::{line_cycles, GainRule};
+use rtl::params::{GAIN_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
+use sim::matcher::{
+    agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
+    MatcherSim,
+};
+
+/// Cells of the matcher in the generated cases.
+const CELLS: usize = 16;
+/// Cases per property.
+const CASES: u32 = 48;
+/// One position LSB (1/16 px).
+const PX: u32 = 1 << POS_FRAC_BITS;
+
+// ===========================================================================
+// Generators
+// ===========================================================================
+
+/// What a generated line pair is meant to exercise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Random,
+    /// The other line is the reference shifted by a disparity, levels
+    /// jittered: many nodes, long paths.
+    Shifted,
+    /// One declivity repeated: many paths of equal gain.
+    Ties,
+    /// Levels far apart and a small threshold: no node survives eq. 7.
+    Rejected,
+    /// Disparities on and next to both bounds of eq. 6.
+    Bounds,
+    /// One or both lines empty.
+    Empty,
+    /// Exactly `CELLS` declivities on the reference side.
+    Full,
+}
+
+/// A pair of lines for the matcher and its search bound (1/16 px).
+#[derive(Debug, Clone)]
+struct Case {
+    kind: Kind,
+    reference: MatchLine,
+    other: MatchLine,
+}
+
+fn record(pos: u32, rising: bool, left: [u8; 3], right: [u8; 3]) -> MatchRecord {
+    MatchRecord { pos, amplitude: if rising { 40 } else { -40 }, left, right }
+}
+
+/// Increasing positions from `start`, steps of `1 ..= max_step` LSB.
+fn positions(n: usize, start: u32, max_step: u32) -> impl Strategy<Value = Vec<u32>> {
+    prop::collection::vec(1..=max_step, n).prop_map(move |steps| {
+        steps
+            .iter()
+            .scan(start, |p, s| {
+                *p += s;
+                Some(*p)
+            })
+            .collect()
+    })
+}
+
+fn levels() -> impl Strategy<Value = [u8; 3]> {
+    prop::array::uniform3(60u8..200)
+}
+
+fn random_line(n: usize, start: u32) -> impl Strategy<Value = MatchLine> {
+    (positions(n, start, 12 * PX), prop::collection::vec((any::<bool>(), levels(), levels()), n), 32u32..3000).prop_map(
+        |(pos, attrs, dt)| MatchLine {
+            dt,
+            records: pos.iter().zip(attrs).map(|(&p, (r, l, rr))| record(p, r, l, rr)).collect(),
+            ..MatchLine::default()
+        },
+    )
+}
+
+/// `other` = `reference` moved left by `d` LSB, levels jittered by up to
+/// `jitter`, a few declivities dropped.
+fn shifted(reference: &MatchLine, d: u32, jitter: &[i16], drop: &[bool]) -> MatchLine {
+    let records = reference
+        .records
+        .iter()
+        .enumerate()
+        .filter(|(k, r)| !drop[*k % drop.len()] && r.pos > d)
+        .map(|(k, r)| {
+            let j = |v: u8, s: usize| (v as i16 + jitter[(k * 6 + s) % jitter.len()]).clamp(0, 255) as u8;
+            MatchRecord {
+                pos: r.pos - d,
+                left: [j(r.left[0], 0), j(r.left[1], 1), j(r.left[2], 2)],
+                right: [j(r.right[0], 3), j(r.right[1], 4), j(r.right[2], 5)],
+                ..*r
+            }
+        })
+        .collect();
+    MatchLine { records, ..reference.clone() }
+}
+
+fn any_case(dispmax: u32) -> BoxedStrategy<Case> {
+    let random = (0..=CELLS, 0..=CELLS)
+        .prop_flat_map(|(n, m)| (random_line(n, 0), random_line(m, 0)))
+        .prop_map(|(reference, other)| Case { kind: Kind::Random, reference, other });
+    let shifted_pair = (1..=CELLS, 1..dispmax, prop::collection::vec(-6i16..=6, 24), prop::collection::vec(prop::bool::weighted(0.15), 7))
+        .prop_flat_map(|(n, d, jitter, drop)| (random_line(n, 4 * PX * CELLS as u32), Just(d), Just(jitter), Just(drop)))
+        .prop_map(|(reference, d, jitter, drop)| {
+            let other = shifted(&reference, d, &jitter, &drop);
+            Case { kind: Kind::Shifted, reference, other }
+        });
+    let ties = (1..=CELLS, 1..=CELLS, levels(), levels(), 1u32..=PX, 300u32..2000).prop_map(|(n, m, l, r, step, dt)| {
+        let line = |k: usize, off: u32| MatchLine {
+            dt,
+            records: (0..k).map(|i| record(off + step * i as u32, true, l, r)).collect(),
+            ..MatchLine::default()
+        };
+        Case { kind: Kind::Ties, reference: line(n, 2 * PX), other: line(m, PX) }
+    });
+    let rejected = (1..=CELLS, 1..=CELLS).prop_flat_map(|(n, m)| (positions(n, 2 * PX, 4 * PX), positions(m, 0, 4 * PX))).prop_map(
+        |(rp, op)| {
+            // Left and right levels swapped between the views: distances of
+            // 3·160 grey levels (offset-compensated or not) against gmax = 1.
+            let line = |p: &[u32], l: u8, r: u8| MatchLine {
+                dt: 32,
+                records: p.iter().map(|&x| record(x, true, [l; 3], [r; 3])).collect(),
+                ..MatchLine::default()
+            };
+            Case { kind: Kind::Rejected, reference: line(&rp, 40, 200), other: line(&op, 200, 40) }
+        },
+    );
+    let bounds = (levels(), levels(), 200u32..1500).prop_map(move |(l, r, dt)| {
+        // Reference declivities 4 px apart; each has partners at
+        // d = 0, 1 LSB, dispmax - 1 LSB and dispmax.
+        let base = dispmax + 2 * PX;
+        let n = CELLS / 4;
+        let refs: Vec<u32> = (0..n as u32).map(|k| base + k * (dispmax + 8 * PX)).collect();
+        let mut others: Vec<u32> = refs.iter().flat_map(|&x| [x - dispmax, x - (dispmax - 1), x - 1, x]).collect();
+        others.sort_unstable();
+        others.dedup();
+        let line = |p: &[u32]| MatchLine { dt, records: p.iter().map(|&x| record(x, true, l, r)).collect(), ..MatchLine::default() };
+        Case { kind: Kind::Bounds, reference: line(&refs), other: line(&others) }
+    });
+    let empty = (0..3usize, random_line(CELLS / 2, 0)).prop_map(|(which, line)| {
+        let none = MatchLine { dt: line.dt, ..MatchLine::default() };
+        let (reference, other) = match which {
+            0 => (none.clone(), line),
+            1 => (line, none),
+            _ => (none.clone(), none),
+        };
+        Case { kind: Kind::Empty, reference, other }
+    });
+    let full = (random_line(CELLS, PX * 20), prop::collection::vec(-4i16..=4, 12), 1..dispmax).prop_map(|(reference, jitter, d)| {
+        let other = shifted(&reference, d.min(PX * 20), &jitter, &[false]);
+        Case { kind: Kind::Full, reference, other }
+    });
+    prop_oneof![3 => random, 3 => shifted_pair, 1 => ties, 1 => rejected, 1 => bounds, 1 => empty, 1 => full].boxed()
+}
+
+/// A stream of cases back to back and its search bound (1/16 px; sometimes
+/// not a whole number of pixels).
+fn any_stream() -> impl Strategy<Value = (Vec<Case>, u32, GainRule)> {
+    (2 * PX..40 * PX, prop_oneof![Just(GainRule::Robust), Just(GainRule::Paper)])
+        .prop_flat_map(|(dispmax, rule)| (prop::collection::vec(any_case(dispmax), 1..5), Just(dispmax), Just(rule)))
+}
+
+// ===========================================================================
+// Drivers
+// ===========================================================================
+
+fn pairs_of(cases: &[Case]) -> Vec<(MatchLine, MatchLine)> {
+    cases.iter().map(|c| (c.reference.clone(), c.other.clone())).collect()
+}
+
+/// Runs `cases` through a fresh `CELLS`-cell matcher and checks one marker
+/// per pair.
+fn run(cases: &[Case], dispmax: u32, rule: GainRule, one_at_a_time: bool) -> Result<Vec<MatchedLine>, TestCaseError> {
+    let mut sim = MatcherSim::<CELLS>::new(rule, dispmax);
+    let got = sim.run(&pairs_of(cases), one_at_a_time, || {});
+    prop_assert_eq!(got.len(), cases.len(), "one marker per line pair");
+    Ok(got)
+}
+
+fn describe(c: &Case, got: &MatchedLine, dispmax: u32, rule: GainRule) -> String {
+    let g = golden_match(&c.reference, &c.other, dispmax, rule);
+    format!(
+        "{:?} case, {} × {} declivities, dispmax {} LSB, {rule:?}:\n  golden {:?} gain {}\n  rtl    {:?} gain {} LSB\n  ref {:?}\n  other {:?}",
+        c.kind,
+        c.reference.records.len(),
+        c.other.records.len(),
+        dispmax,
+        g.nodes,
+        g.gain,
+        got.pairs(),
+        got.marker.gain,
+        c.reference,
+        c.other
+    )
+}
+
+// ===========================================================================
+// Agreement with golden
+// ===========================================================================
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(CASES))]
+
+    /// Ties included: the fixed-point gains are golden's exactly and both
+    /// break ties in one order.
+    #[test]
+    fn prop_rtl_path_is_golden_optimal_path_node_for_node((cases, dispmax, rule) in any_stream()) {
+        let got = run(&cases, dispmax, rule, false)?;
+        for (c, g) in cases.iter().zip(&got) {
+            let want = golden_match(&c.reference, &c.other, dispmax, rule);
+            prop_assert_eq!(agreement(&want, &g.pairs()), Agreement::Identical, "{}", describe(c, g, dispmax, rule));
+        }
+    }
+
+    #[test]
+    fn prop_marker_carries_golden_optimal_gain_exactly_and_the_line_counts((cases, dispmax, rule) in any_stream()) {
+        let got = run(&cases, dispmax, rule, false)?;
+        for (c, g) in cases.iter().zip(&got) {
+            let want = golden_match(&c.reference, &c.other, dispmax, rule);
+            prop_assert_eq!(g.marker.gain as f64, want.gain * (1u64 << GAIN_FRAC_BITS) as f64, "{}", describe(c, g, dispmax, rule));
+            prop_assert_eq!(g.marker.count as usize, g.matches.len());
+            prop_assert_eq!((g.marker.n as usize, g.marker.m as usize), (c.reference.records.len(), c.other.records.len()));
+        }
+    }
+
+    #[test]
+    fn prop_matches_carry_their_declivities_positions_and_disparities_inside_the_search_area(
+        (cases, dispmax, rule) in any_stream()
+    ) {
+        let got = run(&cases, dispmax, rule, false)?;
+        for (c, g) in cases.iter().zip(&got) {
+            check_line(&c.reference, &c.other, g, dispmax, rule).map_err(TestCaseError::fail)?;
+            for b in &g.matches {
+                prop_assert!(b.disp > 0 && b.disp < dispmax, "disparity {} LSB outside (0, {dispmax})", b.disp);
+            }
+            let refs: Vec<u32> = g.matches.iter().map(|b| b.ref_index).collect();
+            prop_assert!(refs.windows(2).all(|w| w[0] < w[1]), "reference order: {:?}", refs);
+        }
+    }
+
+    /// `line_cycles(n, m, stop_diag, k)` from the engine taking a pair (two
+    /// clocks after its second marker, engine idle) to its marker.
+    #[test]
+    fn prop_engine_clocks_per_line_equal_the_documented_formula((cases, dispmax, rule) in any_stream()) {
+        let got = run(&cases, dispmax, rule, true)?;
+        for (c, g) in cases.iter().zip(&got) {
+            let want = golden_match(&c.reference, &c.other, dispmax, rule);
+            let (n, m, k) = (c.reference.records.len(), c.other.records.len(), want.nodes.len());
+            let formula = line_cycles(n, m, want.stop_diag, k) as u64;
+            prop_assert_eq!(g.marker_cycle - g.input_done_cycle - 2, formula, "{:?}: n {} m {} k {} stop {}", c.kind, n, m, k, want.stop_diag);
+        }
+    }
+}
+
+/// Back to back, a pair whose records are all in while the engine works on
+/// the previous one is taken the clock after the traceback ends: its marker
+/// follows the previous one by exactly `line_cycles - 1`, loading never
+/// costs the engine a clock.
+#[test]
+fn loading_the_next_pair_overlaps_matching_the_current_one() {
+    let mut runner = proptest::test_runner::TestRunner::deterministic();
+    let strategy = prop::collection::vec(any_case(20 * PX), 6..10);
+    let mut overlapped = 0;
+    for _ in 0..8 {
+        let cases = strategy.new_tree(&mut runner).expect("a case").current();
+        let got = run(&cases, 20 * PX, GainRule::Robust, false).expect("runs");
+        for k in 1..cases.len() {
+            let (prev, cur) = (&got[k - 1], &got[k]);
+            if cur.input_done_cycle + 2 <= prev.marker_cycle - 1 {
+                let want = golden_match(&cases[k].reference, &cases[k].other, 20 * PX, GainRule::Robust);
+                let lc = line_cycles(cases[k].reference.records.len(), cases[k].other.records.len(), want.stop_diag, want.nodes.len());
+                assert_eq!(cur.marker_cycle - prev.marker_cycle, lc as u64 - 1, "pair {k} of {:?}", cases.iter().map(|c| c.kind).collect::<Vec<_>>());
+                overlapped += 1;
+            }
+        }
+    }
+    assert!(overlapped >= 20, "pairs loaded while the engine was busy: {overlapped}");
+}
+
+/// More records than cells: the first `CELLS` are matched, the rest
+/// dropped, the marker says `full`, and the next line is unaffected.
+#[test]
+fn records_beyond_the_cells_are_dropped_the_line_is_flagged_full_and_the_next_is_intact() {
+    let mut runner = proptest::test_runner::TestRunner::deterministic();
+    let line = |n: usize, r: &mut proptest::test_runner::TestRunner| random_line(n, 0).new_tree(r).expect("a line").current();
+    let (big_ref, big_other) = (line(CELLS + 5, &mut runner), line(CELLS + 1, &mut runner));
+    let (next_ref, next_other) = (line(7, &mut runner), line(9, &mut runner));
+    let dispmax = 30 * PX;
+    let mut sim = MatcherSim::<CELLS>::new(GainRule::Robust, dispmax);
+    let pairs = vec![(big_ref.clone(), big_other.clone()), (next_ref.clone(), next_other.clone())];
+    let got = sim.run(&pairs, false, || {});
+    let cut = |l: &MatchLine| MatchLine { records: l.records[..CELLS].to_vec(), ..l.clone() };
+    assert!(got[0].marker.full && !got[1].marker.full);
+    assert_eq!((got[0].marker.n as usize, got[0].marker.m as usize), (CELLS, CELLS));
+    let want = golden_match(&cut(&big_ref), &cut(&big_other), dispmax, GainRule::Robust);
+    assert_eq!(got[0].pairs(), want.nodes);
+    let want = golden_match(&next_ref, &next_other, dispmax, GainRule::Robust);
+    assert_eq!(got[1].pairs(), want.nodes);
+    check_line(&next_ref, &next_other, &got[1], dispmax, GainRule::Robust).expect("second line intact");
+}
+
+/// The worst line, `N_MAX` declivities on both sides along one long path,
+/// on the full-size matcher: its clocks equal the formula and fit in the
+/// line time of a `W_MAX`-pixel line.
+#[test]
+fn the_worst_line_pair_of_n_max_declivities_fits_in_the_line_time_of_a_w_max_line() {
+    let (l, r) = ([100, 110, 120], [150, 160, 170]);
+    let reference =
+        MatchLine { dt: 400, records: (0..N_MAX as u32).map(|k| record(PX * (40 + 7 * k), true, l, r)).collect(), ..MatchLine::default() };
+    let other = MatchLine { records: reference.records.iter().map(|r| MatchRecord { pos: r.pos - 3 * PX, ..*r }).collect(), ..reference.clone() };
+    let dispmax = 5 * PX;
+    let mut sim = MatcherSim::<N_MAX>::new(GainRule::Robust, dispmax);
+    let got = sim.run(&[(reference.clone(), other.clone())], true, || {});
+    let want = golden_match(&reference, &other, dispmax, GainRule::Robust);
+    assert_eq!(want.nodes.len(), N_MAX, "the path takes every pair");
+    assert_eq!(got[0].pairs(), want.nodes);
+    let clocks = got[0].marker_cycle - got[0].input_done_cycle - 2;
+    assert_eq!(clocks, line_cycles(N_MAX, N_MAX, want.stop_diag, N_MAX) as u64);
+    assert!(clocks <= W_MAX as u64, "{clocks} clocks for the worst line against {W_MAX} pixels of a W_MAX line");
+    eprintln!("worst line: {clocks} clocks (stop diagonal {})", want.stop_diag);
+}
+
+// ===========================================================================
+// Real pairs
+// ===========================================================================
+
+/// Every row of `pair` through the 128-cell matcher; all lines identical.
+fn real_pair(pair: &str, rule: GainRule) {
+    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
+    let lines = image_lines(&data.left, &data.right);
+    let dispmax = ((data.dispmax + 1.0) * PX as f64) as u32;
+    let (report, outcomes) = match_image::<N_MAX>(pair, &lines, rule, dispmax, 2, &|| {});
+    eprintln!("{}", serde_json::to_string(&report).expect("serializes"));
+    for (y, o) in outcomes.iter().enumerate() {
+        assert_eq!(o.agreement, Agreement::Identical, "{pair} row {y}: golden {:?}, rtl {:?}", o.golden.nodes, o.rtl.pairs());
+    }
+    assert_eq!(report.identical_lines, data.left.height());
+    assert_eq!((report.mismatch_lines, report.equal_gain_lines, report.malformed_lines), (0, 0, 0));
+    assert_eq!(report.matches_rtl, report.matches_golden);
+    assert!(report.matches_rtl > report.declivities_ref / 4, "a real pair has many matches: {report:?}");
+    assert!(report.max_cycles_per_line <= W_MAX as u64, "{report:?}");
+}
+
+#[test]
+fn every_row_of_tsukuba_matches_golden_node_for_node_robust() {
+    real_pair("tsukuba", GainRule::Robust);
+}
+
+#[test]
+fn every_row_of_tsukuba_matches_golden_node_for_node_paper() {
+    real_pair("tsukuba", GainRule::Paper);
+}
+
+#[test]
+fn every_row_of_venus_matches_golden_node_for_node_robust() {
+    real_pair("venus", GainRule::Robust);
+}
+
+#[test]
+fn every_row_of_cones_matches_golden_node_for_node_robust() {
+    real_pair("cones", GainRule::Robust);
+}
+
+#[test]
+fn every_row_of_teddy_matches_golden_node_for_node_robust() {
+    real_pair("teddy", GainRule::Robust);
+}
+
+#[test]
+fn every_row_of_art_matches_golden_node_for_node_robust() {
+    real_pair("art", GainRule::Robust);
+}
+
+#[test]
+fn every_row_of_map_matches_golden_node_for_node_robust() {
+    real_pair("map", GainRule::Robust);
+}
+
+#[test]
+fn every_row_of_sawtooth_matches_golden_node_for_node_robust() {
+    real_pair("sawtooth", GainRule::Robust);
+}
+
+#[test]
+fn every_row_of_motorcycle_matches_golden_node_for_node_robust() {
+    real_pair("motorcycle", GainRule::Robust);
+}
