@@ -29,7 +29,7 @@ use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
 use rtl::declivity_matcher::{line_cycles, GainRule};
-use rtl::params::{GAIN_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
+use rtl::params::{N_MAX, POS_FRAC_BITS, W_MAX};
 use sim::matcher::{
     agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
     MatcherSim,
@@ -210,7 +210,7 @@ fn run(cases: &[Case], dispmax: u32, rule: GainRule, one_at_a_time: bool) -> Res
 fn describe(c: &Case, got: &MatchedLine, dispmax: u32, rule: GainRule) -> String {
     let g = golden_match(&c.reference, &c.other, dispmax, rule);
     format!(
-        "{:?} case, {} × {} declivities, dispmax {} LSB, {rule:?}:\n  golden {:?} gain {}\n  rtl    {:?} gain {} LSB\n  ref {:?}\n  other {:?}",
+        "{:?} case, {} × {} declivities, dispmax {} LSB, {rule:?}:\n  golden {:?} gain {}\n  rtl    {:?}\n  ref {:?}\n  other {:?}",
         c.kind,
         c.reference.records.len(),
         c.other.records.len(),
@@ -218,7 +218,6 @@ fn describe(c: &Case, got: &MatchedLine, dispmax: u32, rule: GainRule) -> String
         g.nodes,
         g.gain,
         got.pairs(),
-        got.marker.gain,
         c.reference,
         c.other
     )
@@ -243,11 +242,11 @@ proptest! {
     }
 
     #[test]
-    fn prop_marker_carries_golden_optimal_gain_exactly_and_the_line_counts((cases, dispmax, rule) in any_stream()) {
+    fn prop_rtl_path_has_golden_optimal_gain_by_golden_gains_and_the_marker_counts_it((cases, dispmax, rule) in any_stream()) {
         let got = run(&cases, dispmax, rule, false)?;
         for (c, g) in cases.iter().zip(&got) {
             let want = golden_match(&c.reference, &c.other, dispmax, rule);
-            prop_assert_eq!(g.marker.gain as f64, want.gain * (1u64 << GAIN_FRAC_BITS) as f64, "{}", describe(c, g, dispmax, rule));
+            prop_assert_eq!(want.path_gain(&g.pairs()), Some(want.gain), "{}", describe(c, g, dispmax, rule));
             prop_assert_eq!(g.marker.count as usize, g.matches.len());
             prop_assert_eq!((g.marker.n as usize, g.marker.m as usize), (c.reference.records.len(), c.other.records.len()));
         }

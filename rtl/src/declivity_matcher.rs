@@ -30,7 +30,6 @@
 //!   match, reference order: `m_ref`, `m_other` (indices in their lines),
 //!   `m_x_ref` (`X_i`), `m_disp` (`X_i - X_j`, [`POS_FRAC_BITS`] fraction
 //!   bits); `m_valid` with `m_last` high ends the line: `m_count` (matches),
-//!   `m_gain` (the path's gain `P(N, M)`, `GAIN_FRAC_BITS` fraction bits),
 //!   `m_n`, `m_m` (declivities of each side), `m_wide`, `m_full` (either
 //!   side), `m_sof`.
 //!
@@ -137,7 +136,6 @@ pub struct DeclivityMatcher<const N: usize> {
     pub m_x_ref: Signal<Out, Bits<POS_BITS>>,
     pub m_disp: Signal<Out, Bits<POS_BITS>>,
     pub m_count: Signal<Out, Bits<COUNT_BITS>>,
-    pub m_gain: Signal<Out, Bits<PATH_BITS>>,
     pub m_n: Signal<Out, Bits<COUNT_BITS>>,
     pub m_m: Signal<Out, Bits<COUNT_BITS>>,
     pub m_wide: Signal<Out, Bit>,
@@ -214,9 +212,6 @@ pub struct DeclivityMatcher<const N: usize> {
     out_x_ref: DFF<Bits<POS_BITS>>,
     out_disp: DFF<Bits<POS_BITS>>,
     out_count: DFF<Bits<COUNT_BITS>>,
-    out_gain: DFF<Bits<PATH_BITS>>,
-    gain_reg: DFF<Bits<PATH_BITS>>,
-    start_d: DFF<Bit>,
     out_n: DFF<Bits<COUNT_BITS>>,
     out_m: DFF<Bits<COUNT_BITS>>,
     out_wide: DFF<Bit>,
@@ -292,7 +287,6 @@ impl<const N: usize> DeclivityMatcher<N> {
             m_x_ref: Default::default(),
             m_disp: Default::default(),
             m_count: Default::default(),
-            m_gain: Default::default(),
             m_n: Default::default(),
             m_m: Default::default(),
             m_wide: Default::default(),
@@ -364,9 +358,6 @@ impl<const N: usize> DeclivityMatcher<N> {
             out_x_ref: Default::default(),
             out_disp: Default::default(),
             out_count: Default::default(),
-            out_gain: Default::default(),
-            gain_reg: Default::default(),
-            start_d: Default::default(),
             out_n: Default::default(),
             out_m: Default::default(),
             out_wide: Default::default(),
@@ -448,7 +439,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, ld_valid_d, ld_index_d, c_valid_d, c_j_d, q_valid, q_last, q_i, q_j, q_count, out_valid,
-            out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_gain, gain_reg, start_d, out_n, out_m, out_wide, out_full,
+            out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
 
@@ -715,15 +706,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.tb_diag.next = self.traceback.tb_diag.val();
         self.array.tb_row.next = self.traceback.tb_row.val();
 
-        // ---- Traceback. The clock after its start it shows row n - 1,
-        // whose P is then P(N, M), the optimal path's gain.
-        self.start_d.d.next = self.traceback.start.val();
-        if self.start_d.q.val() {
-            self.gain_reg.d.next = 0.into();
-            if self.en.q.val().any() & self.em.q.val().any() {
-                self.gain_reg.d.next = self.array.tb_gain.val();
-            }
-        }
+        // ---- Traceback.
         self.traceback.n.next = self.en.q.val();
         self.traceback.m.next = self.em.q.val();
         self.traceback.tb_choice.next = self.array.tb_choice.val();
@@ -744,7 +727,6 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         }
         if self.q_last.q.val() {
             self.out_count.d.next = self.q_count.q.val();
-            self.out_gain.d.next = self.gain_reg.q.val();
             self.out_n.d.next = self.en.q.val();
             self.out_m.d.next = self.em.q.val();
             self.out_wide.d.next = self.e_wide.q.val();
@@ -758,7 +740,6 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.m_x_ref.next = self.out_x_ref.q.val();
         self.m_disp.next = self.out_disp.q.val();
         self.m_count.next = self.out_count.q.val();
-        self.m_gain.next = self.out_gain.q.val();
         self.m_n.next = self.out_n.q.val();
         self.m_m.next = self.out_m.q.val();
         self.m_wide.next = self.out_wide.q.val();

@@ -39,9 +39,7 @@
 //! - Traceback: `tb_diag` (anti-diagonal `i + j`) and `tb_row`; the cell
 //!   reads its choice of column `tb_diag - index` and shows it on
 //!   `tb_choice` one clock later when `tb_row` is its index (zero, i.e.
-//!   `start`, otherwise, so the array's outputs can be OR-ed), and its `P`
-//!   on `tb_gain` (after a sweep, `P(i, M)`: for `i = N - 1` the optimal
-//!   path's gain).
+//!   `start`, otherwise, so the array's outputs can be OR-ed).
 //!
 //! ## Timing
 //! A column moves one cell per clock. The column in the cell's slot at
@@ -113,14 +111,15 @@ pub struct GainCell {
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
     pub tb_row: Signal<In, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<Out, Bits<2>>,
-    pub tb_gain: Signal<Out, Bits<PATH_BITS>>,
     choices: RAM<Bits<2>, INDEX_BITS>,
     index: Constant<Bits<INDEX_BITS>>,
     index8: Constant<Bits<DIAG_BITS>>,
     gain_unit_per_dist: Constant<Bits<16>>,
-    gain_sign: Constant<Bits<SCORE_BITS>>,
     choice_start: Constant<Bits<2>>,
     gain_msb: Constant<Bits<8>>,
+    pos_sign: Constant<Bits<8>>,
+    level_sign: Constant<Bits<8>>,
+    sign_fill: Constant<Bits<SCORE_BITS>>,
     score_msb: Constant<Bits<8>>,
     choice_node: Constant<Bits<2>>,
     choice_up: Constant<Bits<2>>,
@@ -173,7 +172,19 @@ pub struct GainCell {
     e_best: DFF<Bits<PATH_BITS>>,
     e_node: DFF<Bit>,
     // Combinational.
-    diff_pos: Signal<Local, Bits<POS_BITS>>,
+    diff_pos: Signal<Local, Bits<{ POS_BITS + 1 }>>,
+    dr0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dc0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dr1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dc1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dr2: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dc2: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dr3: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dc3: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dr4: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dc4: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dr5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    dc5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     l_sum: Signal<Local, Bits<DIST_BITS>>,
     r_sum: Signal<Local, Bits<DIST_BITS>>,
     lb: Signal<Local, Bit>,
@@ -188,8 +199,9 @@ pub struct GainCell {
     score: Signal<Local, Bits<SCORE_BITS>>,
     take_node: Signal<Local, Bit>,
     left: Signal<Local, Bits<PATH_BITS>>,
-    best1: Signal<Local, Bits<PATH_BITS>>,
-    choice1: Signal<Local, Bits<2>>,
+    up_wins: Signal<Local, Bit>,
+    left_over_a: Signal<Local, Bit>,
+    left_over_up: Signal<Local, Bit>,
     best2: Signal<Local, Bits<PATH_BITS>>,
     choice2: Signal<Local, Bits<2>>,
     read_col: Signal<Local, Bits<DIAG_BITS>>,
@@ -235,14 +247,15 @@ impl GainCell {
             tb_diag: Default::default(),
             tb_row: Default::default(),
             tb_choice: Default::default(),
-            tb_gain: Default::default(),
             choices: Default::default(),
             index: Constant::new((index as u64).into()),
             index8: Constant::new((index as u64).into()),
             gain_unit_per_dist: Constant::new((1u64 << (GAIN_FRAC_BITS - 1)).into()),
-            gain_sign: Constant::new((1u64 << GAIN_BITS).into()),
             choice_start: Constant::new(CHOICE_START.into()),
             gain_msb: Constant::new(((GAIN_BITS - 1) as u64).into()),
+            pos_sign: Constant::new((POS_BITS as u64).into()),
+            level_sign: Constant::new((LEVEL_BITS as u64).into()),
+            sign_fill: Constant::new((((1u64 << SCORE_BITS) - 1) ^ ((1u64 << GAIN_BITS) - 1)).into()),
             score_msb: Constant::new(((SCORE_BITS - 1) as u64).into()),
             choice_node: Constant::new(CHOICE_NODE.into()),
             choice_up: Constant::new(CHOICE_UP.into()),
@@ -289,6 +302,18 @@ impl GainCell {
             e_best: Default::default(),
             e_node: Default::default(),
             diff_pos: Default::default(),
+            dr0: Default::default(),
+            dc0: Default::default(),
+            dr1: Default::default(),
+            dc1: Default::default(),
+            dr2: Default::default(),
+            dc2: Default::default(),
+            dr3: Default::default(),
+            dc3: Default::default(),
+            dr4: Default::default(),
+            dc4: Default::default(),
+            dr5: Default::default(),
+            dc5: Default::default(),
             l_sum: Default::default(),
             r_sum: Default::default(),
             lb: Default::default(),
@@ -303,8 +328,9 @@ impl GainCell {
             score: Default::default(),
             take_node: Default::default(),
             left: Default::default(),
-            best1: Default::default(),
-            choice1: Default::default(),
+            up_wins: Default::default(),
+            left_over_a: Default::default(),
+            left_over_up: Default::default(),
             best2: Default::default(),
             choice2: Default::default(),
             read_col: Default::default(),
@@ -342,37 +368,66 @@ impl Logic for GainCell {
             self.r_rising.d.next = self.ld_rising.val();
         }
 
-        // ---- A: eq. 6 (left reference: d = X_i - X_j) and |level differences|.
-        self.diff_pos.next = self.r_pos.q.val() - self.c_pos.val();
+        // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax) and
+        // |level differences|. One subtraction gives d and its sign; each
+        // |a - b| is a - b or b - a by the sign of a - b.
+        self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.r_pos.q.val())
+            - bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
+        self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev0.q.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val());
+        self.dc0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev0.q.val());
+        self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev1.q.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev1.val());
+        self.dc1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev1.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev1.q.val());
+        self.dr2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev2.q.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val());
+        self.dc2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev2.q.val());
+        self.dr3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev3.q.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev3.val());
+        self.dc3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev3.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev3.q.val());
+        self.dr4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev4.q.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev4.val());
+        self.dc4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev4.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev4.q.val());
+        self.dr5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev5.q.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val());
+        self.dc5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev5.q.val());
         self.a_valid.d.next = self.c_valid.val();
         if self.c_valid.val() {
             self.a_first.d.next = self.c_first.val();
             self.a_j.d.next = self.c_j.val();
-            self.a_area.d.next = (self.r_pos.q.val() > self.c_pos.val()) & (self.diff_pos.val() < self.dispmax.val());
+            self.a_area.d.next = !self.diff_pos.val().get_bit(self.pos_sign.val().index())
+                & self.diff_pos.val().any()
+                & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.diff_pos.val()) < self.dispmax.val());
             self.a_same.d.next = !self.same_polarity.val() | (self.r_rising.q.val() == self.c_rising.val());
-            self.a_e0.d.next = self.r_lev0.q.val() - self.c_lev0.val();
-            if self.c_lev0.val() > self.r_lev0.q.val() {
-                self.a_e0.d.next = self.c_lev0.val() - self.r_lev0.q.val();
+            self.a_e0.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr0.val());
+            if self.dr0.val().get_bit(self.level_sign.val().index()) {
+                self.a_e0.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc0.val());
             }
-            self.a_e1.d.next = self.r_lev1.q.val() - self.c_lev1.val();
-            if self.c_lev1.val() > self.r_lev1.q.val() {
-                self.a_e1.d.next = self.c_lev1.val() - self.r_lev1.q.val();
+            self.a_e1.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr1.val());
+            if self.dr1.val().get_bit(self.level_sign.val().index()) {
+                self.a_e1.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc1.val());
             }
-            self.a_e2.d.next = self.r_lev2.q.val() - self.c_lev2.val();
-            if self.c_lev2.val() > self.r_lev2.q.val() {
-                self.a_e2.d.next = self.c_lev2.val() - self.r_lev2.q.val();
+            self.a_e2.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr2.val());
+            if self.dr2.val().get_bit(self.level_sign.val().index()) {
+                self.a_e2.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc2.val());
             }
-            self.a_e3.d.next = self.r_lev3.q.val() - self.c_lev3.val();
-            if self.c_lev3.val() > self.r_lev3.q.val() {
-                self.a_e3.d.next = self.c_lev3.val() - self.r_lev3.q.val();
+            self.a_e3.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr3.val());
+            if self.dr3.val().get_bit(self.level_sign.val().index()) {
+                self.a_e3.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc3.val());
             }
-            self.a_e4.d.next = self.r_lev4.q.val() - self.c_lev4.val();
-            if self.c_lev4.val() > self.r_lev4.q.val() {
-                self.a_e4.d.next = self.c_lev4.val() - self.r_lev4.q.val();
+            self.a_e4.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr4.val());
+            if self.dr4.val().get_bit(self.level_sign.val().index()) {
+                self.a_e4.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc4.val());
             }
-            self.a_e5.d.next = self.r_lev5.q.val() - self.c_lev5.val();
-            if self.c_lev5.val() > self.r_lev5.q.val() {
-                self.a_e5.d.next = self.c_lev5.val() - self.r_lev5.q.val();
+            self.a_e5.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr5.val());
+            if self.dr5.val().get_bit(self.level_sign.val().index()) {
+                self.a_e5.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc5.val());
             }
         }
 
@@ -433,7 +488,8 @@ impl Logic for GainCell {
         // `up_p` still holds the previous cell's P of column j - 1.
         self.g_ext.next = bit_cast::<SCORE_BITS, GAIN_BITS>(self.d_g.q.val());
         if self.d_g.q.val().get_bit(self.gain_msb.val().index()) {
-            self.g_ext.next = bit_cast::<SCORE_BITS, GAIN_BITS>(self.d_g.q.val()) - self.gain_sign.val();
+            // Sign extension: wiring in hardware.
+            self.g_ext.next = bit_cast::<SCORE_BITS, GAIN_BITS>(self.d_g.q.val()) | self.sign_fill.val();
         }
         self.diag.next = bit_cast::<SCORE_BITS, PATH_BITS>(self.up_p.val());
         if self.d_first.q.val() {
@@ -453,26 +509,34 @@ impl Logic for GainCell {
             }
         }
 
-        // ---- F: P(i, j) = max(start/node, up, left), later ones only when
-        // strictly greater; the choice goes to the column memory.
-        self.choice1.next = self.choice_start.val();
-        if self.e_node.q.val() {
-            self.choice1.next = self.choice_node.val();
-        }
-        self.best1.next = self.e_best.q.val();
-        if self.up_p.val() > self.e_best.q.val() {
-            self.best1.next = self.up_p.val();
-            self.choice1.next = self.choice_up.val();
-        }
+        // ---- F: P(i, j) = max(start/node, up, left), a later candidate only
+        // when strictly greater: the three comparisons side by side, then
+        // the choice (`left > max(A, up)` is `left > up` when up won, else
+        // `left > A`).
         self.left.next = self.own_p.val();
         if self.e_first.q.val() {
             self.left.next = 0.into();
         }
-        self.best2.next = self.best1.val();
-        self.choice2.next = self.choice1.val();
-        if self.left.val() > self.best1.val() {
-            self.best2.next = self.left.val();
-            self.choice2.next = self.choice_left.val();
+        self.up_wins.next = self.up_p.val() > self.e_best.q.val();
+        self.left_over_a.next = self.left.val() > self.e_best.q.val();
+        self.left_over_up.next = self.left.val() > self.up_p.val();
+        self.best2.next = self.e_best.q.val();
+        self.choice2.next = self.choice_start.val();
+        if self.e_node.q.val() {
+            self.choice2.next = self.choice_node.val();
+        }
+        if self.up_wins.val() {
+            self.best2.next = self.up_p.val();
+            self.choice2.next = self.choice_up.val();
+            if self.left_over_up.val() {
+                self.best2.next = self.left.val();
+                self.choice2.next = self.choice_left.val();
+            }
+        } else {
+            if self.left_over_a.val() {
+                self.best2.next = self.left.val();
+                self.choice2.next = self.choice_left.val();
+            }
         }
         self.p_next.next = self.best2.val();
         self.p_load.next = self.e_valid.q.val();
@@ -484,10 +548,8 @@ impl Logic for GainCell {
         self.read_col.next = self.tb_diag.val() - self.index8.val();
         self.choices.read_address.next = bit_cast::<INDEX_BITS, DIAG_BITS>(self.read_col.val());
         self.tb_choice.next = 0.into();
-        self.tb_gain.next = 0.into();
         if self.tb_row.val() == self.index.val() {
             self.tb_choice.next = self.choices.read_data.val();
-            self.tb_gain.next = self.own_p.val();
         }
     }
 }

@@ -14,8 +14,7 @@
 //!   cell (see [`GainCell`]).
 //! - `tb_diag`, `tb_row` in; `tb_choice` out: the choice of cell `tb_row`
 //!   in anti-diagonal `tb_diag` read one clock earlier, the OR of the
-//!   cells' outputs (the others show zero); `tb_gain`, cell `tb_row`'s `P`
-//!   the same way.
+//!   cells' outputs (the others show zero).
 //!
 //! ## Timing
 //! Column `j` offered on `c_*` at clock `t - 1` sits in slot 0 at `t` and gives `P(i, j)` at the
@@ -59,7 +58,6 @@ pub struct SystolicMatcher<const N: usize> {
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
     pub tb_row: Signal<In, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<Out, Bits<2>>,
-    pub tb_gain: Signal<Out, Bits<PATH_BITS>>,
     pub cells: [GainCell; N],
     // P of each cell.
     p_reg: [DFF<Bits<PATH_BITS>>; N],
@@ -76,7 +74,6 @@ pub struct SystolicMatcher<const N: usize> {
     col_lev5: [DFF<Bits<LEVEL_BITS>>; N],
     col_rising: [DFF<Bit>; N],
     choice_or: Signal<Local, Bits<2>>,
-    gain_or: Signal<Local, Bits<PATH_BITS>>,
 }
 
 impl<const N: usize> Default for SystolicMatcher<N> {
@@ -114,7 +111,6 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             tb_diag: Default::default(),
             tb_row: Default::default(),
             tb_choice: Default::default(),
-            tb_gain: Default::default(),
             cells: core::array::from_fn(GainCell::new),
             p_reg: core::array::from_fn(|_| Default::default()),
             col_valid: core::array::from_fn(|_| Default::default()),
@@ -129,7 +125,6 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             col_lev5: core::array::from_fn(|_| Default::default()),
             col_rising: core::array::from_fn(|_| Default::default()),
             choice_or: Default::default(),
-            gain_or: Default::default(),
         }
     }
 }
@@ -240,10 +235,6 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.choice_or.next = self.choice_or.val() | self.cells[i].tb_choice.val();
         }
         self.tb_choice.next = self.choice_or.val();
-        self.gain_or.next = 0.into();
-        for i in 0..N {
-            self.gain_or.next = self.gain_or.val() | self.cells[i].tb_gain.val();
-        }
-        self.tb_gain.next = self.gain_or.val();
+
     }
 }

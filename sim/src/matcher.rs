@@ -17,7 +17,7 @@ use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
 use rtl::declivity_matcher::{DeclivityMatcher, GainRule};
-use rtl::params::{DT_FRAC_BITS, GAIN_FRAC_BITS, N_MAX, POS_FRAC_BITS};
+use rtl::params::{DT_FRAC_BITS, N_MAX, POS_FRAC_BITS};
 use rust_hdl::prelude::*;
 use serde::Serialize;
 
@@ -54,8 +54,6 @@ pub struct MatchBeat {
     /// `(X_i - X_j) · 2^POS_FRAC_BITS`.
     pub disp: u32,
     pub count: u32,
-    /// The path's gain `P(N, M)` in units of `2^-GAIN_FRAC_BITS` grey levels.
-    pub gain: u64,
     pub n: u32,
     pub m: u32,
     pub wide: bool,
@@ -100,13 +98,17 @@ pub struct MatcherSim<const N: usize> {
     pub cycle: u64,
     /// Eq. 6's bound, `dispmax · 2^POS_FRAC_BITS`.
     pub dispmax: u32,
+    /// Called every clock at the sampling point (inputs applied and settled,
+    /// before the rising edge): sees that clock's input and output ports
+    /// (`sim::matcher_cosim` records co-simulation traces with it).
+    pub observer: Option<Box<dyn FnMut(&DeclivityMatcher<N>) + Send>>,
 }
 
 impl<const N: usize> MatcherSim<N> {
     /// A matcher of `N` cells for `rule`, with the search bound
     /// `dispmax · 2^POS_FRAC_BITS`.
     pub fn new(rule: GainRule, dispmax: u32) -> Self {
-        MatcherSim { uut: build_matcher::<N>(rule), cycle: 0, dispmax }
+        MatcherSim { uut: build_matcher::<N>(rule), cycle: 0, dispmax, observer: None }
     }
 
     /// One clock: apply the two sides' beats, settle, sample; returns whether
@@ -146,6 +148,9 @@ impl<const N: usize> MatcherSim<N> {
         let r_taken = r.valid && u.r_ready.val();
         let o_taken = o.valid && u.o_ready.val();
         let out = u.m_valid.val().then(|| read_beat(u));
+        if let Some(observe) = self.observer.as_mut() {
+            observe(u);
+        }
         u.clock.next = true.into();
         settle(u, SETTLE_HIGH);
         self.cycle += 1;
@@ -279,7 +284,6 @@ fn read_beat<const N: usize>(u: &DeclivityMatcher<N>) -> MatchBeat {
         x_ref: u.m_x_ref.val().to_u64() as u32,
         disp: u.m_disp.val().to_u64() as u32,
         count: u.m_count.val().to_u64() as u32,
-        gain: u.m_gain.val().to_u64(),
         n: u.m_n.val().to_u64() as u32,
         m: u.m_m.val().to_u64() as u32,
         wide: u.m_wide.val(),
@@ -417,8 +421,8 @@ pub fn agreement(golden: &GoldenMatch, rtl_pairs: &[(usize, usize)]) -> Agreemen
 }
 
 /// Checks one line's beats against its inputs and golden: the pairs'
-/// positions and disparities, the marker's counts and path gain (golden's
-/// optimum, exactly). Returns the first
+/// positions and disparities, the marker's counts, and the path's gain by
+/// golden's gains (golden's optimum, exactly). Returns the first
 /// difference found.
 pub fn check_line(
     reference: &MatchLine,
@@ -443,9 +447,10 @@ pub fn check_line(
             return Err(format!("match ({i}, {j}): x_ref {} disp {}, want {} {}", b.x_ref, b.disp, r.pos, r.pos - o.pos));
         }
     }
-    let want = golden_match(reference, other, dispmax, rule).gain;
-    if got.marker.gain as f64 != want * (1u64 << GAIN_FRAC_BITS) as f64 {
-        return Err(format!("path gain {} LSB, golden's optimum {want}", got.marker.gain));
+    let golden = golden_match(reference, other, dispmax, rule);
+    match golden.path_gain(&got.pairs()) {
+        Some(g) if g == golden.gain => {}
+        g => return Err(format!("the rtl path's gain by golden's gains is {g:?}, golden's optimum {}", golden.gain)),
     }
     Ok(())
 }
