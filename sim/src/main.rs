@@ -89,6 +89,59 @@ other way), mismatches (any other difference), max_pos_err_lsb (position error i
 sim_cycles_per_s, or one JSON object with --json. Writes declivities_rtl.png (the rtl records over \
 the image) into --out, and with --vcd a waveform of the clocks during which --lines stream through.")]
     Detect(RtlDetectArgs),
+    /// Run the rows of a stereo pair through the rtl declivity matcher and compare with golden.
+    #[command(long_about = "Run the rows of a rectified stereo pair (8-bit grey; colour is converted \
+with ITU-R 601 luma) through the cycle-accurate declivity matcher (rtl::declivity_matcher: a \
+systolic array of N_MAX = 128 gain cells and its traceback, left view as reference) and compare \
+every line with golden's matcher (eq. 4-9).
+
+Both matchers get the same inputs: golden's declivities of each row (hardware-parity detector), \
+brought to the detector's fixed-point formats (positions in 1/16 px rounded down, d_t in \
+1/16 grey level). On those values every gain is an integer number of 1/32 grey levels, golden's \
+f64 arithmetic on them is exact and the tolerance is zero, so every line is expected to come out \
+identical, node for node. The rows are cut into runs simulated on parallel matchers, one per core, \
+with a progress bar (about 2 thousand clocks per second per core: a 384x288 pair takes tens of \
+seconds; --rows runs a few).
+
+Prints, or with --json as one JSON object: image (the left image), rule, dispmax (px), lines \
+(line pairs run), declivities_ref / declivities_other (left / right records), matches_rtl / \
+matches_golden (pairs matched over all lines), identical_lines (the same pairs as golden), \
+equal_gain_lines (other pairs with golden's optimal gain: a tie broken otherwise), mismatch_lines \
+(neither: a bug), malformed_lines (outputs inconsistent with the inputs or with golden: \
+positions, counts, a path gain other than golden's optimum), max_cycles_per_line (most clocks the engine spent on one \
+line pair, from taking it to its marker) and max_cycles_line (that image row), cycles (clocks \
+simulated, summed over the matchers), sim_cycles_per_s (clocks simulated per second of wall \
+time), rows ([first, end) of the rows run), seconds (wall time of the simulation) and graph (the \
+picture). Writes into --out graph_rtl_line_Y.png: the matching graph of row Y (fig. 4) with \
+golden's gains, golden's optimal path as green rings and the rtl path as orange boxes.")]
+    Match(RtlMatchArgs),
+}
+
+#[derive(Args, Debug)]
+struct RtlMatchArgs {
+    /// Left image of the rectified pair (the reference view).
+    left: PathBuf,
+    /// Right image of the rectified pair.
+    right: PathBuf,
+    /// Search bound of eq. 6 in pixels: 0 < d < DISPMAX (greater than 1, at most W_MAX = 1024,
+    /// a multiple of 1/16 px: the matcher takes it in 1/16 px).
+    #[arg(long)]
+    dispmax: f64,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Folder for the picture [default: ./declivity-out/rtl-match-LEFT_STEM].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Row whose matching graph is drawn [default: the middle row of --rows].
+    #[arg(long)]
+    graph_line: Option<usize>,
+    /// Gain rule the matcher is generated for (golden runs the same).
+    #[arg(long, value_enum, default_value_t = CliRule::Robust)]
+    rule: CliRule,
+    /// Rows to run, as A..B (rows A to B-1) [default: all].
+    #[arg(long, value_parser = parse_range)]
+    rows: Option<std::ops::Range<usize>>,
 }
 
 #[derive(Args, Debug)]
@@ -321,6 +374,7 @@ fn main() -> ExitCode {
         Some(Command::Depth(a)) => depth(a),
         Some(Command::Eval(a)) => eval_cmd(a),
         Some(Command::Rtl(RtlCommand::Detect(a))) => rtl_detect(a),
+        Some(Command::Rtl(RtlCommand::Match(a))) => rtl_match(a),
         Some(Command::Verilog(a)) => verilog_cmd(a),
         Some(Command::Synth(a)) => synth_cmd(a),
     };
@@ -536,6 +590,149 @@ fn rtl_detect(a: RtlDetectArgs) -> Result<(), SimError> {
         if let Some(p) = &a.vcd {
             println!("  {:<44} waveform", p.display());
         }
+    }
+    Ok(())
+}
+
+/// `--dispmax` of `rtl match` in the matcher's unit, `1/2^POS_FRAC_BITS`
+/// px: a finite value greater than 1, at most `W_MAX`, on that grid. A
+/// bound of `W_MAX` is clamped to the largest the matcher's port holds,
+/// which no disparity inside a line reaches.
+fn matcher_dispmax(v: f64) -> Result<u32, SimError> {
+    use rtl::params::{DISPMAX_BITS, POS_FRAC_BITS, W_MAX};
+    let unit = (1u32 << POS_FRAC_BITS) as f64;
+    if !v.is_finite() || v <= 1.0 {
+        return Err(SimError::Argument(format!(
+            "--dispmax {v}: dispmax must be greater than 1 (eq. 6 searches 0 < d < dispmax)"
+        )));
+    }
+    if v > W_MAX as f64 {
+        return Err(SimError::Argument(format!(
+            "--dispmax {v}: dispmax must be at most W_MAX = {W_MAX} px (the widest line the hardware stores)"
+        )));
+    }
+    let lsb = v * unit;
+    if lsb.fract() != 0.0 {
+        return Err(SimError::Argument(format!(
+            "--dispmax {v}: the matcher takes dispmax in 1/{unit} px; give a multiple of 1/{unit}, e.g. {}",
+            (lsb.round() / unit).max(1.0 + 1.0 / unit)
+        )));
+    }
+    Ok((lsb as u32).min((1u32 << DISPMAX_BITS) - 1))
+}
+
+fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
+    use sim::matcher::{dequantize, golden_mode, image_lines, match_image, Agreement, MatchLine};
+    let dispmax = matcher_dispmax(a.dispmax)?;
+    let left = load_grey(&a.left)?;
+    let right = load_grey(&a.right)?;
+    for (p, l) in [(&a.left, &left), (&a.right, &right)] {
+        if let Some(note) = &l.converted {
+            eprintln!("note: {}: {note}", p.display());
+        }
+    }
+    let (l, r) = (&left.image, &right.image);
+    if (l.width(), l.height()) != (r.width(), r.height()) {
+        return Err(golden::GoldenError::SizeMismatch { left_w: l.width(), left_h: l.height(), right_w: r.width(), right_h: r.height() }.into());
+    }
+    let height = l.height();
+    let rows = a.rows.clone().unwrap_or(0..height);
+    if rows.end > height {
+        return Err(SimError::Argument(format!(
+            "--rows {}..{}: outside the image ({} has {height} rows)",
+            rows.start,
+            rows.end,
+            a.left.display()
+        )));
+    }
+    let graph_line = a.graph_line.unwrap_or(rows.start + (rows.end - rows.start) / 2);
+    if !rows.contains(&graph_line) {
+        return Err(SimError::Argument(format!(
+            "--graph-line {graph_line} is outside the rows run ({}..{} of {height})",
+            rows.start, rows.end
+        )));
+    }
+    let mut pairs = image_lines(l, r).drain(rows.clone()).collect::<Vec<_>>();
+    if let Some(first) = pairs.first_mut() {
+        first.0.sof = true;
+    }
+    let chunks = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let bar = ProgressBar::new(pairs.len() as u64);
+    bar.set_style(ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} lines, {eta} left").expect("template"));
+    bar.set_message(format!("rtl matcher x{}", chunks.min(pairs.len())));
+    if a.json {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let name = a.left.display().to_string();
+    let rule = a.rule.rule();
+    let t0 = std::time::Instant::now();
+    let (mut report, outcomes) = match_image::<{ rtl::params::N_MAX }>(&name, &pairs, rule, dispmax, chunks, &|| bar.inc(1));
+    let seconds = t0.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    report.max_cycles_line += rows.start;
+
+    // The matching graph of one line: golden's gains and path, the rtl path.
+    let out = a.out.clone().unwrap_or_else(|| {
+        let stem = a.left.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
+        PathBuf::from("declivity-out").join(format!("rtl-match-{stem}"))
+    });
+    std::fs::create_dir_all(&out).map_err(|source| SimError::Io { path: out.clone(), source })?;
+    let k = graph_line - rows.start;
+    let features = |line: &MatchLine| {
+        let (declivities, dt) = dequantize(line);
+        golden::line::LineFeatures { sigma: dt / 5.6, dt, declivities }
+    };
+    let (fr, fo) = (features(&pairs[k].0), features(&pairs[k].1));
+    let params = Params::with_mode(golden_mode(rule), dispmax as f64 / (1u32 << rtl::params::POS_FRAC_BITS) as f64)?;
+    let line = &outcomes[k];
+    let graph = out.join(format!("graph_rtl_line_{graph_line}.png"));
+    let picture = pictures::matching_graph_two_paths(&fr, &fo, &params, &line.golden.table, &line.golden.nodes, &line.rtl.pairs());
+    pictures::save_png(&picture, &graph)?;
+
+    if a.json {
+        /// The report and what the command adds to it, as one object.
+        #[derive(serde::Serialize)]
+        struct Json<'a> {
+            #[serde(flatten)]
+            report: &'a sim::matcher::MatchReport,
+            rows: [usize; 2],
+            seconds: f64,
+            graph: String,
+        }
+        let json = Json { report: &report, rows: [rows.start, rows.end], seconds, graph: graph.display().to_string() };
+        println!("{}", serde_json::to_string(&json).expect("the report serializes"));
+    } else {
+        let r = &report;
+        println!(
+            "{}: {} line pairs (rows {}..{}), {} rule, dispmax {} px, {} matchers",
+            r.image,
+            r.lines,
+            rows.start,
+            rows.end,
+            r.rule,
+            r.dispmax,
+            chunks.min(r.lines.max(1))
+        );
+        println!("  declivities         left {}, right {}", r.declivities_ref, r.declivities_other);
+        println!("  matches             rtl {}, golden {}", r.matches_rtl, r.matches_golden);
+        println!("  identical lines     {} of {}", r.identical_lines, r.lines);
+        println!("  equal-gain lines    {} (other pairs, golden's optimal gain)", r.equal_gain_lines);
+        println!("  mismatch lines      {}", r.mismatch_lines);
+        println!("  malformed lines     {}", r.malformed_lines);
+        println!("  max clocks per line {} (row {})", r.max_cycles_per_line, r.max_cycles_line);
+        println!("  simulation          {} clocks in {seconds:.1} s, {:.0} clocks/s", r.cycles, r.sim_cycles_per_s);
+        let verdict = match line.agreement {
+            Agreement::Identical => "identical",
+            Agreement::EqualGain => "equal gain",
+            Agreement::Mismatch => "MISMATCH",
+        };
+        println!("  {:<44} matching graph of row {graph_line} ({verdict}): golden path rings, rtl path boxes", graph.display());
+    }
+    if report.mismatch_lines + report.malformed_lines > 0 {
+        eprintln!(
+            "warning: the rtl matcher disagrees with golden ({} mismatch lines, {} malformed lines)",
+            report.mismatch_lines, report.malformed_lines
+        );
     }
     Ok(())
 }

@@ -15,6 +15,7 @@ use std::io::{BufWriter, Write};
 use std::ops::Deref;
 use std::path::{Path, PathBuf};
 
+use golden::dp::GainTable;
 use golden::gain::{gmax, in_search_area, pair_disparity};
 use golden::line::{gain_table, LineFeatures, LineResult};
 use golden::reconstruct::{depth, point, Camera};
@@ -70,6 +71,12 @@ pub const PATH_RING: Rgb<u8> = Rgb([0, 255, 0]);
 /// Colour of the segments joining consecutive path nodes in
 /// [`matching_graph`].
 pub const PATH_LINE: Rgb<u8> = Rgb([0, 150, 0]);
+/// Colour of the square frames around the nodes of the second path in
+/// [`matching_graph_two_paths`] (the rtl path).
+pub const RTL_BOX: Rgb<u8> = Rgb([255, 150, 0]);
+/// Colour of the segments joining the second path's nodes in
+/// [`matching_graph_two_paths`].
+pub const RTL_LINE: Rgb<u8> = Rgb([235, 110, 0]);
 /// Background of the cells inside the search area (eq. 6) in
 /// [`matching_graph`]; cells outside it stay black.
 pub const SEARCH_AREA: Rgb<u8> = Rgb([28, 28, 48]);
@@ -226,6 +233,9 @@ const GLYPH_H: u32 = 7;
 const ADVANCE: u32 = GLYPH_W + 1;
 const LINE_H: u32 = GLYPH_H + 3;
 
+/// One line of a graph's legend: runs of text, each in its colour.
+type LegendLine = Vec<(String, Rgb<u8>)>;
+
 /// The legend lines of a graph of `n × m` cells.
 fn legend(n: usize, m: usize) -> [String; 3] {
     [
@@ -233,6 +243,32 @@ fn legend(n: usize, m: usize) -> [String; 3] {
         "ROWS I: REFERENCE VIEW   COLUMNS J: OTHER VIEW".to_string(),
         "DOT: NODE, BIGGER/BRIGHTER = MORE GAIN   RING: OPTIMAL PATH".to_string(),
     ]
+}
+
+/// [`legend`] in the text colour.
+fn plain_legend(n: usize, m: usize) -> Vec<LegendLine> {
+    legend(n, m).into_iter().map(|s| vec![(s, TEXT)]).collect()
+}
+
+/// The legend of [`matching_graph_two_paths`]: its last line names the two
+/// paths in their colours.
+fn two_path_legend(n: usize, m: usize) -> Vec<LegendLine> {
+    let [title, axes, _] = legend(n, m);
+    vec![
+        vec![(title, TEXT)],
+        vec![(axes, TEXT)],
+        vec![("DOT: NODE, BIGGER/BRIGHTER = MORE GAIN".to_string(), TEXT)],
+        vec![
+            ("RING: GOLDEN OPTIMAL PATH".to_string(), PATH_RING),
+            ("   ".to_string(), TEXT),
+            ("BOX: RTL PATH".to_string(), RTL_BOX),
+        ],
+    ]
+}
+
+/// Width in pixels of a legend line.
+fn legend_width(line: &LegendLine) -> u32 {
+    line.iter().map(|(s, _)| s.chars().count() as u32).sum::<u32>() * ADVANCE
 }
 
 fn digits(v: usize) -> u32 {
@@ -264,11 +300,16 @@ impl GraphLayout {
     /// The layout of an `n × m` graph (`n, m ≥ 1`; the picture of an empty
     /// graph is a blank image, see [`matching_graph`]).
     pub fn new(n: usize, m: usize) -> Self {
+        Self::with_legend(n, m, &plain_legend(n, m))
+    }
+
+    /// The layout of an `n × m` graph under the legend `lines`.
+    fn with_legend(n: usize, m: usize, lines: &[LegendLine]) -> Self {
         let side = n.max(m).max(1);
         let cell = ((GRID_BUDGET / side) as u32).clamp(MIN_CELL, MAX_CELL);
-        let legend_w = legend(n, m).iter().map(|s| s.len() as u32 * ADVANCE).max().unwrap_or(0);
+        let legend_w = lines.iter().map(legend_width).max().unwrap_or(0);
         let left = PAD + digits(n.saturating_sub(1)) * ADVANCE + 4;
-        let top = PAD + 3 * LINE_H + 4 + LINE_H;
+        let top = PAD + dim(lines.len()) * LINE_H + 4 + LINE_H;
         let width = (left + dim(m) * cell + PAD).max(2 * PAD + legend_w);
         let height = top + dim(n) * cell + PAD;
         GraphLayout { n, m, cell, left, top, width, height }
@@ -447,12 +488,83 @@ fn label_step(cell: u32, need: u32) -> usize {
 /// image.
 pub fn matching_graph(reference: &LineFeatures, other: &LineFeatures, params: &Params, path: &[(usize, usize)]) -> RgbImage {
     let (n, m) = (reference.declivities.len(), other.declivities.len());
+    let table = gain_table(reference, other, params);
+    let optimal = GraphPath { nodes: path, marker: PathMarker::Ring, node: PATH_RING, line: PATH_LINE, widen: 0.0 };
+    draw_graph(reference, other, params, &table, &[optimal], &plain_legend(n, m))
+}
+
+/// The matching graph of two segmented lines, as [`matching_graph`], with
+/// two paths through it: `golden` (e.g. golden's optimal path) drawn as
+/// [`matching_graph`] draws its path ([`PATH_RING`] rings joined by wide
+/// [`PATH_LINE`] segments) and `rtl` (e.g. the hardware's matches) as
+/// [`RTL_BOX`] square frames along the cells' edges joined by thin
+/// [`RTL_LINE`] segments drawn over golden's. Where the paths share a node
+/// both marks show (the ring inside the frame), and where they share a
+/// segment the thin one runs inside the wide one. A fourth legend line
+/// names the two marks in their colours.
+///
+/// The node dots come from `table` (its gains, e.g. those the paths were
+/// found on) instead of [`golden::line::gain_table`]; `params` gives the
+/// search area (`dispmax`, reference view) and nothing else. Path entries
+/// outside the grid are ignored; with no declivity in either line the
+/// result is a blank 32×32 image.
+///
+/// Panics if `table` is not `reference`'s declivities by `other`'s.
+pub fn matching_graph_two_paths(
+    reference: &LineFeatures,
+    other: &LineFeatures,
+    params: &Params,
+    table: &GainTable,
+    golden: &[(usize, usize)],
+    rtl: &[(usize, usize)],
+) -> RgbImage {
+    let (n, m) = (reference.declivities.len(), other.declivities.len());
+    assert_eq!((table.n(), table.m()), (n, m), "the gain table is not the lines' {n}x{m}");
+    let paths = [
+        GraphPath { nodes: golden, marker: PathMarker::Ring, node: PATH_RING, line: PATH_LINE, widen: 2.0 },
+        GraphPath { nodes: rtl, marker: PathMarker::Box, node: RTL_BOX, line: RTL_LINE, widen: 0.0 },
+    ];
+    draw_graph(reference, other, params, table, &paths, &two_path_legend(n, m))
+}
+
+/// How a node of a path is marked.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum PathMarker {
+    /// A ring touching the cell's edges, around the dot.
+    Ring,
+    /// A square frame along the cell's edges.
+    Box,
+}
+
+/// A path to draw over a matching graph.
+struct GraphPath<'a> {
+    nodes: &'a [(usize, usize)],
+    marker: PathMarker,
+    /// Colour of the node marks.
+    node: Rgb<u8>,
+    /// Colour of the segments.
+    line: Rgb<u8>,
+    /// Pixels added to the segments' base width `1 + cell / 12`.
+    widen: f64,
+}
+
+/// Draws a matching graph: search area, `paths`' segments (in order),
+/// node dots from `table`, `paths`' node marks (in reverse order, so the
+/// first path's marks stay whole), `legend` and index labels.
+fn draw_graph(
+    reference: &LineFeatures,
+    other: &LineFeatures,
+    params: &Params,
+    table: &GainTable,
+    paths: &[GraphPath],
+    legend: &[LegendLine],
+) -> RgbImage {
+    let (n, m) = (reference.declivities.len(), other.declivities.len());
     if n == 0 || m == 0 {
         return RgbImage::from_pixel(32, 32, BLACK);
     }
-    let layout = GraphLayout::new(n, m);
+    let layout = GraphLayout::with_legend(n, m, legend);
     let mut img = RgbImage::from_pixel(layout.width, layout.height, BLACK);
-    let table = gain_table(reference, other, params);
     let cell = layout.cell;
 
     // Search area backgrounds.
@@ -469,13 +581,15 @@ pub fn matching_graph(reference: &LineFeatures, other: &LineFeatures, params: &P
         }
     }
 
-    // Path segments, under the dots and rings.
-    let on_grid: Vec<(usize, usize)> = path.iter().copied().filter(|&(i, j)| i < n && j < m).collect();
+    // Path segments, under the dots and marks.
+    let on_grid = |p: &GraphPath| -> Vec<(usize, usize)> { p.nodes.iter().copied().filter(|&(i, j)| i < n && j < m).collect() };
     let thick = 1.0 + (cell / 12) as f64;
-    for pair in on_grid.windows(2) {
-        let a = layout.node_centre(pair[0].0, pair[0].1);
-        let b = layout.node_centre(pair[1].0, pair[1].1);
-        draw_line(&mut img, a, b, thick, PATH_LINE);
+    for p in paths {
+        for pair in on_grid(p).windows(2) {
+            let a = layout.node_centre(pair[0].0, pair[0].1);
+            let b = layout.node_centre(pair[1].0, pair[1].1);
+            draw_line(&mut img, a, b, thick + p.widen, p.line);
+        }
     }
 
     // Nodes.
@@ -497,18 +611,40 @@ pub fn matching_graph(reference: &LineFeatures, other: &LineFeatures, params: &P
         }
     }
 
-    // Double edges of the path's nodes.
+    // Marks of the paths' nodes ("double edges").
     let (ro, ri) = layout.ring_radii();
-    for &(i, j) in &on_grid {
-        let (cx, cy) = layout.node_centre(i, j);
-        fill_annulus(&mut img, cx, cy, ri, ro, PATH_RING);
+    for p in paths.iter().rev() {
+        for (i, j) in on_grid(p) {
+            match p.marker {
+                PathMarker::Ring => {
+                    let (cx, cy) = layout.node_centre(i, j);
+                    fill_annulus(&mut img, cx, cy, ri, ro, p.node);
+                }
+                PathMarker::Box => {
+                    let (x0, y0) = layout.cell_origin(i, j);
+                    let w = (ro - ri).round() as u32;
+                    for y in y0..y0 + cell {
+                        for x in x0..x0 + cell {
+                            let edge = x < x0 + w || x >= x0 + cell - w || y < y0 + w || y >= y0 + cell - w;
+                            if edge {
+                                img.put_pixel(x, y, p.node);
+                            }
+                        }
+                    }
+                }
+            }
+        }
     }
 
     // Legend and index labels.
-    for (k, line) in legend(n, m).iter().enumerate() {
-        draw_text(&mut img, PAD, PAD + k as u32 * LINE_H, line, TEXT);
+    for (k, line) in legend.iter().enumerate() {
+        let mut x = PAD;
+        for (s, c) in line {
+            draw_text(&mut img, x, PAD + k as u32 * LINE_H, s, *c);
+            x += s.chars().count() as u32 * ADVANCE;
+        }
     }
-    let label_y = PAD + 3 * LINE_H + 4;
+    let label_y = PAD + dim(legend.len()) * LINE_H + 4;
     let col_step = label_step(cell, digits(m - 1) * ADVANCE + 3);
     for j in (0..m).step_by(col_step) {
         let s = j.to_string();
@@ -793,6 +929,62 @@ mod tests {
         }
         let big = GraphLayout::new(600, 10);
         assert_eq!(big.cell, MIN_CELL);
+    }
+
+    /// Pixels of colour `c` in cell `(i, j)` of a graph drawn with `layout`.
+    fn cell_count(img: &RgbImage, layout: &GraphLayout, i: usize, j: usize, c: Rgb<u8>) -> usize {
+        let (x0, y0) = layout.cell_origin(i, j);
+        (y0..y0 + layout.cell)
+            .flat_map(|y| (x0..x0 + layout.cell).map(move |x| (x, y)))
+            .filter(|&(x, y)| *img.get_pixel(x, y) == c)
+            .count()
+    }
+
+    #[test]
+    fn two_path_graph_marks_both_paths_and_names_them() {
+        let (r, o) = graph_lines();
+        let p = params(12.0);
+        let (n, m) = (r.declivities.len(), o.declivities.len());
+        let table = gain_table(&r, &o, &p);
+        let golden = best_path(&table).nodes;
+        assert!(golden.len() >= 3, "{golden:?}");
+        // The rtl path shares golden's first node and leaves it afterwards.
+        let mut rtl = vec![golden[0]];
+        let spare = (0..n)
+            .flat_map(|i| (0..m).map(move |j| (i, j)))
+            .find(|&(i, j)| i > golden[0].0 && j > golden[0].1 && !golden.contains(&(i, j)));
+        rtl.extend(spare);
+        assert_eq!(rtl.len(), 2);
+        let img = matching_graph_two_paths(&r, &o, &p, &table, &golden, &rtl);
+        let layout = GraphLayout::with_legend(n, m, &two_path_legend(n, m));
+        assert_eq!(img.dimensions(), (layout.width, layout.height));
+        assert_eq!(layout.top, GraphLayout::new(n, m).top + LINE_H, "one more legend line");
+        let count = |i: usize, j: usize, c: Rgb<u8>| cell_count(&img, &layout, i, j, c);
+        for i in 0..n {
+            for j in 0..m {
+                let (rings, boxes) = (count(i, j, PATH_RING), count(i, j, RTL_BOX));
+                assert_eq!(golden.contains(&(i, j)), rings > 20, "({i},{j}): {rings} ring pixels");
+                assert_eq!(rtl.contains(&(i, j)), boxes > 20, "({i},{j}): {boxes} box pixels");
+                if rtl.contains(&(i, j)) {
+                    // A frame: the cell's corner pixel is the box colour.
+                    let (x0, y0) = layout.cell_origin(i, j);
+                    assert_eq!(*img.get_pixel(x0, y0), RTL_BOX);
+                }
+            }
+        }
+        // Where they share a node the ring is whole inside the frame.
+        let (i, j) = golden[0];
+        let solo = matching_graph(&r, &o, &p, &golden);
+        assert_eq!(count(i, j, PATH_RING), cell_count(&solo, &GraphLayout::new(n, m), i, j, PATH_RING));
+        // Both segment colours are drawn, and the legend names the paths in their colours.
+        assert!(img.pixels().any(|px| *px == PATH_LINE) && img.pixels().any(|px| *px == RTL_LINE));
+        let legend_row = PAD + 3 * LINE_H..PAD + 3 * LINE_H + GLYPH_H;
+        let in_legend = |c: Rgb<u8>| legend_row.clone().any(|y| (0..img.width()).any(|x| *img.get_pixel(x, y) == c));
+        assert!(in_legend(PATH_RING) && in_legend(RTL_BOX));
+        // Empty lines give the blank picture.
+        let empty = LineFeatures { sigma: 1.0, dt: 5.6, declivities: Vec::new() };
+        let blank = matching_graph_two_paths(&empty, &o, &p, &GainTable::new(0, m), &[], &[]);
+        assert_eq!(blank.dimensions(), (32, 32));
     }
 
     #[test]

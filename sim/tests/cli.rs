@@ -1,5 +1,6 @@
 //! The `declivity` binary as a user meets it: the main job, `depth`, `eval`,
-//! and clear errors with a non-zero exit on bad input.
+//! `rtl detect`, `rtl match`, `verilog`, and clear errors with a non-zero
+//! exit on bad input.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -152,6 +153,7 @@ fn every_subcommand_explains_itself_in_help() {
         &["depth", "--help"],
         &["eval", "--help"],
         &["rtl", "detect", "--help"],
+        &["rtl", "match", "--help"],
         &["verilog", "--help"],
         &["synth", "--help"],
     ] {
@@ -237,5 +239,98 @@ fn verilog_command_writes_the_detector_with_its_ports() {
     assert!(v.contains("module top"));
     for port in ["s_tdata", "s_tvalid", "s_tuser", "s_tlast", "s_tready", "m_valid", "m_last", "m_pos", "m_dt"] {
         assert!(v.contains(port), "{port}");
+    }
+}
+
+/// Left and right images of the Tsukuba pair in shared/data/stereo.
+fn tsukuba_pair() -> (String, String) {
+    let dir = stereo().join("tsukuba");
+    let path = |f: &str| dir.join(f).to_str().unwrap().to_string();
+    (path("left_gray.png"), path("right_gray.png"))
+}
+
+#[test]
+fn rtl_match_json_on_a_few_rows_agrees_with_golden_and_draws_the_graph() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = tsukuba_pair();
+    let o = declivity(&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "140..144", "--json", "--out", "o"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    for key in [
+        "lines",
+        "matches_rtl",
+        "matches_golden",
+        "identical_lines",
+        "equal_gain_lines",
+        "mismatch_lines",
+        "malformed_lines",
+        "max_cycles_per_line",
+        "max_cycles_line",
+        "cycles",
+        "sim_cycles_per_s",
+        "rule",
+        "dispmax",
+        "rows",
+        "graph",
+    ] {
+        assert!(v.get(key).is_some(), "{key} in {out}");
+    }
+    assert_eq!(v["lines"], 4);
+    assert_eq!(v["identical_lines"], 4, "{out}");
+    assert_eq!(v["mismatch_lines"], 0, "{out}");
+    assert_eq!(v["malformed_lines"], 0, "{out}");
+    assert_eq!(v["rule"], "robust", "the default rule");
+    assert_eq!(v["dispmax"], 16.0);
+    assert_eq!(v["rows"], serde_json::json!([140, 144]));
+    assert_eq!(v["matches_rtl"], v["matches_golden"]);
+    assert!(v["matches_rtl"].as_u64().unwrap() > 40, "tsukuba's rows have tens of matches: {out}");
+    let row = v["max_cycles_line"].as_u64().unwrap();
+    assert!((140..144).contains(&row), "an image row: {out}");
+    assert!(v["max_cycles_per_line"].as_u64().unwrap() > 0 && v["sim_cycles_per_s"].as_f64().unwrap() > 0.0);
+    // The default graph line is the middle of the rows run.
+    let graph = dir.path().join("o/graph_rtl_line_142.png");
+    assert!(v["graph"].as_str().unwrap().ends_with("graph_rtl_line_142.png"), "{out}");
+    let img = image::open(&graph).expect("the matching graph is written").into_rgb8();
+    assert!(img.width() > 200 && img.height() > 200);
+    // Both paths are drawn: golden's rings (green) and the rtl boxes (orange).
+    assert!(img.pixels().any(|p| p.0 == [0, 255, 0]) && img.pixels().any(|p| p.0 == [255, 150, 0]));
+}
+
+#[test]
+fn rtl_match_text_summary_and_graph_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = tsukuba_pair();
+    let o = declivity(&["rtl", "match", &l, &r, "--dispmax", "15.5", "--rows", "10..12", "--graph-line", "10", "--rule", "paper"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(out.contains("identical lines     2 of 2") && out.contains("paper rule"), "{out}");
+    assert!(dir.path().join("declivity-out/rtl-match-left_gray/graph_rtl_line_10.png").is_file(), "{out}");
+}
+
+#[test]
+fn rtl_match_rejects_bad_inputs_with_a_clear_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = tsukuba_pair();
+    std::fs::write(p.join("bad.png"), b"not a png").unwrap();
+    GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
+    let cases: [(&[&str], &str); 10] = [
+        (&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "280..300"], "280..300"),
+        (&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "5..2"], "empty"),
+        (&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "5..8", "--graph-line", "9"], "outside the rows run"),
+        (&["rtl", "match", &l, &r, "--dispmax", "1"], "greater than 1"),
+        (&["rtl", "match", &l, &r, "--dispmax", "nan"], "greater than 1"),
+        (&["rtl", "match", &l, &r, "--dispmax", "inf"], "greater than 1"),
+        (&["rtl", "match", &l, &r, "--dispmax", "2000"], "at most W_MAX"),
+        (&["rtl", "match", &l, &r, "--dispmax", "10.3"], "multiple of 1/16"),
+        (&["rtl", "match", "bad.png", &r, "--dispmax", "16"], "bad.png"),
+        (&["rtl", "match", &l, "small.png", "--dispmax", "16"], "differ in size"),
+    ];
+    for (args, needle) in cases {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
     }
 }
