@@ -37,7 +37,7 @@
 //! With the engine idle, a pair whose second marker is taken at clock `t`
 //! waits in the slot from `t + 1` and is taken by the engine at `t + 2`;
 //! its marker leaves [`line_cycles`] clocks after that (the sweep,
-//! [`sweep_cycles`], the traceback, [`traceback_cycles`], two output
+//! [`sweep_cycles`], the traceback, [`traceback_cycles`], three output
 //! registers), its matches on the clocks just before, one per clock. The
 //! engine takes the next pair the clock after the traceback ends. Loading
 //! the next pair overlaps the engine's work on this one; the worst line,
@@ -78,18 +78,19 @@ impl GainRule {
 
 /// Clocks of a sweep of `n` reference and `m` other declivities, from the
 /// clock after the engine takes the pair to the traceback's `start` (on
-/// the sweep's last clock): `n + m - 1` wavefronts, one clock of record
-/// memory read and the cells' depth, which cover the last wavefront.
+/// the sweep's last clock): `n + m - 1` wavefronts, two clocks of record
+/// memory read and output register, and the cells' depth, which cover the
+/// last wavefront.
 pub const fn sweep_cycles(n: usize, m: usize) -> usize {
-    n + m + CELL_DEPTH
+    n + m + 1 + CELL_DEPTH
 }
 
 /// Clocks from the engine taking a line pair to its marker on the outputs:
 /// the sweep, the traceback (its walk stopping on anti-diagonal
-/// `stop_diag` with `k` pairs; see [`traceback_cycles`]) and two of output
-/// registers (position read, difference).
+/// `stop_diag` with `k` pairs; see [`traceback_cycles`]) and three of
+/// output registers (position read, positions, difference).
 pub const fn line_cycles(n: usize, m: usize, stop_diag: usize, k: usize) -> usize {
-    sweep_cycles(n, m) + traceback_cycles(n, m, stop_diag, k) + 2
+    sweep_cycles(n, m) + traceback_cycles(n, m, stop_diag, k) + 3
 }
 
 const ENG_IDLE: u64 = 0;
@@ -199,12 +200,47 @@ pub struct DeclivityMatcher<const N: usize> {
     ld_index_d: DFF<Bits<INDEX_BITS>>,
     c_valid_d: DFF<Bit>,
     c_j_d: DFF<Bits<INDEX_BITS>>,
+    // The record memories' outputs registered before the broadcast and the
+    // array (a block RAM's clock-to-out leaves no time for the wiring).
+    ld_valid_q: DFF<Bit>,
+    ld_index_q: DFF<Bits<INDEX_BITS>>,
+    ld_pos_q: DFF<Bits<POS_BITS>>,
+    ld_lev0_q: DFF<Bits<LEVEL_BITS>>,
+    ld_lev1_q: DFF<Bits<LEVEL_BITS>>,
+    ld_lev2_q: DFF<Bits<LEVEL_BITS>>,
+    ld_lev3_q: DFF<Bits<LEVEL_BITS>>,
+    ld_lev4_q: DFF<Bits<LEVEL_BITS>>,
+    ld_lev5_q: DFF<Bits<LEVEL_BITS>>,
+    ld_rising_q: DFF<Bit>,
+    c_valid_q: DFF<Bit>,
+    c_first_q: DFF<Bit>,
+    c_j_q: DFF<Bits<INDEX_BITS>>,
+    c_pos_q: DFF<Bits<POS_BITS>>,
+    c_lev0_q: DFF<Bits<LEVEL_BITS>>,
+    c_lev1_q: DFF<Bits<LEVEL_BITS>>,
+    c_lev2_q: DFF<Bits<LEVEL_BITS>>,
+    c_lev3_q: DFF<Bits<LEVEL_BITS>>,
+    c_lev4_q: DFF<Bits<LEVEL_BITS>>,
+    c_lev5_q: DFF<Bits<LEVEL_BITS>>,
+    c_rising_q: DFF<Bit>,
     // Output pipeline: RAM read, then the output registers.
     q_valid: DFF<Bit>,
     q_last: DFF<Bit>,
     q_i: DFF<Bits<INDEX_BITS>>,
     q_j: DFF<Bits<INDEX_BITS>>,
     q_count: DFF<Bits<COUNT_BITS>>,
+    w_valid: DFF<Bit>,
+    w_last: DFF<Bit>,
+    w_i: DFF<Bits<INDEX_BITS>>,
+    w_j: DFF<Bits<INDEX_BITS>>,
+    w_count: DFF<Bits<COUNT_BITS>>,
+    w_xr: DFF<Bits<POS_BITS>>,
+    w_xo: DFF<Bits<POS_BITS>>,
+    w_n: DFF<Bits<COUNT_BITS>>,
+    w_m: DFF<Bits<COUNT_BITS>>,
+    w_wide: DFF<Bit>,
+    w_full: DFF<Bit>,
+    w_sof: DFF<Bit>,
     out_valid: DFF<Bit>,
     out_last: DFF<Bit>,
     out_ref: DFF<Bits<INDEX_BITS>>,
@@ -346,11 +382,44 @@ impl<const N: usize> DeclivityMatcher<N> {
             ld_index_d: Default::default(),
             c_valid_d: Default::default(),
             c_j_d: Default::default(),
+            ld_valid_q: Default::default(),
+            ld_index_q: Default::default(),
+            ld_pos_q: Default::default(),
+            ld_lev0_q: Default::default(),
+            ld_lev1_q: Default::default(),
+            ld_lev2_q: Default::default(),
+            ld_lev3_q: Default::default(),
+            ld_lev4_q: Default::default(),
+            ld_lev5_q: Default::default(),
+            ld_rising_q: Default::default(),
+            c_valid_q: Default::default(),
+            c_first_q: Default::default(),
+            c_j_q: Default::default(),
+            c_pos_q: Default::default(),
+            c_lev0_q: Default::default(),
+            c_lev1_q: Default::default(),
+            c_lev2_q: Default::default(),
+            c_lev3_q: Default::default(),
+            c_lev4_q: Default::default(),
+            c_lev5_q: Default::default(),
+            c_rising_q: Default::default(),
             q_valid: Default::default(),
             q_last: Default::default(),
             q_i: Default::default(),
             q_j: Default::default(),
             q_count: Default::default(),
+            w_valid: Default::default(),
+            w_last: Default::default(),
+            w_i: Default::default(),
+            w_j: Default::default(),
+            w_count: Default::default(),
+            w_xr: Default::default(),
+            w_xo: Default::default(),
+            w_n: Default::default(),
+            w_m: Default::default(),
+            w_wide: Default::default(),
+            w_full: Default::default(),
+            w_sof: Default::default(),
             out_valid: Default::default(),
             out_last: Default::default(),
             out_ref: Default::default(),
@@ -384,7 +453,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng_idle: Constant::new(((ENG_IDLE) as u64).into()),
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
-            sweep_tail: Constant::new((((CELL_DEPTH - 1) as u64) as u64).into()),
+            sweep_tail: Constant::new((CELL_DEPTH as u64).into()),
             amp_msb: Constant::new((((AMP_BITS - 1) as u64) as u64).into()),
             dt_frac: Constant::new(((DT_FRAC_BITS as u64) as u64).into()),
         }
@@ -438,7 +507,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_j_d, q_valid, q_last, q_i, q_j, q_count, out_valid,
+            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_j_d, ld_valid_q, ld_index_q, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_first_q, c_j_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -676,27 +745,48 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.o_rise_mem.read_address.next = self.o_rd.val();
 
         // ---- The array.
-        self.array.ld_valid.next = self.ld_valid_d.q.val();
-        self.array.ld_index.next = self.ld_index_d.q.val();
-        self.array.ld_pos.next = self.r_pos_mem.read_data.val();
-        self.array.ld_lev0.next = self.r_lev0_mem.read_data.val();
-        self.array.ld_lev1.next = self.r_lev1_mem.read_data.val();
-        self.array.ld_lev2.next = self.r_lev2_mem.read_data.val();
-        self.array.ld_lev3.next = self.r_lev3_mem.read_data.val();
-        self.array.ld_lev4.next = self.r_lev4_mem.read_data.val();
-        self.array.ld_lev5.next = self.r_lev5_mem.read_data.val();
-        self.array.ld_rising.next = self.r_rise_mem.read_data.val();
-        self.array.c_valid.next = self.c_valid_d.q.val();
-        self.array.c_first.next = !self.c_j_d.q.val().any();
-        self.array.c_j.next = self.c_j_d.q.val();
-        self.array.c_pos.next = self.o_pos_mem.read_data.val();
-        self.array.c_lev0.next = self.o_lev0_mem.read_data.val();
-        self.array.c_lev1.next = self.o_lev1_mem.read_data.val();
-        self.array.c_lev2.next = self.o_lev2_mem.read_data.val();
-        self.array.c_lev3.next = self.o_lev3_mem.read_data.val();
-        self.array.c_lev4.next = self.o_lev4_mem.read_data.val();
-        self.array.c_lev5.next = self.o_lev5_mem.read_data.val();
-        self.array.c_rising.next = self.o_rise_mem.read_data.val();
+        self.ld_valid_q.d.next = self.ld_valid_d.q.val();
+        self.ld_index_q.d.next = self.ld_index_d.q.val();
+        self.ld_pos_q.d.next = self.r_pos_mem.read_data.val();
+        self.ld_lev0_q.d.next = self.r_lev0_mem.read_data.val();
+        self.ld_lev1_q.d.next = self.r_lev1_mem.read_data.val();
+        self.ld_lev2_q.d.next = self.r_lev2_mem.read_data.val();
+        self.ld_lev3_q.d.next = self.r_lev3_mem.read_data.val();
+        self.ld_lev4_q.d.next = self.r_lev4_mem.read_data.val();
+        self.ld_lev5_q.d.next = self.r_lev5_mem.read_data.val();
+        self.ld_rising_q.d.next = self.r_rise_mem.read_data.val();
+        self.c_valid_q.d.next = self.c_valid_d.q.val();
+        self.c_first_q.d.next = !self.c_j_d.q.val().any();
+        self.c_j_q.d.next = self.c_j_d.q.val();
+        self.c_pos_q.d.next = self.o_pos_mem.read_data.val();
+        self.c_lev0_q.d.next = self.o_lev0_mem.read_data.val();
+        self.c_lev1_q.d.next = self.o_lev1_mem.read_data.val();
+        self.c_lev2_q.d.next = self.o_lev2_mem.read_data.val();
+        self.c_lev3_q.d.next = self.o_lev3_mem.read_data.val();
+        self.c_lev4_q.d.next = self.o_lev4_mem.read_data.val();
+        self.c_lev5_q.d.next = self.o_lev5_mem.read_data.val();
+        self.c_rising_q.d.next = self.o_rise_mem.read_data.val();
+        self.array.ld_valid.next = self.ld_valid_q.q.val();
+        self.array.ld_index.next = self.ld_index_q.q.val();
+        self.array.ld_pos.next = self.ld_pos_q.q.val();
+        self.array.ld_lev0.next = self.ld_lev0_q.q.val();
+        self.array.ld_lev1.next = self.ld_lev1_q.q.val();
+        self.array.ld_lev2.next = self.ld_lev2_q.q.val();
+        self.array.ld_lev3.next = self.ld_lev3_q.q.val();
+        self.array.ld_lev4.next = self.ld_lev4_q.q.val();
+        self.array.ld_lev5.next = self.ld_lev5_q.q.val();
+        self.array.ld_rising.next = self.ld_rising_q.q.val();
+        self.array.c_valid.next = self.c_valid_q.q.val();
+        self.array.c_first.next = self.c_first_q.q.val();
+        self.array.c_j.next = self.c_j_q.q.val();
+        self.array.c_pos.next = self.c_pos_q.q.val();
+        self.array.c_lev0.next = self.c_lev0_q.q.val();
+        self.array.c_lev1.next = self.c_lev1_q.q.val();
+        self.array.c_lev2.next = self.c_lev2_q.q.val();
+        self.array.c_lev3.next = self.c_lev3_q.q.val();
+        self.array.c_lev4.next = self.c_lev4_q.q.val();
+        self.array.c_lev5.next = self.c_lev5_q.q.val();
+        self.array.c_rising.next = self.c_rising_q.q.val();
         self.array.dispmax.next = self.dispmax.val();
         self.array.below2.next = self.below2_reg.q.val();
         self.array.f1.next = self.f1_reg.q.val();
@@ -711,27 +801,44 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.traceback.m.next = self.em.q.val();
         self.traceback.tb_choice.next = self.array.tb_choice.val();
 
-        // ---- Output: positions read, then X_i - X_j registered.
+        // ---- Output: positions read and registered, then X_i - X_j
+        // registered.
         self.q_valid.d.next = self.traceback.out_valid.val();
         self.q_last.d.next = self.traceback.out_last.val();
         self.q_i.d.next = self.traceback.out_i.val();
         self.q_j.d.next = self.traceback.out_j.val();
         self.q_count.d.next = self.traceback.out_count.val();
-        self.out_valid.d.next = self.q_valid.q.val() | self.q_last.q.val();
-        self.out_last.d.next = self.q_last.q.val();
+        self.w_valid.d.next = self.q_valid.q.val();
+        self.w_last.d.next = self.q_last.q.val();
         if self.q_valid.q.val() {
-            self.out_ref.d.next = self.q_i.q.val();
-            self.out_other.d.next = self.q_j.q.val();
-            self.out_x_ref.d.next = self.r_pos_mem.read_data.val();
-            self.out_disp.d.next = self.r_pos_mem.read_data.val() - self.o_pos_mem.read_data.val();
+            self.w_i.d.next = self.q_i.q.val();
+            self.w_j.d.next = self.q_j.q.val();
+            self.w_xr.d.next = self.r_pos_mem.read_data.val();
+            self.w_xo.d.next = self.o_pos_mem.read_data.val();
         }
         if self.q_last.q.val() {
-            self.out_count.d.next = self.q_count.q.val();
-            self.out_n.d.next = self.en.q.val();
-            self.out_m.d.next = self.em.q.val();
-            self.out_wide.d.next = self.e_wide.q.val();
-            self.out_full.d.next = self.e_full.q.val();
-            self.out_sof.d.next = self.e_sof.q.val();
+            self.w_count.d.next = self.q_count.q.val();
+            self.w_n.d.next = self.en.q.val();
+            self.w_m.d.next = self.em.q.val();
+            self.w_wide.d.next = self.e_wide.q.val();
+            self.w_full.d.next = self.e_full.q.val();
+            self.w_sof.d.next = self.e_sof.q.val();
+        }
+        self.out_valid.d.next = self.w_valid.q.val() | self.w_last.q.val();
+        self.out_last.d.next = self.w_last.q.val();
+        if self.w_valid.q.val() {
+            self.out_ref.d.next = self.w_i.q.val();
+            self.out_other.d.next = self.w_j.q.val();
+            self.out_x_ref.d.next = self.w_xr.q.val();
+            self.out_disp.d.next = self.w_xr.q.val() - self.w_xo.q.val();
+        }
+        if self.w_last.q.val() {
+            self.out_count.d.next = self.w_count.q.val();
+            self.out_n.d.next = self.w_n.q.val();
+            self.out_m.d.next = self.w_m.q.val();
+            self.out_wide.d.next = self.w_wide.q.val();
+            self.out_full.d.next = self.w_full.q.val();
+            self.out_sof.d.next = self.w_sof.q.val();
         }
         self.m_valid.next = self.out_valid.q.val();
         self.m_last.next = self.out_last.q.val();

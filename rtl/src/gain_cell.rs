@@ -30,9 +30,10 @@
 //!   pipeline (registers of the [`crate::systolic_matcher::SystolicMatcher`],
 //!   which moves the column to the next cell's slot on the next clock).
 //! - `up_p`: the previous cell's `P` (0 for the first cell); `own_p`: this
-//!   cell's; out `p_next`, loaded into `own_p` when `p_load` is high (the
-//!   `P` registers belong to the array, so that the last cell's leads
-//!   nowhere unused).
+//!   cell's; out `p_next`, loaded into `own_p` when `p_load` is high, and
+//!   `p_clear`, which zeroes `own_p` before a line's first column reaches
+//!   stage F (the `P` registers belong to the array, so that the last
+//!   cell's leads nowhere unused).
 //! - Per line: `dispmax`, `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
 //!   `same_polarity`, `one_sided`.
@@ -100,6 +101,7 @@ pub struct GainCell {
     pub own_p: Signal<In, Bits<PATH_BITS>>,
     pub p_next: Signal<Out, Bits<PATH_BITS>>,
     pub p_load: Signal<Out, Bit>,
+    pub p_clear: Signal<Out, Bit>,
     // Per line and per design.
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
     pub below2: Signal<In, Bits<DIST_BITS>>,
@@ -145,6 +147,10 @@ pub struct GainCell {
     a_e3: DFF<Bits<LEVEL_BITS>>,
     a_e4: DFF<Bits<LEVEL_BITS>>,
     a_e5: DFF<Bits<LEVEL_BITS>>,
+    a_s0: DFF<Bits<1>>,
+    a_s1: DFF<Bits<1>>,
+    a_s3: DFF<Bits<1>>,
+    a_s4: DFF<Bits<1>>,
     // Stage B: doubled distances.
     b_valid: DFF<Bit>,
     b_first: DFF<Bit>,
@@ -167,24 +173,21 @@ pub struct GainCell {
     d_g: DFF<Bits<GAIN_BITS>>,
     // Stage E: start or node.
     e_valid: DFF<Bit>,
-    e_first: DFF<Bit>,
     e_j: DFF<Bits<INDEX_BITS>>,
     e_best: DFF<Bits<PATH_BITS>>,
     e_node: DFF<Bit>,
     // Combinational.
     diff_pos: Signal<Local, Bits<{ POS_BITS + 1 }>>,
     dr0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
-    dc0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
-    dc1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr2: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dc2: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr3: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
-    dc3: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr4: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
-    dc4: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dc5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    l_part0: Signal<Local, Bits<DIST_BITS>>,
+    r_part0: Signal<Local, Bits<DIST_BITS>>,
     l_sum: Signal<Local, Bits<DIST_BITS>>,
     r_sum: Signal<Local, Bits<DIST_BITS>>,
     lb: Signal<Local, Bit>,
@@ -238,6 +241,7 @@ impl GainCell {
             own_p: Default::default(),
             p_next: Default::default(),
             p_load: Default::default(),
+            p_clear: Default::default(),
             dispmax: Default::default(),
             below2: Default::default(),
             f1: Default::default(),
@@ -279,6 +283,10 @@ impl GainCell {
             a_e3: Default::default(),
             a_e4: Default::default(),
             a_e5: Default::default(),
+            a_s0: Default::default(),
+            a_s1: Default::default(),
+            a_s3: Default::default(),
+            a_s4: Default::default(),
             b_valid: Default::default(),
             b_first: Default::default(),
             b_j: Default::default(),
@@ -297,23 +305,20 @@ impl GainCell {
             d_node: Default::default(),
             d_g: Default::default(),
             e_valid: Default::default(),
-            e_first: Default::default(),
             e_j: Default::default(),
             e_best: Default::default(),
             e_node: Default::default(),
             diff_pos: Default::default(),
             dr0: Default::default(),
-            dc0: Default::default(),
             dr1: Default::default(),
-            dc1: Default::default(),
             dr2: Default::default(),
             dc2: Default::default(),
             dr3: Default::default(),
-            dc3: Default::default(),
             dr4: Default::default(),
-            dc4: Default::default(),
             dr5: Default::default(),
             dc5: Default::default(),
+            l_part0: Default::default(),
+            r_part0: Default::default(),
             l_sum: Default::default(),
             r_sum: Default::default(),
             lb: Default::default(),
@@ -351,9 +356,9 @@ impl Logic for GainCell {
         self.choices.write_clock.next = self.clock.val();
         dff_setup!(
             self, clock, r_pos, r_lev0, r_lev1, r_lev2, r_lev3, r_lev4, r_lev5, r_rising, a_valid,
-            a_first, a_j, a_area, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, b_valid, b_first, b_j, b_ok, b_l2,
+            a_first, a_j, a_area, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_first, b_j, b_ok, b_l2,
             b_r2, c2_valid, c2_first, c2_j, c2_node, c2_both, c2_dist, d_valid, d_first, d_j, d_node, d_g,
-            e_valid, e_first, e_j, e_best, e_node
+            e_valid, e_j, e_best, e_node
         );
 
         // ---- The reference declivity, from the broadcast.
@@ -375,24 +380,16 @@ impl Logic for GainCell {
             - bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
         self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev0.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val());
-        self.dc0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev0.q.val());
         self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev1.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev1.val());
-        self.dc1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev1.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev1.q.val());
         self.dr2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev2.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val());
         self.dc2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev2.q.val());
         self.dr3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev3.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev3.val());
-        self.dc3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev3.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev3.q.val());
         self.dr4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev4.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev4.val());
-        self.dc4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev4.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev4.q.val());
         self.dr5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev5.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val());
         self.dc5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val())
@@ -406,24 +403,32 @@ impl Logic for GainCell {
                 & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.diff_pos.val()) < self.dispmax.val());
             self.a_same.d.next = !self.same_polarity.val() | (self.r_rising.q.val() == self.c_rising.val());
             self.a_e0.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr0.val());
+            self.a_s0.d.next = 0.into();
             if self.dr0.val().get_bit(self.level_sign.val().index()) {
-                self.a_e0.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc0.val());
+                self.a_e0.d.next = !bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr0.val());
+                self.a_s0.d.next = 1.into();
             }
             self.a_e1.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr1.val());
+            self.a_s1.d.next = 0.into();
             if self.dr1.val().get_bit(self.level_sign.val().index()) {
-                self.a_e1.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc1.val());
+                self.a_e1.d.next = !bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr1.val());
+                self.a_s1.d.next = 1.into();
             }
             self.a_e2.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr2.val());
             if self.dr2.val().get_bit(self.level_sign.val().index()) {
                 self.a_e2.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc2.val());
             }
             self.a_e3.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr3.val());
+            self.a_s3.d.next = 0.into();
             if self.dr3.val().get_bit(self.level_sign.val().index()) {
-                self.a_e3.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc3.val());
+                self.a_e3.d.next = !bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr3.val());
+                self.a_s3.d.next = 1.into();
             }
             self.a_e4.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr4.val());
+            self.a_s4.d.next = 0.into();
             if self.dr4.val().get_bit(self.level_sign.val().index()) {
-                self.a_e4.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dc4.val());
+                self.a_e4.d.next = !bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr4.val());
+                self.a_s4.d.next = 1.into();
             }
             self.a_e5.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr5.val());
             if self.dr5.val().get_bit(self.level_sign.val().index()) {
@@ -432,12 +437,18 @@ impl Logic for GainCell {
         }
 
         // ---- B: 2·lpd and 2·rpd (eq. 4–5).
-        self.l_sum.next = bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e0.q.val())
+        self.l_part0.next = bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e0.q.val())
             + bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e1.q.val())
-            + bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e2.q.val());
-        self.r_sum.next = bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e3.q.val())
+            + bit_cast::<DIST_BITS, 1>(self.a_s0.q.val());
+        self.l_sum.next = self.l_part0.val()
+            + bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e2.q.val())
+            + bit_cast::<DIST_BITS, 1>(self.a_s1.q.val());
+        self.r_part0.next = bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e3.q.val())
             + bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e4.q.val())
-            + bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e5.q.val());
+            + bit_cast::<DIST_BITS, 1>(self.a_s3.q.val());
+        self.r_sum.next = self.r_part0.val()
+            + bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e5.q.val())
+            + bit_cast::<DIST_BITS, 1>(self.a_s4.q.val());
         self.b_valid.d.next = self.a_valid.q.val();
         if self.a_valid.q.val() {
             self.b_first.d.next = self.a_first.q.val();
@@ -500,7 +511,6 @@ impl Logic for GainCell {
             self.d_node.q.val() & !self.score.val().get_bit(self.score_msb.val().index()) & self.score.val().any();
         self.e_valid.d.next = self.d_valid.q.val();
         if self.d_valid.q.val() {
-            self.e_first.d.next = self.d_first.q.val();
             self.e_j.d.next = self.d_j.q.val();
             self.e_node.d.next = self.take_node.val();
             self.e_best.d.next = 0.into();
@@ -514,9 +524,6 @@ impl Logic for GainCell {
         // the choice (`left > max(A, up)` is `left > up` when up won, else
         // `left > A`).
         self.left.next = self.own_p.val();
-        if self.e_first.q.val() {
-            self.left.next = 0.into();
-        }
         self.up_wins.next = self.up_p.val() > self.e_best.q.val();
         self.left_over_a.next = self.left.val() > self.e_best.q.val();
         self.left_over_up.next = self.left.val() > self.up_p.val();
@@ -540,6 +547,9 @@ impl Logic for GainCell {
         }
         self.p_next.next = self.best2.val();
         self.p_load.next = self.e_valid.q.val();
+        // P(i, -1) = 0: cleared as column 0 enters stage E, so that stage F
+        // reads P(i, j - 1) straight from the register.
+        self.p_clear.next = self.d_valid.q.val() & self.d_first.q.val();
         self.choices.write_address.next = self.e_j.q.val();
         self.choices.write_data.next = self.choice2.val();
         self.choices.write_enable.next = self.e_valid.q.val();

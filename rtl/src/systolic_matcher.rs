@@ -158,6 +158,9 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         for i in 0..N {
             self.p_reg[i].clock.next = self.clock.val();
             self.p_reg[i].d.next = self.p_reg[i].q.val();
+            if self.cells[i].p_clear.val() {
+                self.p_reg[i].d.next = 0.into();
+            }
             if self.cells[i].p_load.val() {
                 self.p_reg[i].d.next = self.cells[i].p_next.val();
             }

@@ -554,8 +554,8 @@ pub fn match_lines<const N: usize>(
         report.malformed_lines += check_line(r, o, &rtl, dispmax, rule).is_err() as usize;
         // The engine takes a pair two clocks after its second marker, or
         // the clock after the previous pair's traceback ends (its marker
-        // leaves two clocks later).
-        let take = prev_marker.map_or(rtl.input_done_cycle + 2, |p| (rtl.input_done_cycle + 2).max(p - 1));
+        // leaves three clocks later).
+        let take = prev_marker.map_or(rtl.input_done_cycle + 2, |p| (rtl.input_done_cycle + 2).max(p - 2));
         let engine_cycles = rtl.marker_cycle - take;
         if engine_cycles > report.max_cycles_per_line {
             report.max_cycles_per_line = engine_cycles;
