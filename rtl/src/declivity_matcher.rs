@@ -42,7 +42,7 @@
 //! engine takes the next pair the clock after the traceback ends. Loading
 //! the next pair overlaps the engine's work on this one; the worst line,
 //! `n = m = N_MAX`, costs at most `line_cycles(N_MAX, N_MAX, 0, N_MAX)`
-//! = 652 clocks.
+//! = 653 clocks.
 
 use crate::gain_cell::CELL_DEPTH;
 use crate::params::*;
@@ -795,11 +795,13 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.one_sided.next = self.one_sided.val();
         self.array.tb_diag.next = self.traceback.tb_diag.val();
         self.array.tb_row.next = self.traceback.tb_row.val();
+        self.array.tb_row_up.next = self.traceback.tb_row_up.val();
 
         // ---- Traceback.
         self.traceback.n.next = self.en.q.val();
         self.traceback.m.next = self.em.q.val();
         self.traceback.tb_choice.next = self.array.tb_choice.val();
+        self.traceback.tb_choice_up.next = self.array.tb_choice_up.val();
 
         // ---- Output: positions read and registered, then X_i - X_j
         // registered.

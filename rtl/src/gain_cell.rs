@@ -37,10 +37,11 @@
 //! - Per line: `dispmax`, `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
 //!   `same_polarity`, `one_sided`.
-//! - Traceback: `tb_diag` (anti-diagonal `i + j`) and `tb_row`; the cell
-//!   reads its choice of column `tb_diag - index` and shows it on
-//!   `tb_choice` one clock later when `tb_row` is its index (zero, i.e.
-//!   `start`, otherwise, so the array's outputs can be OR-ed).
+//! - Traceback: `tb_diag` (anti-diagonal `i + j`), `tb_row` and `tb_row_up`;
+//!   the cell reads its choice of column `tb_diag - index` and shows it one
+//!   clock later on `tb_choice` when `tb_row` is its index, on
+//!   `tb_choice_up` when `tb_row_up` is (zero, i.e. `start`, otherwise, so
+//!   the array's outputs can be OR-ed).
 //!
 //! ## Timing
 //! A column moves one cell per clock. The column in the cell's slot at
@@ -112,7 +113,9 @@ pub struct GainCell {
     // Traceback.
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
     pub tb_row: Signal<In, Bits<INDEX_BITS>>,
+    pub tb_row_up: Signal<In, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<Out, Bits<2>>,
+    pub tb_choice_up: Signal<Out, Bits<2>>,
     choices: RAM<Bits<2>, INDEX_BITS>,
     index: Constant<Bits<INDEX_BITS>>,
     index8: Constant<Bits<DIAG_BITS>>,
@@ -250,7 +253,9 @@ impl GainCell {
             one_sided: Default::default(),
             tb_diag: Default::default(),
             tb_row: Default::default(),
+            tb_row_up: Default::default(),
             tb_choice: Default::default(),
+            tb_choice_up: Default::default(),
             choices: Default::default(),
             index: Constant::new((index as u64).into()),
             index8: Constant::new((index as u64).into()),
@@ -560,6 +565,10 @@ impl Logic for GainCell {
         self.tb_choice.next = 0.into();
         if self.tb_row.val() == self.index.val() {
             self.tb_choice.next = self.choices.read_data.val();
+        }
+        self.tb_choice_up.next = 0.into();
+        if self.tb_row_up.val() == self.index.val() {
+            self.tb_choice_up.next = self.choices.read_data.val();
         }
     }
 }

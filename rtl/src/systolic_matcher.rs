@@ -12,9 +12,10 @@
 //!   (one register slot per cell, slot i read by cell i).
 //! - `dispmax`, `below2`, `f1`, `f3`, `same_polarity`, `one_sided`: to every
 //!   cell (see [`GainCell`]).
-//! - `tb_diag`, `tb_row` in; `tb_choice` out: the choice of cell `tb_row`
-//!   in anti-diagonal `tb_diag` read one clock earlier, the OR of the
-//!   cells' outputs (the others show zero).
+//! - `tb_diag`, `tb_row`, `tb_row_up` in; `tb_choice`, `tb_choice_up` out:
+//!   the choices of cells `tb_row` and `tb_row_up` in anti-diagonal
+//!   `tb_diag` read one clock earlier, each the OR of the cells' outputs
+//!   (the others show zero).
 //!
 //! ## Timing
 //! Column `j` offered on `c_*` at clock `t - 1` sits in slot 0 at `t` and gives `P(i, j)` at the
@@ -57,7 +58,9 @@ pub struct SystolicMatcher<const N: usize> {
     pub one_sided: Signal<In, Bit>,
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
     pub tb_row: Signal<In, Bits<INDEX_BITS>>,
+    pub tb_row_up: Signal<In, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<Out, Bits<2>>,
+    pub tb_choice_up: Signal<Out, Bits<2>>,
     pub cells: [GainCell; N],
     // P of each cell.
     p_reg: [DFF<Bits<PATH_BITS>>; N],
@@ -74,6 +77,7 @@ pub struct SystolicMatcher<const N: usize> {
     col_lev5: [DFF<Bits<LEVEL_BITS>>; N],
     col_rising: [DFF<Bit>; N],
     choice_or: Signal<Local, Bits<2>>,
+    choice_up_or: Signal<Local, Bits<2>>,
 }
 
 impl<const N: usize> Default for SystolicMatcher<N> {
@@ -110,7 +114,9 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             one_sided: Default::default(),
             tb_diag: Default::default(),
             tb_row: Default::default(),
+            tb_row_up: Default::default(),
             tb_choice: Default::default(),
+            tb_choice_up: Default::default(),
             cells: core::array::from_fn(GainCell::new),
             p_reg: core::array::from_fn(|_| Default::default()),
             col_valid: core::array::from_fn(|_| Default::default()),
@@ -125,6 +131,7 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             col_lev5: core::array::from_fn(|_| Default::default()),
             col_rising: core::array::from_fn(|_| Default::default()),
             choice_or: Default::default(),
+            choice_up_or: Default::default(),
         }
     }
 }
@@ -152,6 +159,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].one_sided.next = self.one_sided.val();
             self.cells[i].tb_diag.next = self.tb_diag.val();
             self.cells[i].tb_row.next = self.tb_row.val();
+            self.cells[i].tb_row_up.next = self.tb_row_up.val();
         }
         // The column pipeline: slot 0 takes the stream, slot i the column
         // of slot i - 1; a bubble moves as one. Cell i reads slot i.
@@ -238,6 +246,11 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.choice_or.next = self.choice_or.val() | self.cells[i].tb_choice.val();
         }
         self.tb_choice.next = self.choice_or.val();
+        self.choice_up_or.next = 0.into();
+        for i in 0..N {
+            self.choice_up_or.next = self.choice_up_or.val() | self.cells[i].tb_choice_up.val();
+        }
+        self.tb_choice_up.next = self.choice_up_or.val();
 
     }
 }

@@ -7,25 +7,31 @@
 //! (node). So the walk reads the anti-diagonals in falling order, one per
 //! clock, whatever the path does: the cells' column memories are read at
 //! addresses known in advance (`tb_diag - i` in cell `i`), and the walker
-//! only picks cell `tb_row`'s choice of the anti-diagonal read the clock
-//! before, and skips the anti-diagonal a node jumps over. The pairs come
-//! out last first; a small stack turns them round.
+//! only picks its row's choice of the anti-diagonal read before, and skips
+//! the anti-diagonal a node jumps over. The row's choice travels through
+//! an OR over all cells, so it is registered: while the walker decides on
+//! one anti-diagonal, the array already shows the next one's choices of
+//! both rows the decision can leave it on (`tb_row` = its row, `tb_row_up`
+//! = the row above), and the next decision takes the right one. The pairs
+//! come out last first; a small stack turns them round.
 //!
 //! ## Ports
 //! - `start` (a pulse), `n`, `m`: the line's declivity counts; `start` is
 //!   taken in the idle state only.
-//! - To the array: `tb_diag`, `tb_row`; from it, `tb_choice`.
+//! - To the array: `tb_diag`, `tb_row`, `tb_row_up`; from it, `tb_choice`
+//!   and `tb_choice_up` (the two rows' choices).
 //! - Out: `out_valid`, `out_i`, `out_j` (a matched pair, reference order),
 //!   then `out_last` with `out_count` (pairs of the line) for one clock.
 //!
 //! ## Timing
 //! After `start` at clock `t`, the walk reads anti-diagonal `n + m - 2`
-//! at `t + 1` and decides on it at `t + 2`, then one anti-diagonal per clock
+//! at `t + 1`, registers its row's choice at `t + 2` and decides on it at
+//! `t + 3`, then one anti-diagonal per clock
 //! until the path starts (at most `n + m - 1` decisions); the `K` pairs
 //! then leave on consecutive clocks from two clocks after the last
 //! decision, and `out_last` one clock after the last pair: in all
 //! [`traceback_cycles`] clocks from `start` to `out_last`, at most
-//! `n + m + K + 2`.
+//! `n + m + K + 3`.
 
 use crate::gain_cell::{CHOICE_LEFT, CHOICE_NODE, CHOICE_START, CHOICE_UP};
 use crate::params::*;
@@ -38,7 +44,7 @@ const TB_EMIT: u64 = 2;
 /// Clocks from `start` to `out_last` for a line of `n` reference and `m`
 /// other declivities whose walk stops on anti-diagonal `stop_diag` (the
 /// `i + j` of the cell whose choice is `start`, or of the border cell it
-/// left last) with `k` pairs: two to the first decision, one per
+/// left last) with `k` pairs: three to the first decision, one per
 /// anti-diagonal from `n + m - 2` down to `stop_diag`, and `k + 2` to
 /// empty the stack (the first address, one read per pair, then the marker;
 /// just the marker when `k = 0`). An empty line (`n` or `m` zero) takes one.
@@ -47,7 +53,7 @@ pub const fn traceback_cycles(n: usize, m: usize, stop_diag: usize, k: usize) ->
         return 1;
     }
     let emit = if k == 0 { 1 } else { k + 2 };
-    2 + (n + m - 2 - stop_diag) + emit
+    3 + (n + m - 2 - stop_diag) + emit
 }
 
 /// The most clocks [`traceback_cycles`] can take: the walk down to
@@ -64,7 +70,9 @@ pub struct Traceback {
     pub m: Signal<In, Bits<COUNT_BITS>>,
     pub tb_diag: Signal<Out, Bits<DIAG_BITS>>,
     pub tb_row: Signal<Out, Bits<INDEX_BITS>>,
+    pub tb_row_up: Signal<Out, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<In, Bits<2>>,
+    pub tb_choice_up: Signal<In, Bits<2>>,
     pub out_valid: Signal<Out, Bit>,
     pub out_i: Signal<Out, Bits<INDEX_BITS>>,
     pub out_j: Signal<Out, Bits<INDEX_BITS>>,
@@ -76,12 +84,18 @@ pub struct Traceback {
     diag: DFF<Bits<DIAG_BITS>>,
     wi: DFF<Bits<INDEX_BITS>>,
     wj: DFF<Bits<INDEX_BITS>>,
+    wi_up: DFF<Bits<INDEX_BITS>>,
     primed: DFF<Bit>,
+    primed2: DFF<Bit>,
+    moved: DFF<Bit>,
+    here: DFF<Bits<2>>,
+    above: DFF<Bits<2>>,
     skip: DFF<Bit>,
     count: DFF<Bits<COUNT_BITS>>,
     left: DFF<Bits<COUNT_BITS>>,
     k: DFF<Bits<INDEX_BITS>>,
     pend: DFF<Bit>,
+    choice: Signal<Local, Bits<2>>,
     push: Signal<Local, Bit>,
     stop: Signal<Local, Bit>,
     issue: Signal<Local, Bit>,
@@ -104,7 +118,9 @@ impl Default for Traceback {
             m: Default::default(),
             tb_diag: Default::default(),
             tb_row: Default::default(),
+            tb_row_up: Default::default(),
             tb_choice: Default::default(),
+            tb_choice_up: Default::default(),
             out_valid: Default::default(),
             out_i: Default::default(),
             out_j: Default::default(),
@@ -116,12 +132,18 @@ impl Default for Traceback {
             diag: Default::default(),
             wi: Default::default(),
             wj: Default::default(),
+            wi_up: Default::default(),
             primed: Default::default(),
+            primed2: Default::default(),
+            moved: Default::default(),
+            here: Default::default(),
+            above: Default::default(),
             skip: Default::default(),
             count: Default::default(),
             left: Default::default(),
             k: Default::default(),
             pend: Default::default(),
+            choice: Default::default(),
             push: Default::default(),
             stop: Default::default(),
             issue: Default::default(),
@@ -143,10 +165,20 @@ impl Logic for Traceback {
         self.stack_i.write_clock.next = self.clock.val();
         self.stack_j.read_clock.next = self.clock.val();
         self.stack_j.write_clock.next = self.clock.val();
-        dff_setup!(self, clock, state, diag, wi, wj, primed, skip, count, left, k, pend);
+        dff_setup!(self, clock, state, diag, wi, wj, wi_up, primed, primed2, moved, here, above, skip, count, left, k, pend);
 
         self.tb_diag.next = self.diag.q.val();
         self.tb_row.next = self.wi.q.val();
+        self.tb_row_up.next = self.wi_up.q.val();
+        // The array's choices of rows wi and wi - 1, registered: the
+        // decision on the next clock takes the one of the row it is then on.
+        self.here.d.next = self.tb_choice.val();
+        self.above.d.next = self.tb_choice_up.val();
+        self.choice.next = self.here.q.val();
+        if self.moved.q.val() {
+            self.choice.next = self.above.q.val();
+        }
+        self.moved.d.next = false;
         self.push.next = false;
         self.stop.next = false;
         self.issue.next = false;
@@ -164,8 +196,10 @@ impl Logic for Traceback {
             if self.start.val() {
                 self.count.d.next = 0.into();
                 self.primed.d.next = false;
+                self.primed2.d.next = false;
                 self.skip.d.next = false;
                 self.wi.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 1);
+                self.wi_up.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 2);
                 self.wj.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.m.val() - 1);
                 self.diag.d.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.n.val() - 1)
                     + bit_cast::<DIAG_BITS, COUNT_BITS>(self.m.val() - 1);
@@ -180,25 +214,30 @@ impl Logic for Traceback {
             // The anti-diagonal read this clock is decided on the next.
             self.diag.d.next = self.diag.q.val() - 1;
             self.primed.d.next = true;
-            if self.primed.q.val() {
+            self.primed2.d.next = self.primed.q.val();
+            if self.primed2.q.val() {
                 if self.skip.q.val() {
                     self.skip.d.next = false;
                 } else {
-                    if self.tb_choice.val() == self.c_start.val() {
+                    if self.choice.val() == self.c_start.val() {
                         self.stop.next = true;
                     }
-                    if self.tb_choice.val() == self.c_node.val() {
+                    if self.choice.val() == self.c_node.val() {
                         self.push.next = true;
                         self.skip.d.next = true;
+                        self.moved.d.next = true;
                         self.wi.d.next = self.wi.q.val() - 1;
+                        self.wi_up.d.next = self.wi_up.q.val() - 1;
                         self.wj.d.next = self.wj.q.val() - 1;
                         self.stop.next = !self.wi.q.val().any() | !self.wj.q.val().any();
                     }
-                    if self.tb_choice.val() == self.c_up.val() {
+                    if self.choice.val() == self.c_up.val() {
+                        self.moved.d.next = true;
                         self.wi.d.next = self.wi.q.val() - 1;
+                        self.wi_up.d.next = self.wi_up.q.val() - 1;
                         self.stop.next = !self.wi.q.val().any();
                     }
-                    if self.tb_choice.val() == self.c_left.val() {
+                    if self.choice.val() == self.c_left.val() {
                         self.wj.d.next = self.wj.q.val() - 1;
                         self.stop.next = !self.wj.q.val().any();
                     }
