@@ -16,6 +16,7 @@ pub mod error;
 pub mod eval;
 pub mod io;
 pub mod matcher;
+pub mod matcher_cosim;
 pub mod pictures;
 pub mod synth;
 pub mod verilog;
