@@ -95,7 +95,10 @@ fn levels() -> impl Strategy<Value = [u8; 3]> {
 }
 
 fn random_line(n: usize, start: u32) -> impl Strategy<Value = MatchLine> {
-    (positions(n, start, 12 * PX), prop::collection::vec((any::<bool>(), levels(), levels()), n), 32u32..3000).prop_map(
+    // d_t: the detector's range, and now and then the largest the port
+    // holds (the sum of two saturates ⌈2·gmax⌉).
+    let dt = prop_oneof![6 => 32u32..3000, 1 => 65_500u32..65_536];
+    (positions(n, start, 12 * PX), prop::collection::vec((any::<bool>(), levels(), levels()), n), dt).prop_map(
         |(pos, attrs, dt)| MatchLine {
             dt,
             records: pos.iter().zip(attrs).map(|(&p, (r, l, rr))| record(p, r, l, rr)).collect(),

@@ -46,6 +46,7 @@
 
 use crate::gain_cell::CELL_DEPTH;
 use crate::params::*;
+use crate::record_memory::RecordMemory;
 use crate::systolic_matcher::SystolicMatcher;
 use crate::traceback::{traceback_cycles, Traceback};
 use rust_hdl::prelude::*;
@@ -145,22 +146,8 @@ pub struct DeclivityMatcher<const N: usize> {
     pub array: SystolicMatcher<N>,
     pub traceback: Traceback,
     // Record memories, two banks each (bank bit on top of the index).
-    r_pos_mem: RAM<Bits<POS_BITS>, DIAG_BITS>,
-    r_lev0_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    r_lev1_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    r_lev2_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    r_lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    r_lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    r_lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    r_rise_mem: RAM<Bit, DIAG_BITS>,
-    o_pos_mem: RAM<Bits<POS_BITS>, DIAG_BITS>,
-    o_lev0_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    o_lev1_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    o_lev2_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    o_lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    o_lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    o_lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    o_rise_mem: RAM<Bit, DIAG_BITS>,
+    r_mem: RecordMemory,
+    o_mem: RecordMemory,
     // Loader.
     lbank: DFF<Bit>,
     r_count: DFF<Bits<COUNT_BITS>>,
@@ -258,8 +245,6 @@ pub struct DeclivityMatcher<const N: usize> {
     o_take: Signal<Local, Bit>,
     r_addr: Signal<Local, Bits<DIAG_BITS>>,
     o_addr: Signal<Local, Bits<DIAG_BITS>>,
-    r_ends: Signal<Local, Bits<LEVEL_BITS>>,
-    o_ends: Signal<Local, Bits<LEVEL_BITS>>,
     handoff: Signal<Local, Bit>,
     take: Signal<Local, Bit>,
     dt_sum: Signal<Local, Bits<{ DT_BITS + 1 }>>,
@@ -270,14 +255,12 @@ pub struct DeclivityMatcher<const N: usize> {
     // Constants.
     relative: Constant<Bit>,
     one_sided: Constant<Bit>,
-    level_offset: Constant<Bits<LEVEL_BITS>>,
     bank_size: Constant<Bits<DIAG_BITS>>,
     n_max: Constant<Bits<COUNT_BITS>>,
     eng_idle: Constant<Bits<2>>,
     eng_sweep: Constant<Bits<2>>,
     eng_trace: Constant<Bits<2>>,
     sweep_tail: Constant<Bits<{ DIAG_BITS + 1 }>>,
-    amp_msb: Constant<Bits<8>>,
     dt_frac: Constant<Bits<8>>,
 }
 
@@ -330,22 +313,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             m_sof: Default::default(),
             array: Default::default(),
             traceback: Default::default(),
-            r_pos_mem: Default::default(),
-            r_lev0_mem: Default::default(),
-            r_lev1_mem: Default::default(),
-            r_lev2_mem: Default::default(),
-            r_lev3_mem: Default::default(),
-            r_lev4_mem: Default::default(),
-            r_lev5_mem: Default::default(),
-            r_rise_mem: Default::default(),
-            o_pos_mem: Default::default(),
-            o_lev0_mem: Default::default(),
-            o_lev1_mem: Default::default(),
-            o_lev2_mem: Default::default(),
-            o_lev3_mem: Default::default(),
-            o_lev4_mem: Default::default(),
-            o_lev5_mem: Default::default(),
-            o_rise_mem: Default::default(),
+            r_mem: Default::default(),
+            o_mem: Default::default(),
             lbank: Default::default(),
             r_count: Default::default(),
             o_count: Default::default(),
@@ -436,8 +405,6 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_take: Default::default(),
             r_addr: Default::default(),
             o_addr: Default::default(),
-            r_ends: Default::default(),
-            o_ends: Default::default(),
             handoff: Default::default(),
             take: Default::default(),
             dt_sum: Default::default(),
@@ -447,14 +414,12 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_rd: Default::default(),
             relative: Constant::new(rule.relative()),
             one_sided: Constant::new(rule.one_sided()),
-            level_offset: Constant::new(((LEVEL_OFFSET) as u64).into()),
             bank_size: Constant::new(((N_MAX as u64) as u64).into()),
             n_max: Constant::new(((N as u64) as u64).into()),
             eng_idle: Constant::new(((ENG_IDLE) as u64).into()),
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
             sweep_tail: Constant::new((CELL_DEPTH as u64).into()),
-            amp_msb: Constant::new((((AMP_BITS - 1) as u64) as u64).into()),
             dt_frac: Constant::new(((DT_FRAC_BITS as u64) as u64).into()),
         }
     }
@@ -471,38 +436,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
     fn update(&mut self) {
         self.array.clock.next = self.clock.val();
         self.traceback.clock.next = self.clock.val();
-        self.r_pos_mem.read_clock.next = self.clock.val();
-        self.r_pos_mem.write_clock.next = self.clock.val();
-        self.r_lev0_mem.read_clock.next = self.clock.val();
-        self.r_lev0_mem.write_clock.next = self.clock.val();
-        self.r_lev1_mem.read_clock.next = self.clock.val();
-        self.r_lev1_mem.write_clock.next = self.clock.val();
-        self.r_lev2_mem.read_clock.next = self.clock.val();
-        self.r_lev2_mem.write_clock.next = self.clock.val();
-        self.r_lev3_mem.read_clock.next = self.clock.val();
-        self.r_lev3_mem.write_clock.next = self.clock.val();
-        self.r_lev4_mem.read_clock.next = self.clock.val();
-        self.r_lev4_mem.write_clock.next = self.clock.val();
-        self.r_lev5_mem.read_clock.next = self.clock.val();
-        self.r_lev5_mem.write_clock.next = self.clock.val();
-        self.r_rise_mem.read_clock.next = self.clock.val();
-        self.r_rise_mem.write_clock.next = self.clock.val();
-        self.o_pos_mem.read_clock.next = self.clock.val();
-        self.o_pos_mem.write_clock.next = self.clock.val();
-        self.o_lev0_mem.read_clock.next = self.clock.val();
-        self.o_lev0_mem.write_clock.next = self.clock.val();
-        self.o_lev1_mem.read_clock.next = self.clock.val();
-        self.o_lev1_mem.write_clock.next = self.clock.val();
-        self.o_lev2_mem.read_clock.next = self.clock.val();
-        self.o_lev2_mem.write_clock.next = self.clock.val();
-        self.o_lev3_mem.read_clock.next = self.clock.val();
-        self.o_lev3_mem.write_clock.next = self.clock.val();
-        self.o_lev4_mem.read_clock.next = self.clock.val();
-        self.o_lev4_mem.write_clock.next = self.clock.val();
-        self.o_lev5_mem.read_clock.next = self.clock.val();
-        self.o_lev5_mem.write_clock.next = self.clock.val();
-        self.o_rise_mem.read_clock.next = self.clock.val();
-        self.o_rise_mem.write_clock.next = self.clock.val();
+        self.r_mem.clock.next = self.clock.val();
+        self.o_mem.clock.next = self.clock.val();
+        self.r_mem.relative.next = self.relative.val();
+        self.o_mem.relative.next = self.relative.val();
         dff_setup!(
             self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
@@ -526,100 +463,27 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         if self.lbank.q.val() {
             self.o_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.o_count.q.val()) + self.bank_size.val();
         }
-        // Levels 2·I + 512 - e, e the end-level sum in the relative rule.
-        self.r_ends.next = 0.into();
-        self.o_ends.next = 0.into();
-        if self.relative.val() {
-            self.r_ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left0.val())
-                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right0.val());
-            self.o_ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left0.val())
-                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right0.val());
-        }
-        self.r_pos_mem.write_address.next = self.r_addr.val();
-        self.r_lev0_mem.write_address.next = self.r_addr.val();
-        self.r_lev1_mem.write_address.next = self.r_addr.val();
-        self.r_lev2_mem.write_address.next = self.r_addr.val();
-        self.r_lev3_mem.write_address.next = self.r_addr.val();
-        self.r_lev4_mem.write_address.next = self.r_addr.val();
-        self.r_lev5_mem.write_address.next = self.r_addr.val();
-        self.r_rise_mem.write_address.next = self.r_addr.val();
-        self.o_pos_mem.write_address.next = self.o_addr.val();
-        self.o_lev0_mem.write_address.next = self.o_addr.val();
-        self.o_lev1_mem.write_address.next = self.o_addr.val();
-        self.o_lev2_mem.write_address.next = self.o_addr.val();
-        self.o_lev3_mem.write_address.next = self.o_addr.val();
-        self.o_lev4_mem.write_address.next = self.o_addr.val();
-        self.o_lev5_mem.write_address.next = self.o_addr.val();
-        self.o_rise_mem.write_address.next = self.o_addr.val();
-        self.r_pos_mem.write_data.next = self.r_pos.val();
-        self.r_lev0_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left0.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left0.val())
-            + self.level_offset.val()
-            - self.r_ends.val();
-        self.r_lev1_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left1.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left1.val())
-            + self.level_offset.val()
-            - self.r_ends.val();
-        self.r_lev2_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left2.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_left2.val())
-            + self.level_offset.val()
-            - self.r_ends.val();
-        self.r_lev3_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right0.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right0.val())
-            + self.level_offset.val()
-            - self.r_ends.val();
-        self.r_lev4_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right1.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right1.val())
-            + self.level_offset.val()
-            - self.r_ends.val();
-        self.r_lev5_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right2.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.r_right2.val())
-            + self.level_offset.val()
-            - self.r_ends.val();
-        self.r_rise_mem.write_data.next = !self.r_amp.val().get_bit(self.amp_msb.val().index());
-        self.o_pos_mem.write_data.next = self.o_pos.val();
-        self.o_lev0_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left0.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left0.val())
-            + self.level_offset.val()
-            - self.o_ends.val();
-        self.o_lev1_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left1.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left1.val())
-            + self.level_offset.val()
-            - self.o_ends.val();
-        self.o_lev2_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left2.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_left2.val())
-            + self.level_offset.val()
-            - self.o_ends.val();
-        self.o_lev3_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right0.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right0.val())
-            + self.level_offset.val()
-            - self.o_ends.val();
-        self.o_lev4_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right1.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right1.val())
-            + self.level_offset.val()
-            - self.o_ends.val();
-        self.o_lev5_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right2.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.o_right2.val())
-            + self.level_offset.val()
-            - self.o_ends.val();
-        self.o_rise_mem.write_data.next = !self.o_amp.val().get_bit(self.amp_msb.val().index());
-        // Records beyond N_MAX are dropped (the line is then full).
-        self.r_pos_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.r_lev0_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.r_lev1_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.r_lev2_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.r_lev3_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.r_lev4_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.r_lev5_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.r_rise_mem.write_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
-        self.o_pos_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
-        self.o_lev0_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
-        self.o_lev1_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
-        self.o_lev2_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
-        self.o_lev3_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
-        self.o_lev4_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
-        self.o_lev5_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
-        self.o_rise_mem.write_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        // Records beyond N are dropped (the line is then full).
+        self.r_mem.w_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
+        self.r_mem.w_addr.next = self.r_addr.val();
+        self.r_mem.w_pos.next = self.r_pos.val();
+        self.r_mem.w_amp.next = self.r_amp.val();
+        self.r_mem.w_left0.next = self.r_left0.val();
+        self.r_mem.w_left1.next = self.r_left1.val();
+        self.r_mem.w_left2.next = self.r_left2.val();
+        self.r_mem.w_right0.next = self.r_right0.val();
+        self.r_mem.w_right1.next = self.r_right1.val();
+        self.r_mem.w_right2.next = self.r_right2.val();
+        self.o_mem.w_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
+        self.o_mem.w_addr.next = self.o_addr.val();
+        self.o_mem.w_pos.next = self.o_pos.val();
+        self.o_mem.w_amp.next = self.o_amp.val();
+        self.o_mem.w_left0.next = self.o_left0.val();
+        self.o_mem.w_left1.next = self.o_left1.val();
+        self.o_mem.w_left2.next = self.o_left2.val();
+        self.o_mem.w_right0.next = self.o_right0.val();
+        self.o_mem.w_right1.next = self.o_right1.val();
+        self.o_mem.w_right2.next = self.o_right2.val();
         if self.r_take.val() {
             if self.r_count.q.val() < self.n_max.val() {
                 self.r_count.d.next = self.r_count.q.val() + 1;
@@ -684,7 +548,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
                 + bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.pend_m.q.val())
                 + self.sweep_tail.val();
             self.below2_reg.d.next = self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index());
-            if self.pend_dt_sum.q.val().get_bits::<DT_FRAC_BITS>(0).any() {
+            // (Saturating at the all-ones value: no doubled distance reaches
+            // it, so every distance is then below gmax either way.)
+            if self.pend_dt_sum.q.val().get_bits::<DT_FRAC_BITS>(0).any()
+                & !self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index()).all()
+            {
                 self.below2_reg.d.next =
                     self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index()) + 1;
             }
@@ -727,45 +595,32 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.r_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.traceback.out_i.val()) + self.rd_bank_base.val();
             self.o_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.traceback.out_j.val()) + self.rd_bank_base.val();
         }
-        self.r_pos_mem.read_address.next = self.r_rd.val();
-        self.r_lev0_mem.read_address.next = self.r_rd.val();
-        self.r_lev1_mem.read_address.next = self.r_rd.val();
-        self.r_lev2_mem.read_address.next = self.r_rd.val();
-        self.r_lev3_mem.read_address.next = self.r_rd.val();
-        self.r_lev4_mem.read_address.next = self.r_rd.val();
-        self.r_lev5_mem.read_address.next = self.r_rd.val();
-        self.r_rise_mem.read_address.next = self.r_rd.val();
-        self.o_pos_mem.read_address.next = self.o_rd.val();
-        self.o_lev0_mem.read_address.next = self.o_rd.val();
-        self.o_lev1_mem.read_address.next = self.o_rd.val();
-        self.o_lev2_mem.read_address.next = self.o_rd.val();
-        self.o_lev3_mem.read_address.next = self.o_rd.val();
-        self.o_lev4_mem.read_address.next = self.o_rd.val();
-        self.o_lev5_mem.read_address.next = self.o_rd.val();
-        self.o_rise_mem.read_address.next = self.o_rd.val();
+
+        self.r_mem.r_addr.next = self.r_rd.val();
+        self.o_mem.r_addr.next = self.o_rd.val();
 
         // ---- The array.
         self.ld_valid_q.d.next = self.ld_valid_d.q.val();
         self.ld_index_q.d.next = self.ld_index_d.q.val();
-        self.ld_pos_q.d.next = self.r_pos_mem.read_data.val();
-        self.ld_lev0_q.d.next = self.r_lev0_mem.read_data.val();
-        self.ld_lev1_q.d.next = self.r_lev1_mem.read_data.val();
-        self.ld_lev2_q.d.next = self.r_lev2_mem.read_data.val();
-        self.ld_lev3_q.d.next = self.r_lev3_mem.read_data.val();
-        self.ld_lev4_q.d.next = self.r_lev4_mem.read_data.val();
-        self.ld_lev5_q.d.next = self.r_lev5_mem.read_data.val();
-        self.ld_rising_q.d.next = self.r_rise_mem.read_data.val();
+        self.ld_pos_q.d.next = self.r_mem.pos.val();
+        self.ld_lev0_q.d.next = self.r_mem.lev0.val();
+        self.ld_lev1_q.d.next = self.r_mem.lev1.val();
+        self.ld_lev2_q.d.next = self.r_mem.lev2.val();
+        self.ld_lev3_q.d.next = self.r_mem.lev3.val();
+        self.ld_lev4_q.d.next = self.r_mem.lev4.val();
+        self.ld_lev5_q.d.next = self.r_mem.lev5.val();
+        self.ld_rising_q.d.next = self.r_mem.rising.val();
         self.c_valid_q.d.next = self.c_valid_d.q.val();
         self.c_first_q.d.next = !self.c_j_d.q.val().any();
         self.c_j_q.d.next = self.c_j_d.q.val();
-        self.c_pos_q.d.next = self.o_pos_mem.read_data.val();
-        self.c_lev0_q.d.next = self.o_lev0_mem.read_data.val();
-        self.c_lev1_q.d.next = self.o_lev1_mem.read_data.val();
-        self.c_lev2_q.d.next = self.o_lev2_mem.read_data.val();
-        self.c_lev3_q.d.next = self.o_lev3_mem.read_data.val();
-        self.c_lev4_q.d.next = self.o_lev4_mem.read_data.val();
-        self.c_lev5_q.d.next = self.o_lev5_mem.read_data.val();
-        self.c_rising_q.d.next = self.o_rise_mem.read_data.val();
+        self.c_pos_q.d.next = self.o_mem.pos.val();
+        self.c_lev0_q.d.next = self.o_mem.lev0.val();
+        self.c_lev1_q.d.next = self.o_mem.lev1.val();
+        self.c_lev2_q.d.next = self.o_mem.lev2.val();
+        self.c_lev3_q.d.next = self.o_mem.lev3.val();
+        self.c_lev4_q.d.next = self.o_mem.lev4.val();
+        self.c_lev5_q.d.next = self.o_mem.lev5.val();
+        self.c_rising_q.d.next = self.o_mem.rising.val();
         self.array.ld_valid.next = self.ld_valid_q.q.val();
         self.array.ld_index.next = self.ld_index_q.q.val();
         self.array.ld_pos.next = self.ld_pos_q.q.val();
@@ -815,8 +670,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         if self.q_valid.q.val() {
             self.w_i.d.next = self.q_i.q.val();
             self.w_j.d.next = self.q_j.q.val();
-            self.w_xr.d.next = self.r_pos_mem.read_data.val();
-            self.w_xo.d.next = self.o_pos_mem.read_data.val();
+            self.w_xr.d.next = self.r_mem.pos.val();
+            self.w_xo.d.next = self.o_mem.pos.val();
         }
         if self.q_last.q.val() {
             self.w_count.d.next = self.q_count.q.val();

@@ -22,6 +22,7 @@ pub mod position_divider;
 pub mod gain_cell;
 pub mod systolic_matcher;
 pub mod traceback;
+pub mod record_memory;
 pub mod declivity_matcher;
 
 pub use rust_hdl;

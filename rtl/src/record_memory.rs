@@ -1,0 +1,184 @@
+//! One view's declivity records for the matcher: two lines' worth (two
+//! banks of `N_MAX` entries, the bank bit above the index), each record's
+//! six neighbour levels put into the gain rule's format on the way in.
+//!
+//! ## Ports
+//! - `relative`: the gain rule (a design constant of the matcher): levels
+//!   `2·I - e + LEVEL_OFFSET` with `e = I(x_i) + I(x_{i+1})`, the
+//!   declivity's end-level sum, when set; `2·I + LEVEL_OFFSET` otherwise
+//!   (paper §III, eq. 4–5, and `golden::gain::Neighbours`).
+//! - Write: `w_enable`, `w_addr`, and the record as the detector sends it:
+//!   `w_pos`, `w_amp` (only its sign is kept: the polarity), `w_left0..2`,
+//!   `w_right0..2`.
+//! - Read: `r_addr`; one clock later `pos`, `lev0..5` (left 0–2, then right
+//!   0–2) and `rising`.
+//!
+//! ## Timing
+//! One write and one read per clock (block or LUT RAM with a registered
+//! read, as the synthesis maps it); a read of the address written on the
+//! same clock returns the old record.
+
+use crate::params::*;
+use rust_hdl::prelude::*;
+
+#[derive(LogicBlock)]
+pub struct RecordMemory {
+    pub clock: Signal<In, Clock>,
+    pub relative: Signal<In, Bit>,
+    pub w_enable: Signal<In, Bit>,
+    pub w_addr: Signal<In, Bits<DIAG_BITS>>,
+    pub w_pos: Signal<In, Bits<POS_BITS>>,
+    pub w_amp: Signal<In, Bits<AMP_BITS>>,
+    pub w_left0: Signal<In, Bits<PIXEL_BITS>>,
+    pub w_left1: Signal<In, Bits<PIXEL_BITS>>,
+    pub w_left2: Signal<In, Bits<PIXEL_BITS>>,
+    pub w_right0: Signal<In, Bits<PIXEL_BITS>>,
+    pub w_right1: Signal<In, Bits<PIXEL_BITS>>,
+    pub w_right2: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_addr: Signal<In, Bits<DIAG_BITS>>,
+    pub pos: Signal<Out, Bits<POS_BITS>>,
+    pub lev0: Signal<Out, Bits<LEVEL_BITS>>,
+    pub lev1: Signal<Out, Bits<LEVEL_BITS>>,
+    pub lev2: Signal<Out, Bits<LEVEL_BITS>>,
+    pub lev3: Signal<Out, Bits<LEVEL_BITS>>,
+    pub lev4: Signal<Out, Bits<LEVEL_BITS>>,
+    pub lev5: Signal<Out, Bits<LEVEL_BITS>>,
+    pub rising: Signal<Out, Bit>,
+    pos_mem: RAM<Bits<POS_BITS>, DIAG_BITS>,
+    lev0_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    lev1_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    lev2_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    rise_mem: RAM<Bit, DIAG_BITS>,
+    ends: Signal<Local, Bits<LEVEL_BITS>>,
+    level_offset: Constant<Bits<LEVEL_BITS>>,
+    amp_msb: Constant<Bits<8>>,
+}
+
+impl Default for RecordMemory {
+    fn default() -> Self {
+        RecordMemory {
+            clock: Default::default(),
+            relative: Default::default(),
+            w_enable: Default::default(),
+            w_addr: Default::default(),
+            w_pos: Default::default(),
+            w_amp: Default::default(),
+            w_left0: Default::default(),
+            w_left1: Default::default(),
+            w_left2: Default::default(),
+            w_right0: Default::default(),
+            w_right1: Default::default(),
+            w_right2: Default::default(),
+            r_addr: Default::default(),
+            pos: Default::default(),
+            lev0: Default::default(),
+            lev1: Default::default(),
+            lev2: Default::default(),
+            lev3: Default::default(),
+            lev4: Default::default(),
+            lev5: Default::default(),
+            rising: Default::default(),
+            pos_mem: Default::default(),
+            lev0_mem: Default::default(),
+            lev1_mem: Default::default(),
+            lev2_mem: Default::default(),
+            lev3_mem: Default::default(),
+            lev4_mem: Default::default(),
+            lev5_mem: Default::default(),
+            rise_mem: Default::default(),
+            ends: Default::default(),
+            level_offset: Constant::new(LEVEL_OFFSET.into()),
+            amp_msb: Constant::new(((AMP_BITS - 1) as u64).into()),
+        }
+    }
+}
+
+impl Logic for RecordMemory {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.pos_mem.read_clock.next = self.clock.val();
+        self.pos_mem.write_clock.next = self.clock.val();
+        self.lev0_mem.read_clock.next = self.clock.val();
+        self.lev0_mem.write_clock.next = self.clock.val();
+        self.lev1_mem.read_clock.next = self.clock.val();
+        self.lev1_mem.write_clock.next = self.clock.val();
+        self.lev2_mem.read_clock.next = self.clock.val();
+        self.lev2_mem.write_clock.next = self.clock.val();
+        self.lev3_mem.read_clock.next = self.clock.val();
+        self.lev3_mem.write_clock.next = self.clock.val();
+        self.lev4_mem.read_clock.next = self.clock.val();
+        self.lev4_mem.write_clock.next = self.clock.val();
+        self.lev5_mem.read_clock.next = self.clock.val();
+        self.lev5_mem.write_clock.next = self.clock.val();
+        self.rise_mem.read_clock.next = self.clock.val();
+        self.rise_mem.write_clock.next = self.clock.val();
+
+        self.ends.next = 0.into();
+        if self.relative.val() {
+            self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
+                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val());
+        }
+        self.pos_mem.write_data.next = self.w_pos.val();
+        self.lev0_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
+            + self.level_offset.val()
+            - self.ends.val();
+        self.lev1_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left1.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left1.val())
+            + self.level_offset.val()
+            - self.ends.val();
+        self.lev2_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left2.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left2.val())
+            + self.level_offset.val()
+            - self.ends.val();
+        self.lev3_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val())
+            + self.level_offset.val()
+            - self.ends.val();
+        self.lev4_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right1.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right1.val())
+            + self.level_offset.val()
+            - self.ends.val();
+        self.lev5_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
+            + self.level_offset.val()
+            - self.ends.val();
+        self.rise_mem.write_data.next = !self.w_amp.val().get_bit(self.amp_msb.val().index());
+
+        self.pos_mem.write_address.next = self.w_addr.val();
+        self.lev0_mem.write_address.next = self.w_addr.val();
+        self.lev1_mem.write_address.next = self.w_addr.val();
+        self.lev2_mem.write_address.next = self.w_addr.val();
+        self.lev3_mem.write_address.next = self.w_addr.val();
+        self.lev4_mem.write_address.next = self.w_addr.val();
+        self.lev5_mem.write_address.next = self.w_addr.val();
+        self.rise_mem.write_address.next = self.w_addr.val();
+        self.pos_mem.write_enable.next = self.w_enable.val();
+        self.lev0_mem.write_enable.next = self.w_enable.val();
+        self.lev1_mem.write_enable.next = self.w_enable.val();
+        self.lev2_mem.write_enable.next = self.w_enable.val();
+        self.lev3_mem.write_enable.next = self.w_enable.val();
+        self.lev4_mem.write_enable.next = self.w_enable.val();
+        self.lev5_mem.write_enable.next = self.w_enable.val();
+        self.rise_mem.write_enable.next = self.w_enable.val();
+        self.pos_mem.read_address.next = self.r_addr.val();
+        self.lev0_mem.read_address.next = self.r_addr.val();
+        self.lev1_mem.read_address.next = self.r_addr.val();
+        self.lev2_mem.read_address.next = self.r_addr.val();
+        self.lev3_mem.read_address.next = self.r_addr.val();
+        self.lev4_mem.read_address.next = self.r_addr.val();
+        self.lev5_mem.read_address.next = self.r_addr.val();
+        self.rise_mem.read_address.next = self.r_addr.val();
+        self.pos.next = self.pos_mem.read_data.val();
+        self.lev0.next = self.lev0_mem.read_data.val();
+        self.lev1.next = self.lev1_mem.read_data.val();
+        self.lev2.next = self.lev2_mem.read_data.val();
+        self.lev3.next = self.lev3_mem.read_data.val();
+        self.lev4.next = self.lev4_mem.read_data.val();
+        self.lev5.next = self.lev5_mem.read_data.val();
+        self.rising.next = self.rise_mem.read_data.val();
+    }
+}
