@@ -215,7 +215,8 @@ impl<const N: usize> MatcherSim<N> {
 }
 
 /// Passes over the matcher that the inputs (clock low) and a clock edge
-/// always need before the logic is stable.
+/// always need before the logic is stable (measured: 5 and 9–12 with the
+/// checking pass).
 const SETTLE_LOW: usize = 4;
 const SETTLE_HIGH: usize = 8;
 
@@ -226,18 +227,6 @@ const SETTLE_HIGH: usize = 8;
 fn settle<const N: usize>(u: &mut DeclivityMatcher<N>, passes: usize) {
     for _ in 0..passes {
         u.update_all();
-    }
-    if std::env::var_os("PASSES").is_some() {
-        let mut k = 0;
-        loop {
-            u.update_all();
-            k += 1;
-            if !u.has_changed() {
-                break;
-            }
-        }
-        eprintln!("passes {passes}+{k}");
-        return;
     }
     assert!(simulate(u, 200), "the matcher's logic did not settle");
 }
@@ -664,28 +653,11 @@ mod tests {
             })
             .collect();
         let mut sim = MatcherSim::<16>::new(GainRule::Robust, 40 << POS_FRAC_BITS);
-        let t0 = std::time::Instant::now();
         let got = sim.run(&pairs, false, || {});
-        eprintln!("{} clocks in {:?}", sim.cycle, t0.elapsed());
         for ((r, o), g) in pairs.iter().zip(&got) {
             let want = golden_match(r, o, sim.dispmax, GainRule::Robust);
-            eprintln!("golden {:?} rtl {:?}", want.nodes, g.pairs());
             check_line(r, o, g, sim.dispmax, GainRule::Robust).unwrap();
             assert_eq!(agreement(&want, &g.pairs()), Agreement::Identical);
         }
-    }
-}
-
-#[cfg(test)]
-mod real {
-    use super::*;
-
-    #[test]
-    fn tsukuba_speed_probe() {
-        let dir = crate::io::shared_stereo_dir().join("tsukuba");
-        let pair = crate::io::load_pair_dir(&dir).unwrap();
-        let lines = image_lines(&pair.left, &pair.right);
-        let (rep, _) = match_image::<{ rtl::params::N_MAX }>("tsukuba", &lines[..60], GainRule::Robust, (pair.dispmax * 16.0) as u32, 2, &|| {});
-        eprintln!("{}", serde_json::to_string_pretty(&rep).unwrap());
     }
 }
