@@ -379,8 +379,11 @@ impl Logic for GainCell {
         }
 
         // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax) and
-        // |level differences|. One subtraction gives d and its sign; each
-        // |a - b| is a - b or b - a by the sign of a - b.
+        // |level differences|. One subtraction gives d and its sign. Of each
+        // side's three |a - b|, two are kept as a - b or its ones' complement
+        // `!(a - b) = |a - b| - 1` with the sign bit beside it, the +1 being
+        // the carry-in of stage B's adders; the third, with no carry-in left
+        // for it, is a - b or b - a by the sign of a - b.
         self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.r_pos.q.val())
             - bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
         self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev0.q.val())
@@ -441,7 +444,8 @@ impl Logic for GainCell {
             }
         }
 
-        // ---- B: 2·lpd and 2·rpd (eq. 4–5).
+        // ---- B: 2·lpd and 2·rpd (eq. 4–5); each one-bit term is an adder's
+        // carry-in after synthesis.
         self.l_part0.next = bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e0.q.val())
             + bit_cast::<DIST_BITS, LEVEL_BITS>(self.a_e1.q.val())
             + bit_cast::<DIST_BITS, 1>(self.a_s0.q.val());
