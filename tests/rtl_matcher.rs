@@ -417,3 +417,29 @@ fn every_row_of_sawtooth_matches_golden_node_for_node_robust() {
 fn every_row_of_motorcycle_matches_golden_node_for_node_robust() {
     real_pair("motorcycle", GainRule::Robust);
 }
+
+/// An image wider than `W_MAX`: each line is its first `W_MAX` pixels, as
+/// the detector sends it, flagged wide on the marker, and matched as golden
+/// matches those pixels' declivities.
+#[test]
+fn lines_wider_than_w_max_are_matched_on_their_first_w_max_pixels_and_flagged_wide() {
+    use declivity_tests::{block_line, seeded, shift_left_to_right};
+    let (w, h) = (W_MAX + 77, 2);
+    let mut rng = seeded(11);
+    let rows: Vec<Vec<u8>> = (0..h).map(|_| block_line(&mut rng, w)).collect();
+    let left = golden::GreyImage::new(w, h, rows.concat()).expect("an image");
+    let right_rows: Vec<u8> = rows.iter().flat_map(|r| shift_left_to_right(r, 5)).collect();
+    let right = golden::GreyImage::new(w, h, right_rows).expect("an image");
+    let lines = image_lines(&left, &right);
+    assert!(lines.iter().all(|(l, r)| l.wide && r.wide));
+    assert!(lines.iter().flat_map(|(l, r)| l.records.iter().chain(&r.records)).all(|rec| (rec.pos >> POS_FRAC_BITS) < W_MAX as u32));
+    let dispmax = 10 * PX;
+    let mut sim = MatcherSim::<N_MAX>::new(GainRule::Robust, dispmax);
+    let got = sim.run(&lines, false, || {});
+    for ((l, r), g) in lines.iter().zip(&got) {
+        assert!(g.marker.wide);
+        let want = golden_match(l, r, dispmax, GainRule::Robust);
+        assert!(want.nodes.len() > l.records.len() / 2, "the shifted copy matches: {} of {}", want.nodes.len(), l.records.len());
+        assert_eq!(g.pairs(), want.nodes);
+    }
+}

@@ -17,7 +17,7 @@ use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
 use rtl::declivity_matcher::{DeclivityMatcher, GainRule};
-use rtl::params::{DT_FRAC_BITS, N_MAX, POS_FRAC_BITS};
+use rtl::params::{DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
 use rust_hdl::prelude::*;
 use serde::Serialize;
 
@@ -453,7 +453,12 @@ pub fn image_lines(left: &golden::GreyImage, right: &golden::GreyImage) -> Vec<(
     (0..left.height())
         .into_par_iter()
         .map(|y| {
-            let f = |img: &golden::GreyImage| quantize_line(&golden::line::line_features_with(img.row(y), limits));
+            // A line wider than W_MAX is its first W_MAX pixels, flagged
+            // wide, as the detector sends it.
+            let f = |img: &golden::GreyImage| MatchLine {
+                wide: img.width() > W_MAX,
+                ..quantize_line(&golden::line::line_features_with(img.row(y), limits))
+            };
             let (mut l, r) = (f(left), f(right));
             l.sof = y == 0;
             (l, r)
