@@ -56,12 +56,6 @@ pub const fn traceback_cycles(n: usize, m: usize, stop_diag: usize, k: usize) ->
     3 + (n + m - 2 - stop_diag) + emit
 }
 
-/// The most clocks [`traceback_cycles`] can take: the walk down to
-/// anti-diagonal 0.
-pub const fn traceback_cycles_max(n: usize, m: usize, k: usize) -> usize {
-    traceback_cycles(n, m, 0, k)
-}
-
 #[derive(LogicBlock)]
 pub struct Traceback {
     pub clock: Signal<In, Clock>,

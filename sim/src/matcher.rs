@@ -409,17 +409,11 @@ pub fn agreement(golden: &GoldenMatch, rtl_pairs: &[(usize, usize)]) -> Agreemen
     }
 }
 
-/// Checks one line's beats against its inputs and golden: the pairs'
-/// positions and disparities, the marker's counts, and the path's gain by
-/// golden's gains (golden's optimum, exactly). Returns the first
-/// difference found.
-pub fn check_line(
-    reference: &MatchLine,
-    other: &MatchLine,
-    got: &MatchedLine,
-    dispmax: u32,
-    rule: GainRule,
-) -> Result<(), String> {
+/// Checks one line's beats against its inputs and golden's matching of
+/// them ([`golden_match`]): the pairs' positions and disparities, the
+/// marker's counts, and the path's gain by golden's gains (golden's
+/// optimum, exactly). Returns the first difference found.
+pub fn check_line(reference: &MatchLine, other: &MatchLine, got: &MatchedLine, golden: &GoldenMatch) -> Result<(), String> {
     let (n, m) = (reference.records.len(), other.records.len());
     if got.marker.n as usize != n || got.marker.m as usize != m {
         return Err(format!("marker counts {}×{}, sent {n}×{m}", got.marker.n, got.marker.m));
@@ -436,7 +430,6 @@ pub fn check_line(
             return Err(format!("match ({i}, {j}): x_ref {} disp {}, want {} {}", b.x_ref, b.disp, r.pos, r.pos - o.pos));
         }
     }
-    let golden = golden_match(reference, other, dispmax, rule);
     match golden.path_gain(&got.pairs()) {
         Some(g) if g == golden.gain => {}
         g => return Err(format!("the rtl path's gain by golden's gains is {g:?}, golden's optimum {}", golden.gain)),
@@ -545,7 +538,7 @@ pub fn match_lines<const N: usize>(
             Agreement::EqualGain => report.equal_gain_lines += 1,
             Agreement::Mismatch => report.mismatch_lines += 1,
         }
-        report.malformed_lines += check_line(r, o, &rtl, dispmax, rule).is_err() as usize;
+        report.malformed_lines += check_line(r, o, &rtl, &golden).is_err() as usize;
         // The engine takes a pair two clocks after its second marker, or
         // the clock after the previous pair's traceback ends (its marker
         // leaves three clocks later).
@@ -661,7 +654,7 @@ mod tests {
         let got = sim.run(&pairs, false, || {});
         for ((r, o), g) in pairs.iter().zip(&got) {
             let want = golden_match(r, o, sim.dispmax, GainRule::Robust);
-            check_line(r, o, g, sim.dispmax, GainRule::Robust).unwrap();
+            check_line(r, o, g, &want).unwrap();
             assert_eq!(agreement(&want, &g.pairs()), Agreement::Identical);
         }
     }
