@@ -618,13 +618,8 @@ mod tests {
     use super::*;
 
     fn rng(seed: u64) -> impl FnMut() -> u64 {
-        let mut s = seed;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        }
+        let mut r = crate::cosim::VectorRng(seed);
+        move || r.next()
     }
 
     fn line(next: &mut impl FnMut() -> u64, n: usize, dt: u32) -> MatchLine {

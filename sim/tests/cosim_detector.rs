@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use rtl::declivity_detector::MIN_LINE_PERIOD;
 use rtl::params::W_MAX;
-use sim::cosim::{self, Options, Simulator, Trace};
+use sim::cosim::{self, Options, Simulator, Trace, VectorRng};
 use sim::detector::{detector_trace, frame_beats};
 
 fn vectors() -> PathBuf {
@@ -22,18 +22,8 @@ fn design() -> String {
     sim::verilog::generate(sim::verilog::Top::Detector)
 }
 
-/// xorshift64, seeded: the vectors must be the same on every machine.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-}
 
-fn walk(rng: &mut Rng, n: usize, step: i64) -> Vec<u8> {
+fn walk(rng: &mut VectorRng, n: usize, step: i64) -> Vec<u8> {
     let mut v = 128i64;
     (0..n)
         .map(|_| {
@@ -54,7 +44,7 @@ fn row(pair: &str, y: usize) -> Vec<u8> {
 /// Widths 1, 2, 3, flat, 0/255 extremes, more than N_MAX declivities, wider
 /// than W_MAX, random walks with tvalid gaps, and real rows.
 fn corner_trace(design: &str) -> Trace {
-    let mut rng = Rng(0x5eed_0001);
+    let mut rng = VectorRng(0x5eed_0001);
     let mut zigzag: Vec<u8> = vec![150; 40];
     zigzag.extend((0..300).map(|x| if x % 2 == 0 { 60 } else { 160 }));
     let lines: Vec<Vec<u8>> = vec![
@@ -74,7 +64,7 @@ fn corner_trace(design: &str) -> Trace {
     let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
     // Each line followed by enough idle clocks that the input never stalls,
     // and one pixel in eight with tvalid low.
-    let mut gaps = Rng(0x5eed_0002);
+    let mut gaps = VectorRng(0x5eed_0002);
     let beats = frame_beats(&refs, MIN_LINE_PERIOD, || gaps.next() % 8 == 0);
     detector_trace(design, &beats).expect("records")
 }

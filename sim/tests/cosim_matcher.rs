@@ -25,7 +25,7 @@ use std::time::Instant;
 
 use rtl::declivity_matcher::GainRule;
 use rtl::params::{DT_FRAC_BITS, POS_FRAC_BITS};
-use sim::cosim::{self, CosimError, Options, Simulator, Trace};
+use sim::cosim::{self, CosimError, Options, Simulator, Trace, VectorRng};
 use sim::matcher::{check_line, golden_match, image_lines, MatchLine, MatchRecord, MatchedLine};
 use sim::matcher_cosim::matcher_trace;
 use sim::verilog::{generate_with, Top};
@@ -45,16 +45,6 @@ fn design(cells: usize, rule: GainRule) -> String {
     generate_with(Top::Matcher, cells, rule).expect("a supported size")
 }
 
-/// xorshift64, seeded: the vectors must be the same on every machine.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-}
 
 /// `d_t` of `levels` grey levels in the matcher's format.
 fn dt(levels: u32) -> u32 {
@@ -72,7 +62,7 @@ fn line(dt_levels: u32, records: Vec<MatchRecord>) -> MatchLine {
 
 /// `n` random declivities from `x0` on, 1–20 px apart, random polarity,
 /// amplitude and neighbour levels.
-fn random_line(rng: &mut Rng, n: usize, x0: u32, dt_levels: u32) -> MatchLine {
+fn random_line(rng: &mut VectorRng, n: usize, x0: u32, dt_levels: u32) -> MatchLine {
     let mut pos = x0;
     let records = (0..n)
         .map(|_| {
@@ -94,7 +84,7 @@ fn random_line(rng: &mut Rng, n: usize, x0: u32, dt_levels: u32) -> MatchLine {
 
 /// `line` shifted left by `d` (`· 16`) with a little level noise: the other
 /// view of a scene at disparity `d`.
-fn shifted(rng: &mut Rng, l: &MatchLine, d: u32) -> MatchLine {
+fn shifted(rng: &mut VectorRng, l: &MatchLine, d: u32) -> MatchLine {
     let mut o = l.clone();
     o.records.retain(|r| r.pos >= d);
     for r in &mut o.records {
@@ -108,7 +98,7 @@ fn shifted(rng: &mut Rng, l: &MatchLine, d: u32) -> MatchLine {
 
 /// Hand-built line pairs (reference, other), each with what it is for.
 fn corner_pairs() -> Vec<(&'static str, MatchLine, MatchLine)> {
-    let mut rng = Rng(0x5eed_0011);
+    let mut rng = VectorRng(0x5eed_0011);
     let d = DISPMAX;
     let three = line(20, vec![step(800, 40, 160), step(1600, 160, 60), step(2400, 60, 200)]);
     let mut pairs = vec![
