@@ -527,6 +527,18 @@ fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
     Ok(())
 }
 
+/// The progress bar of a simulation over `lines` lines, hidden when the
+/// output is JSON.
+fn lines_bar(lines: usize, message: String, json: bool) -> ProgressBar {
+    let bar = ProgressBar::new(lines as u64);
+    bar.set_style(ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} lines, {eta} left").expect("template"));
+    bar.set_message(message);
+    if json {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    bar
+}
+
 fn rtl_detect(a: RtlDetectArgs) -> Result<(), SimError> {
     use sim::detector::{as_features, detect_image, marker_latency_estimate, DetectorSim};
     let loaded = load_grey(&a.image)?;
@@ -552,12 +564,7 @@ fn rtl_detect(a: RtlDetectArgs) -> Result<(), SimError> {
         let range = r.start as u64 * w..r.end as u64 * w + marker_latency_estimate(image.width()) + w;
         sim.trace_to(path, range).map_err(|source| SimError::Io { path: path.clone(), source })?;
     }
-    let bar = ProgressBar::new(image.height() as u64);
-    bar.set_style(ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} lines, {eta} left").expect("template"));
-    bar.set_message("rtl detector");
-    if a.json {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
+    let bar = lines_bar(image.height(), "rtl detector".into(), a.json);
     let name = a.image.display().to_string();
     let (report, lines) = detect_image(&mut sim, &name, &image, |n| bar.set_position(n as u64))
         .map_err(|e| SimError::Argument(e.to_string()))?;
@@ -657,12 +664,7 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
         first.0.sof = true;
     }
     let chunks = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let bar = ProgressBar::new(pairs.len() as u64);
-    bar.set_style(ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} lines, {eta} left").expect("template"));
-    bar.set_message(format!("rtl matcher x{}", chunks.min(pairs.len())));
-    if a.json {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
+    let bar = lines_bar(pairs.len(), format!("rtl matcher x{}", chunks.min(pairs.len())), a.json);
     let name = a.left.display().to_string();
     let rule = a.rule.rule();
     let t0 = std::time::Instant::now();
@@ -680,7 +682,7 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
     let k = graph_line - rows.start;
     let features = |line: &MatchLine| {
         let (declivities, dt) = dequantize(line);
-        golden::line::LineFeatures { sigma: dt / 5.6, dt, declivities }
+        golden::line::LineFeatures { sigma: dt / golden::noise::THRESHOLD_FACTOR, dt, declivities }
     };
     let (fr, fo) = (features(&pairs[k].0), features(&pairs[k].1));
     let params = Params::with_mode(golden_mode(rule), dispmax as f64 / (1u32 << rtl::params::POS_FRAC_BITS) as f64)?;
