@@ -466,19 +466,12 @@ pub fn marker_latency_estimate(width: usize) -> u64 {
     rtl::declivity_detector::marker_latency(width.clamp(1, W_MAX)) as u64
 }
 
-/// The detector's input ports in the order of the generated Verilog, its
-/// output ports likewise (for `sim::cosim`), without the clock.
-pub fn detector_ports(verilog: &str) -> Result<(Vec<crate::cosim::Port>, Vec<crate::cosim::Port>), crate::cosim::CosimError> {
-    let (ins, outs) = crate::cosim::top_ports(verilog)?;
-    Ok((ins.into_iter().filter(|p| p.name != "clock").collect(), outs))
-}
-
 /// Records the Rust model of the detector on `beats` (one per clock) as a
 /// co-simulation trace with the ports of `verilog`.
 pub fn detector_trace(verilog: &str, beats: &[PixelBeat]) -> Result<crate::cosim::Trace, crate::cosim::CosimError> {
-    let (ins, outs) = detector_ports(verilog)?;
+    let (ins, outs) = crate::cosim::data_ports(verilog)?;
+    let mut reader = crate::cosim::PortReader::new(&ins, &outs);
     let in_names: Vec<String> = ins.iter().map(|p| p.name.clone()).collect();
-    let out_names: Vec<String> = outs.iter().map(|p| p.name.clone()).collect();
     let stimulus: Vec<Vec<u64>> = beats
         .iter()
         .map(|b| {
@@ -511,31 +504,9 @@ pub fn detector_trace(verilog: &str, beats: &[PixelBeat]) -> Result<crate::cosim
                 }
             }
         },
-        |u: &DeclivityDetector| {
-            out_names
-                .iter()
-                .map(|n| match n.as_str() {
-                    "s_tready" => u.s_tready.val() as u64,
-                    "m_valid" => u.m_valid.val() as u64,
-                    "m_last" => u.m_last.val() as u64,
-                    "m_start" => u.m_start.val().to_u64(),
-                    "m_end" => u.m_end.val().to_u64(),
-                    "m_amp" => u.m_amp.val().to_u64(),
-                    "m_pos" => u.m_pos.val().to_u64(),
-                    "m_left0" => u.m_left0.val().to_u64(),
-                    "m_left1" => u.m_left1.val().to_u64(),
-                    "m_left2" => u.m_left2.val().to_u64(),
-                    "m_right0" => u.m_right0.val().to_u64(),
-                    "m_right1" => u.m_right1.val().to_u64(),
-                    "m_right2" => u.m_right2.val().to_u64(),
-                    "m_dt" => u.m_dt.val().to_u64(),
-                    "m_count" => u.m_count.val().to_u64(),
-                    "m_wide" => u.m_wide.val() as u64,
-                    "m_full" => u.m_full.val() as u64,
-                    "m_sof" => u.m_sof.val() as u64,
-                    other => panic!("unknown detector output {other}"),
-                })
-                .collect()
+        |u: &DeclivityDetector| match reader.read(u, &ins, &outs) {
+            Ok(cycle) => cycle.outputs,
+            Err(e) => panic!("the detector's ports: {e}"),
         },
         stimulus,
     )

@@ -22,109 +22,9 @@
 use std::sync::{Arc, Mutex};
 
 use rtl::declivity_matcher::{DeclivityMatcher, GainRule};
-use rust_hdl::core::atom::{Atom, AtomKind};
-use rust_hdl::core::block::Block;
-use rust_hdl::core::probe::Probe;
-use rust_hdl::core::synth::VCDValue;
 
-use crate::cosim::{CosimError, Cycle, Port, Trace};
+use crate::cosim::{data_ports, CosimError, Cycle, PortReader, Trace};
 use crate::matcher::{MatchLine, MatchedLine, MatcherSim};
-
-/// The matcher's input ports in the order of the generated Verilog (without
-/// the clock) and its output ports likewise.
-pub fn matcher_ports(verilog: &str) -> Result<(Vec<Port>, Vec<Port>), CosimError> {
-    let (ins, outs) = crate::cosim::top_ports(verilog)?;
-    Ok((ins.into_iter().filter(|p| p.name != crate::cosim::CLOCK_PORT).collect(), outs))
-}
-
-/// Reads the values of the top's ports from the block, whatever they are:
-/// rust-hdl's probe visits every signal of the design, and the top's own
-/// input and output signals are those visited in the outermost scope. The
-/// port list therefore follows the rtl without an edit here.
-struct PortReader {
-    /// For each top-level port name: input (`true`) or output, and its
-    /// place in the trace's list.
-    places: std::collections::HashMap<String, (bool, usize)>,
-    inputs: Vec<Option<u64>>,
-    outputs: Vec<Option<u64>>,
-    depth: usize,
-    /// A port wider than 64 bits or with an X/Z bit.
-    bad: Option<String>,
-}
-
-impl PortReader {
-    fn new(ins: &[Port], outs: &[Port]) -> Self {
-        let mut places = std::collections::HashMap::new();
-        for (k, p) in ins.iter().enumerate() {
-            places.insert(p.name.clone(), (true, k));
-        }
-        for (k, p) in outs.iter().enumerate() {
-            places.insert(p.name.clone(), (false, k));
-        }
-        PortReader { places, inputs: vec![None; ins.len()], outputs: vec![None; outs.len()], depth: 0, bad: None }
-    }
-
-    /// One clock's values, in the trace's port order; an error names a
-    /// port the block does not have (or cannot give as a number).
-    fn read<B: Block>(&mut self, uut: &B, ins: &[Port], outs: &[Port]) -> Result<Cycle, String> {
-        self.inputs.iter_mut().chain(self.outputs.iter_mut()).for_each(|v| *v = None);
-        self.depth = 0;
-        uut.accept("top", self);
-        if let Some(bad) = self.bad.take() {
-            return Err(bad);
-        }
-        let missing = |ports: &[Port], vals: &[Option<u64>]| {
-            ports.iter().zip(vals).find(|(_, v)| v.is_none()).map(|(p, _)| format!("the Rust model has no port `{}`", p.name))
-        };
-        if let Some(m) = missing(ins, &self.inputs).or_else(|| missing(outs, &self.outputs)) {
-            return Err(m);
-        }
-        Ok(Cycle { inputs: self.inputs.iter().flatten().copied().collect(), outputs: self.outputs.iter().flatten().copied().collect() })
-    }
-}
-
-impl Probe for PortReader {
-    fn visit_start_scope(&mut self, _name: &str, _node: &dyn Block) {
-        self.depth += 1;
-    }
-
-    fn visit_end_scope(&mut self, _name: &str, _node: &dyn Block) {
-        self.depth -= 1;
-    }
-
-    fn visit_atom(&mut self, name: &str, signal: &dyn Atom) {
-        if self.depth != 1 || !matches!(signal.kind(), AtomKind::InputParameter | AtomKind::OutputParameter) {
-            return;
-        }
-        let Some(&(input, k)) = self.places.get(name) else {
-            return;
-        };
-        let one = match VCDValue::from(true) {
-            VCDValue::Single(v) => v,
-            _ => unreachable!("a bool is one bit"),
-        };
-        let zero = match VCDValue::from(false) {
-            VCDValue::Single(v) => v,
-            _ => unreachable!("a bool is one bit"),
-        };
-        let bits = match signal.vcd() {
-            VCDValue::Single(v) => vec![v],
-            VCDValue::Vector(v) => v,
-            _ => Vec::new(),
-        };
-        if bits.is_empty() || bits.len() > 64 || bits.iter().any(|b| *b != one && *b != zero) {
-            self.bad = Some(format!("port `{name}` of the Rust model is not a number of 1–64 bits"));
-            return;
-        }
-        // Most significant bit first.
-        let v = bits.iter().fold(0u64, |acc, b| (acc << 1) | (*b == one) as u64);
-        if input {
-            self.inputs[k] = Some(v);
-        } else {
-            self.outputs[k] = Some(v);
-        }
-    }
-}
 
 /// Records the Rust model of an `N`-cell matcher for `rule` with the search
 /// bound `dispmax` (`dispmax · 2^POS_FRAC_BITS`) on `pairs` (reference,
@@ -138,7 +38,7 @@ pub fn matcher_trace<const N: usize>(
     dispmax: u32,
     pairs: &[(MatchLine, MatchLine)],
 ) -> Result<(Trace, Vec<MatchedLine>), CosimError> {
-    let (ins, outs) = matcher_ports(verilog)?;
+    let (ins, outs) = data_ports(verilog)?;
     let recorded = Arc::new(Mutex::new((Vec::<Cycle>::new(), None::<String>)));
     let mut sim = MatcherSim::<N>::new(rule, dispmax);
     let sink = Arc::clone(&recorded);
