@@ -16,20 +16,22 @@
 //! Generated line pairs cover what the issue lists: empty lines, one side
 //! empty, every node rejected, exactly as many declivities as cells, equal
 //! gains (repeated declivities), disparities on the search-area bounds,
-//! shifted copies (long paths) and random sets. They run on small arrays:
-//! the cells a line does not use never reach the outputs, and no clock
-//! count depends on the number of cells. The real pairs run on the
-//! `N_MAX` = 128-cell matcher.
+//! shifted copies (long paths) and random sets. They run on a small array
+//! of `CELLS` cells holding `ROWS` = 2·`CELLS` reference declivities, with
+//! lines on both sides of the fold between the cells' low and high rows:
+//! the cells a line does not use never reach the outputs, and the clock
+//! counts depend on the cells only through that fold. The real pairs run on
+//! the sensor's matcher, `N_CELLS` = 64 cells for `N_MAX` = 128 rows.
 //!
 //! Run in release mode (`cargo test --release -p declivity-tests --test
-//! rtl_matcher`): rust-hdl simulates the 128-cell matcher at about 1.5–2 k
+//! rtl_matcher`): rust-hdl simulates the 64-cell matcher at about 5 k
 //! clocks/s per core.
 
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
 use rtl::declivity_matcher::{line_cycles, GainRule};
-use rtl::params::{N_MAX, POS_FRAC_BITS, W_MAX};
+use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
 use sim::matcher::{
     agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
     MatcherSim,
@@ -37,6 +39,9 @@ use sim::matcher::{
 
 /// Cells of the matcher in the generated cases.
 const CELLS: usize = 16;
+/// Reference declivities (and other-view ones) the `CELLS`-cell matcher
+/// keeps per line.
+const ROWS: usize = ROWS_PER_CELL * CELLS;
 /// Cases per property.
 const CASES: u32 = 48;
 /// One position LSB (1/16 px).
@@ -61,7 +66,7 @@ enum Kind {
     Bounds,
     /// One or both lines empty.
     Empty,
-    /// Exactly `CELLS` declivities on the reference side.
+    /// Exactly `ROWS` declivities on the reference side.
     Full,
 }
 
@@ -129,16 +134,16 @@ fn shifted(reference: &MatchLine, d: u32, jitter: &[i16], drop: &[bool]) -> Matc
 }
 
 fn any_case(dispmax: u32) -> BoxedStrategy<Case> {
-    let random = (0..=CELLS, 0..=CELLS)
+    let random = (0..=ROWS, 0..=ROWS)
         .prop_flat_map(|(n, m)| (random_line(n, 0), random_line(m, 0)))
         .prop_map(|(reference, other)| Case { kind: Kind::Random, reference, other });
-    let shifted_pair = (1..=CELLS, 1..dispmax, prop::collection::vec(-6i16..=6, 24), prop::collection::vec(prop::bool::weighted(0.15), 7))
-        .prop_flat_map(|(n, d, jitter, drop)| (random_line(n, 4 * PX * CELLS as u32), Just(d), Just(jitter), Just(drop)))
+    let shifted_pair = (1..=ROWS, 1..dispmax, prop::collection::vec(-6i16..=6, 24), prop::collection::vec(prop::bool::weighted(0.15), 7))
+        .prop_flat_map(|(n, d, jitter, drop)| (random_line(n, 4 * PX * ROWS as u32), Just(d), Just(jitter), Just(drop)))
         .prop_map(|(reference, d, jitter, drop)| {
             let other = shifted(&reference, d, &jitter, &drop);
             Case { kind: Kind::Shifted, reference, other }
         });
-    let ties = (1..=CELLS, 1..=CELLS, levels(), levels(), 1u32..=PX, 300u32..2000).prop_map(|(n, m, l, r, step, dt)| {
+    let ties = (1..=ROWS, 1..=ROWS, levels(), levels(), 1u32..=PX, 300u32..2000).prop_map(|(n, m, l, r, step, dt)| {
         let line = |k: usize, off: u32| MatchLine {
             dt,
             records: (0..k).map(|i| record(off + step * i as u32, true, l, r)).collect(),
@@ -146,7 +151,7 @@ fn any_case(dispmax: u32) -> BoxedStrategy<Case> {
         };
         Case { kind: Kind::Ties, reference: line(n, 2 * PX), other: line(m, PX) }
     });
-    let rejected = (1..=CELLS, 1..=CELLS).prop_flat_map(|(n, m)| (positions(n, 2 * PX, 4 * PX), positions(m, 0, 4 * PX))).prop_map(
+    let rejected = (1..=ROWS, 1..=ROWS).prop_flat_map(|(n, m)| (positions(n, 2 * PX, 4 * PX), positions(m, 0, 4 * PX))).prop_map(
         |(rp, op)| {
             // Left and right levels swapped between the views: distances of
             // 3·160 grey levels (offset-compensated or not) against gmax = 1.
@@ -162,7 +167,7 @@ fn any_case(dispmax: u32) -> BoxedStrategy<Case> {
         // Reference declivities 4 px apart; each has partners at
         // d = 0, 1 LSB, dispmax - 1 LSB and dispmax.
         let base = dispmax + 2 * PX;
-        let n = CELLS / 4;
+        let n = ROWS / 4;
         let refs: Vec<u32> = (0..n as u32).map(|k| base + k * (dispmax + 8 * PX)).collect();
         let mut others: Vec<u32> = refs.iter().flat_map(|&x| [x - dispmax, x - (dispmax - 1), x - 1, x]).collect();
         others.sort_unstable();
@@ -170,7 +175,7 @@ fn any_case(dispmax: u32) -> BoxedStrategy<Case> {
         let line = |p: &[u32]| MatchLine { dt, records: p.iter().map(|&x| record(x, true, l, r)).collect(), ..MatchLine::default() };
         Case { kind: Kind::Bounds, reference: line(&refs), other: line(&others) }
     });
-    let empty = (0..3usize, random_line(CELLS / 2, 0)).prop_map(|(which, line)| {
+    let empty = (0..3usize, random_line(ROWS / 2, 0)).prop_map(|(which, line)| {
         let none = MatchLine { dt: line.dt, ..MatchLine::default() };
         let (reference, other) = match which {
             0 => (none.clone(), line),
@@ -179,7 +184,7 @@ fn any_case(dispmax: u32) -> BoxedStrategy<Case> {
         };
         Case { kind: Kind::Empty, reference, other }
     });
-    let full = (random_line(CELLS, PX * 20), prop::collection::vec(-4i16..=4, 12), 1..dispmax).prop_map(|(reference, jitter, d)| {
+    let full = (random_line(ROWS, PX * 20), prop::collection::vec(-4i16..=4, 12), 1..dispmax).prop_map(|(reference, jitter, d)| {
         let other = shifted(&reference, d.min(PX * 20), &jitter, &[false]);
         Case { kind: Kind::Full, reference, other }
     });
@@ -271,7 +276,7 @@ proptest! {
         }
     }
 
-    /// `line_cycles(n, m, stop_diag, k)` from the engine taking a pair (two
+    /// `line_cycles(n, m, stop_diag, k, CELLS)` from the engine taking a pair (two
     /// clocks after its second marker, engine idle) to its marker.
     #[test]
     fn prop_engine_clocks_per_line_equal_the_documented_formula((cases, dispmax, rule) in any_stream()) {
@@ -279,7 +284,7 @@ proptest! {
         for (c, g) in cases.iter().zip(&got) {
             let want = golden_match(&c.reference, &c.other, dispmax, rule);
             let (n, m, k) = (c.reference.records.len(), c.other.records.len(), want.nodes.len());
-            let formula = line_cycles(n, m, want.stop_diag, k) as u64;
+            let formula = line_cycles(n, m, want.stop_diag, k, CELLS) as u64;
             prop_assert_eq!(g.marker_cycle - g.input_done_cycle - 2, formula, "{:?}: n {} m {} k {} stop {}", c.kind, n, m, k, want.stop_diag);
         }
     }
@@ -301,7 +306,7 @@ fn loading_the_next_pair_overlaps_matching_the_current_one() {
             let (prev, cur) = (&got[k - 1], &got[k]);
             if cur.input_done_cycle + 2 <= prev.marker_cycle - 2 {
                 let want = golden_match(&cases[k].reference, &cases[k].other, 20 * PX, GainRule::Robust);
-                let lc = line_cycles(cases[k].reference.records.len(), cases[k].other.records.len(), want.stop_diag, want.nodes.len());
+                let lc = line_cycles(cases[k].reference.records.len(), cases[k].other.records.len(), want.stop_diag, want.nodes.len(), CELLS);
                 assert_eq!(cur.marker_cycle - prev.marker_cycle, lc as u64 - 2, "pair {k} of {:?}", cases.iter().map(|c| c.kind).collect::<Vec<_>>());
                 overlapped += 1;
             }
@@ -310,21 +315,21 @@ fn loading_the_next_pair_overlaps_matching_the_current_one() {
     assert!(overlapped >= 20, "pairs loaded while the engine was busy: {overlapped}");
 }
 
-/// More records than cells: the first `CELLS` are matched, the rest
+/// More records than the cells hold: the first `ROWS` are matched, the rest
 /// dropped, the marker says `full`, and the next line is unaffected.
 #[test]
 fn records_beyond_the_cells_are_dropped_the_line_is_flagged_full_and_the_next_is_intact() {
     let mut runner = proptest::test_runner::TestRunner::deterministic();
     let line = |n: usize, r: &mut proptest::test_runner::TestRunner| random_line(n, 0).new_tree(r).expect("a line").current();
-    let (big_ref, big_other) = (line(CELLS + 5, &mut runner), line(CELLS + 1, &mut runner));
+    let (big_ref, big_other) = (line(ROWS + 5, &mut runner), line(ROWS + 1, &mut runner));
     let (next_ref, next_other) = (line(7, &mut runner), line(9, &mut runner));
     let dispmax = 30 * PX;
     let mut sim = MatcherSim::<CELLS>::new(GainRule::Robust, dispmax);
     let pairs = vec![(big_ref.clone(), big_other.clone()), (next_ref.clone(), next_other.clone())];
     let got = sim.run(&pairs, false, || {});
-    let cut = |l: &MatchLine| MatchLine { records: l.records[..CELLS].to_vec(), ..l.clone() };
+    let cut = |l: &MatchLine| MatchLine { records: l.records[..ROWS].to_vec(), ..l.clone() };
     assert!(got[0].marker.full && !got[1].marker.full);
-    assert_eq!((got[0].marker.n as usize, got[0].marker.m as usize), (CELLS, CELLS));
+    assert_eq!((got[0].marker.n as usize, got[0].marker.m as usize), (ROWS, ROWS));
     let want = golden_match(&cut(&big_ref), &cut(&big_other), dispmax, GainRule::Robust);
     assert_eq!(got[0].pairs(), want.nodes);
     let want = golden_match(&next_ref, &next_other, dispmax, GainRule::Robust);
@@ -342,13 +347,13 @@ fn the_worst_line_pair_of_n_max_declivities_fits_in_the_line_time_of_a_w_max_lin
         MatchLine { dt: 400, records: (0..N_MAX as u32).map(|k| record(PX * (40 + 7 * k), true, l, r)).collect(), ..MatchLine::default() };
     let other = MatchLine { records: reference.records.iter().map(|r| MatchRecord { pos: r.pos - 3 * PX, ..*r }).collect(), ..reference.clone() };
     let dispmax = 5 * PX;
-    let mut sim = MatcherSim::<N_MAX>::new(GainRule::Robust, dispmax);
+    let mut sim = MatcherSim::<N_CELLS>::new(GainRule::Robust, dispmax);
     let got = sim.run(&[(reference.clone(), other.clone())], true, || {});
     let want = golden_match(&reference, &other, dispmax, GainRule::Robust);
     assert_eq!(want.nodes.len(), N_MAX, "the path takes every pair");
     assert_eq!(got[0].pairs(), want.nodes);
     let clocks = got[0].marker_cycle - got[0].input_done_cycle - 2;
-    assert_eq!(clocks, line_cycles(N_MAX, N_MAX, want.stop_diag, N_MAX) as u64);
+    assert_eq!(clocks, line_cycles(N_MAX, N_MAX, want.stop_diag, N_MAX, N_CELLS) as u64);
     assert!(clocks <= W_MAX as u64, "{clocks} clocks for the worst line against {W_MAX} pixels of a W_MAX line");
     eprintln!("worst line: {clocks} clocks (stop diagonal {})", want.stop_diag);
 }
@@ -357,12 +362,12 @@ fn the_worst_line_pair_of_n_max_declivities_fits_in_the_line_time_of_a_w_max_lin
 // Real pairs
 // ===========================================================================
 
-/// Every row of `pair` through the 128-cell matcher; all lines identical.
+/// Every row of `pair` through the sensor's matcher; all lines identical.
 fn real_pair(pair: &str, rule: GainRule) {
     let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
     let lines = image_lines(&data.left, &data.right);
     let dispmax = ((data.dispmax + 1.0) * PX as f64) as u32;
-    let (report, outcomes) = match_image::<N_MAX>(pair, &lines, rule, dispmax, 2, &|| {});
+    let (report, outcomes) = match_image::<N_CELLS>(pair, &lines, rule, dispmax, 2, &|| {});
     eprintln!("{}", serde_json::to_string(&report).expect("serializes"));
     for (y, o) in outcomes.iter().enumerate() {
         assert_eq!(o.agreement, Agreement::Identical, "{pair} row {y}: golden {:?}, rtl {:?}", o.golden.nodes, o.rtl.pairs());
@@ -435,7 +440,7 @@ fn lines_wider_than_w_max_are_matched_on_their_first_w_max_pixels_and_flagged_wi
     assert!(lines.iter().all(|(l, r)| l.wide && r.wide));
     assert!(lines.iter().flat_map(|(l, r)| l.records.iter().chain(&r.records)).all(|rec| (rec.pos >> POS_FRAC_BITS) < W_MAX as u32));
     let dispmax = 10 * PX;
-    let mut sim = MatcherSim::<N_MAX>::new(GainRule::Robust, dispmax);
+    let mut sim = MatcherSim::<N_CELLS>::new(GainRule::Robust, dispmax);
     let got = sim.run(&lines, false, || {});
     for ((l, r), g) in lines.iter().zip(&got) {
         assert!(g.marker.wide);

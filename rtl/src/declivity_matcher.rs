@@ -44,10 +44,9 @@
 //! `n = m = N_MAX`, costs at most `line_cycles(N_MAX, N_MAX, 0, N_MAX)`
 //! = 653 clocks.
 
-use crate::gain_cell::CELL_DEPTH;
 use crate::params::*;
 use crate::record_memory::RecordMemory;
-use crate::systolic_matcher::SystolicMatcher;
+use crate::systolic_matcher::{SystolicMatcher, CHOICE_LAG};
 use crate::traceback::{traceback_cycles, Traceback};
 use rust_hdl::prelude::*;
 
@@ -77,22 +76,32 @@ impl GainRule {
     }
 }
 
-/// Clocks of a sweep of `n` reference and `m` other declivities, from the
-/// clock after the engine takes the pair to the traceback's `start` (on
-/// the sweep's last clock): `n + m - 1` wavefronts, two clocks of record
-/// memory read and output register, and the cells' depth, which cover the
-/// last wavefront.
-pub const fn sweep_cycles(n: usize, m: usize) -> usize {
-    n + m + 1 + CELL_DEPTH
+/// Clocks from the engine's sweep clock `sc` reading a column to the
+/// choices of its nodes in the array's word registers (less the cell's
+/// `2c`): record memory read, its output register, then the array's
+/// [`CHOICE_LAG`].
+pub const ENGINE_LAG: usize = 2 + CHOICE_LAG;
+
+/// Clocks of a sweep of `n` reference and `m` other declivities through
+/// `cells` cells, from the clock after the engine takes the pair to the
+/// traceback's `start` (on the sweep's last clock, which writes the last
+/// choices): the last node, `(n-1, m-1)`, is reached `2·(n + m - 2)`
+/// clocks after the first (one more when it is a high row, `n > cells`),
+/// its choice is written [`ENGINE_LAG`] clocks later.
+pub const fn sweep_cycles(n: usize, m: usize, cells: usize) -> usize {
+    2 * (n + m) + (n > cells) as usize + ENGINE_LAG - 3
 }
 
 /// Clocks from the engine taking a line pair to its marker on the outputs:
 /// the sweep, the traceback (its walk stopping on anti-diagonal
 /// `stop_diag` with `k` pairs; see [`traceback_cycles`]) and three of
 /// output registers (position read, positions, difference).
-pub const fn line_cycles(n: usize, m: usize, stop_diag: usize, k: usize) -> usize {
-    sweep_cycles(n, m) + traceback_cycles(n, m, stop_diag, k) + 3
+pub const fn line_cycles(n: usize, m: usize, stop_diag: usize, k: usize, cells: usize) -> usize {
+    sweep_cycles(n, m, cells) + traceback_cycles(n, m, stop_diag, k) + 3
 }
+
+/// Bits of `sc / 2`.
+const SWEEP_HALF_BITS: usize = SWEEP_BITS - 1;
 
 const ENG_IDLE: u64 = 0;
 const ENG_SWEEP: u64 = 1;
@@ -175,8 +184,8 @@ pub struct DeclivityMatcher<const N: usize> {
     ebank: DFF<Bit>,
     en: DFF<Bits<COUNT_BITS>>,
     em: DFF<Bits<COUNT_BITS>>,
-    sc: DFF<Bits<{ DIAG_BITS + 1 }>>,
-    sweep_end: DFF<Bits<{ DIAG_BITS + 1 }>>,
+    sc: DFF<Bits<SWEEP_BITS>>,
+    sweep_end: DFF<Bits<SWEEP_BITS>>,
     below2_reg: DFF<Bits<DIST_BITS>>,
     f1_reg: DFF<Bits<GAIN_BITS>>,
     f3_reg: DFF<Bits<GAIN_BITS>>,
@@ -186,7 +195,7 @@ pub struct DeclivityMatcher<const N: usize> {
     ld_valid_d: DFF<Bit>,
     ld_index_d: DFF<Bits<INDEX_BITS>>,
     c_valid_d: DFF<Bit>,
-    c_j_d: DFF<Bits<INDEX_BITS>>,
+    c_hi_d: DFF<Bit>,
     // The record memories' outputs registered before the broadcast and the
     // array (a block RAM's clock-to-out leaves no time for the wiring).
     ld_valid_q: DFF<Bit>,
@@ -200,8 +209,7 @@ pub struct DeclivityMatcher<const N: usize> {
     ld_lev5_q: DFF<Bits<LEVEL_BITS>>,
     ld_rising_q: DFF<Bit>,
     c_valid_q: DFF<Bit>,
-    c_first_q: DFF<Bit>,
-    c_j_q: DFF<Bits<INDEX_BITS>>,
+    c_hi_q: DFF<Bit>,
     c_pos_q: DFF<Bits<POS_BITS>>,
     c_lev0_q: DFF<Bits<LEVEL_BITS>>,
     c_lev1_q: DFF<Bits<LEVEL_BITS>>,
@@ -249,6 +257,13 @@ pub struct DeclivityMatcher<const N: usize> {
     take: Signal<Local, Bit>,
     dt_sum: Signal<Local, Bits<{ DT_BITS + 1 }>>,
     sc_idx: Signal<Local, Bits<INDEX_BITS>>,
+    nm: Signal<Local, Bits<SWEEP_BITS>>,
+    sc2: Signal<Local, Bits<SWEEP_BITS>>,
+    col_even: Signal<Local, Bit>,
+    col_first: Signal<Local, Bit>,
+    col_second: Signal<Local, Bit>,
+    col_j: Signal<Local, Bits<INDEX_BITS>>,
+    tw: Signal<Local, Bits<SWEEP_BITS>>,
     rd_bank_base: Signal<Local, Bits<DIAG_BITS>>,
     r_rd: Signal<Local, Bits<DIAG_BITS>>,
     o_rd: Signal<Local, Bits<DIAG_BITS>>,
@@ -260,7 +275,12 @@ pub struct DeclivityMatcher<const N: usize> {
     eng_idle: Constant<Bits<2>>,
     eng_sweep: Constant<Bits<2>>,
     eng_trace: Constant<Bits<2>>,
-    sweep_tail: Constant<Bits<{ DIAG_BITS + 1 }>>,
+    sweep_tail: Constant<Bits<SWEEP_BITS>>,
+    second_start: Constant<Bits<SWEEP_BITS>>,
+    engine_lag: Constant<Bits<SWEEP_BITS>>,
+    cells_c: Constant<Bits<COUNT_BITS>>,
+    bit0: Constant<Bits<8>>,
+    bit1: Constant<Bits<8>>,
     dt_frac: Constant<Bits<8>>,
 }
 
@@ -350,7 +370,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             ld_valid_d: Default::default(),
             ld_index_d: Default::default(),
             c_valid_d: Default::default(),
-            c_j_d: Default::default(),
+            c_hi_d: Default::default(),
             ld_valid_q: Default::default(),
             ld_index_q: Default::default(),
             ld_pos_q: Default::default(),
@@ -362,8 +382,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             ld_lev5_q: Default::default(),
             ld_rising_q: Default::default(),
             c_valid_q: Default::default(),
-            c_first_q: Default::default(),
-            c_j_q: Default::default(),
+            c_hi_q: Default::default(),
             c_pos_q: Default::default(),
             c_lev0_q: Default::default(),
             c_lev1_q: Default::default(),
@@ -409,17 +428,29 @@ impl<const N: usize> DeclivityMatcher<N> {
             take: Default::default(),
             dt_sum: Default::default(),
             sc_idx: Default::default(),
+            nm: Default::default(),
+            sc2: Default::default(),
+            col_even: Default::default(),
+            col_first: Default::default(),
+            col_second: Default::default(),
+            col_j: Default::default(),
+            tw: Default::default(),
             rd_bank_base: Default::default(),
             r_rd: Default::default(),
             o_rd: Default::default(),
             relative: Constant::new(rule.relative()),
             one_sided: Constant::new(rule.one_sided()),
             bank_size: Constant::new(((N_MAX as u64) as u64).into()),
-            n_max: Constant::new(((N as u64) as u64).into()),
+            n_max: Constant::new(((ROWS_PER_CELL * N) as u64).into()),
             eng_idle: Constant::new(((ENG_IDLE) as u64).into()),
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
-            sweep_tail: Constant::new((CELL_DEPTH as u64).into()),
+            sweep_tail: Constant::new(((ENGINE_LAG - 4) as u64).into()),
+            second_start: Constant::new(((2 * N + 1) as u64).into()),
+            engine_lag: Constant::new((ENGINE_LAG as u64).into()),
+            cells_c: Constant::new((N as u64).into()),
+            bit0: Constant::new(0u64.into()),
+            bit1: Constant::new(1u64.into()),
             dt_frac: Constant::new(((DT_FRAC_BITS as u64) as u64).into()),
         }
     }
@@ -444,7 +475,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_j_d, ld_valid_q, ld_index_q, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_first_q, c_j_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
+            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, ld_valid_q, ld_index_q, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -535,6 +566,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
 
         // ---- Engine.
         self.take.next = (self.eng.q.val() == self.eng_idle.val()) & self.pend.q.val();
+        self.nm.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.pend_n.q.val())
+            + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.pend_m.q.val());
         // ⌈2·gmax⌉ = ⌈(d_t,ref + d_t,other) / 2^DT_FRAC_BITS⌉: the integer
         // part, plus one when a fraction bit is set.
         if self.take.val() {
@@ -544,9 +577,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.en.d.next = self.pend_n.q.val();
             self.em.d.next = self.pend_m.q.val();
             self.sc.d.next = 0.into();
-            self.sweep_end.d.next = bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.pend_n.q.val())
-                + bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.pend_m.q.val())
-                + self.sweep_tail.val();
+            // 2·(n + m) + [n > N] + the tail: see `sweep_cycles`.
+            self.sweep_end.d.next = self.nm.val() + self.nm.val() + self.sweep_tail.val();
+            if self.pend_n.q.val() > self.cells_c.val() {
+                self.sweep_end.d.next = self.nm.val() + self.nm.val() + self.sweep_tail.val() + 1;
+            }
             self.below2_reg.d.next = self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index());
             // (Saturating at the all-ones value: no doubled distance reaches
             // it, so every distance is then below gmax either way.)
@@ -564,24 +599,47 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.e_full.d.next = self.pend_full.q.val();
             self.e_sof.d.next = self.pend_sof.q.val();
         }
-        // Sweep: clock sc reads reference sc and column sc; the next clock
-        // broadcasts the reference and feeds the column to cell 0.
-        self.sc_idx.next = bit_cast::<INDEX_BITS, { DIAG_BITS + 1 }>(self.sc.q.val());
+        // Sweep: clock sc reads reference sc, which the next clock
+        // broadcasts, and on even clocks column sc/2 for the low rows, on
+        // odd clocks from 2N + 1 column (sc - 2N - 1)/2 for the high rows
+        // (when there are any), which the next clock feeds to cell 0.
+        self.sc_idx.next = bit_cast::<INDEX_BITS, SWEEP_BITS>(self.sc.q.val());
+        self.sc2.next = self.sc.q.val() - self.second_start.val();
+        self.col_even.next = !self.sc.q.val().get_bit(self.bit0.val().index());
+        self.col_first.next = self.col_even.val()
+            & (self.sc.q.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index())
+                < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()));
+        self.col_second.next = !self.col_even.val()
+            & (self.sc.q.val() >= self.second_start.val())
+            & (self.sc2.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index())
+                < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()))
+            & (self.en.q.val() > self.cells_c.val());
+        self.col_j.next = self.sc.q.val().get_bits::<INDEX_BITS>(self.bit1.val().index());
+        if !self.col_even.val() {
+            self.col_j.next = self.sc2.val().get_bits::<INDEX_BITS>(self.bit1.val().index());
+        }
         self.rd_bank_base.next = 0.into();
         if self.ebank.q.val() {
             self.rd_bank_base.next = self.bank_size.val();
         }
         self.r_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.sc_idx.val()) + self.rd_bank_base.val();
-        self.o_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.sc_idx.val()) + self.rd_bank_base.val();
+        self.o_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.col_j.val()) + self.rd_bank_base.val();
         self.ld_valid_d.d.next = false;
         self.c_valid_d.d.next = false;
         self.ld_index_d.d.next = self.sc_idx.val();
-        self.c_j_d.d.next = self.sc_idx.val();
+        self.c_hi_d.d.next = !self.col_even.val();
+        // The choices in the array's word registers now are those of the
+        // nodes whose columns were read ENGINE_LAG clocks ago: anti-diagonal
+        // (sc - ENGINE_LAG) / 2, low or high rows by its parity.
+        self.tw.next = self.sc.q.val() - self.engine_lag.val();
+        self.array.cw_en.next = (self.eng.q.val() == self.eng_sweep.val()) & (self.sc.q.val() >= self.engine_lag.val());
+        self.array.cw_diag.next = self.tw.val().get_bits::<DIAG_BITS>(self.bit1.val().index());
+        self.array.cw_hi.next = self.tw.val().get_bit(self.bit0.val().index());
         self.traceback.start.next = false;
         if self.eng.q.val() == self.eng_sweep.val() {
             self.sc.d.next = self.sc.q.val() + 1;
-            self.ld_valid_d.d.next = self.sc.q.val() < bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.en.q.val());
-            self.c_valid_d.d.next = self.sc.q.val() < bit_cast::<{ DIAG_BITS + 1 }, COUNT_BITS>(self.em.q.val());
+            self.ld_valid_d.d.next = self.sc.q.val() < bit_cast::<SWEEP_BITS, COUNT_BITS>(self.en.q.val());
+            self.c_valid_d.d.next = self.col_first.val() | self.col_second.val();
             if self.sc.q.val() == self.sweep_end.q.val() {
                 self.traceback.start.next = true;
                 self.eng.d.next = self.eng_trace.val();
@@ -611,8 +669,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.ld_lev5_q.d.next = self.r_mem.lev5.val();
         self.ld_rising_q.d.next = self.r_mem.rising.val();
         self.c_valid_q.d.next = self.c_valid_d.q.val();
-        self.c_first_q.d.next = !self.c_j_d.q.val().any();
-        self.c_j_q.d.next = self.c_j_d.q.val();
+        self.c_hi_q.d.next = self.c_hi_d.q.val();
         self.c_pos_q.d.next = self.o_mem.pos.val();
         self.c_lev0_q.d.next = self.o_mem.lev0.val();
         self.c_lev1_q.d.next = self.o_mem.lev1.val();
@@ -632,8 +689,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.ld_lev5.next = self.ld_lev5_q.q.val();
         self.array.ld_rising.next = self.ld_rising_q.q.val();
         self.array.c_valid.next = self.c_valid_q.q.val();
-        self.array.c_first.next = self.c_first_q.q.val();
-        self.array.c_j.next = self.c_j_q.q.val();
+        self.array.c_hi.next = self.c_hi_q.q.val();
         self.array.c_pos.next = self.c_pos_q.q.val();
         self.array.c_lev0.next = self.c_lev0_q.q.val();
         self.array.c_lev1.next = self.c_lev1_q.q.val();

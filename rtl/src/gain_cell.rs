@@ -1,8 +1,12 @@
-//! One processing element of the systolic matcher: the node `(i, j)` of the
-//! matching graph for its reference declivity `i` and each other-view
-//! declivity `j` that streams past (paper §III–IV).
+//! One processing element of the systolic matcher: the nodes `(i, j)` of the
+//! matching graph for its two reference declivities, `i = index` and
+//! `i = index + cells`, and each other-view declivity `j` that streams past
+//! (paper §III–IV). The column stream passes the array twice, the second
+//! pass one clock behind the first's odd slots, so the cell takes a node of
+//! its low row and one of its high row on alternate clocks: one datapath
+//! serves two rows, and each row's recurrence has two clocks per node.
 //!
-//! Per column the cell computes, in fixed point:
+//! Per node the cell computes, in fixed point:
 //! - eq. 6, the search area: `0 < X_i - X_j < dispmax` (left reference);
 //! - eq. 4–5, the doubled photometric distances `2·lpd`, `2·rpd` over the
 //!   three neighbour levels on each side, in the [`LEVEL_BITS`] format (the
@@ -17,49 +21,48 @@
 //! - eq. 9 as the prefix-max recurrence of `golden::dp`:
 //!   `G = g + P(i-1, j-1)`, `P(i, j) = max(0, G, P(i-1, j), P(i, j-1))`, with
 //!   golden's tie order (start, node, up, left; a later candidate wins only
-//!   when strictly greater) and its 2-bit choice, which the cell keeps in its
-//!   column memory at address `j`.
+//!   when strictly greater) as a chain of strict comparisons, and its 2-bit
+//!   choice, which leaves on `choice` for the array's choice memory.
 //!
 //! ## Ports
 //! - `ld_valid`, `ld_index`, `ld_pos`, `ld_lev0..5`, `ld_rising`: the
-//!   reference-declivity broadcast; the cell whose index is `ld_index` takes
-//!   the declivity (position `X_i`, levels left 0–2 then right 0–2,
-//!   polarity).
-//! - `c_valid`, `c_first` (column 0 of a line), `c_j`, `c_pos`, `c_lev0..5`,
+//!   reference-declivity broadcast; the cell whose low or high row is
+//!   `ld_index` takes the declivity (position `X_i`, levels left 0–2 then
+//!   right 0–2, polarity).
+//! - `c_valid`, `c_hi` (second pass: the high row), `c_pos`, `c_lev0..5`,
 //!   `c_rising`: the column in this cell's slot of the array's column
 //!   pipeline (registers of the [`crate::systolic_matcher::SystolicMatcher`],
-//!   which moves the column to the next cell's slot on the next clock).
-//! - `up_p`: the previous cell's `P` (0 for the first cell); `own_p`: this
-//!   cell's; out `p_next`, loaded into `own_p` when `p_load` is high, and
-//!   `p_clear`, which zeroes `own_p` before a line's first column reaches
-//!   stage F (the `P` registers belong to the array, so that the last
-//!   cell's leads nowhere unused).
+//!   which moves the column on by two slots, one cell, every two clocks).
+//! - `up_p`: the `P` register of the cell above (cell `index - 1`; for cell
+//!   0, the last cell's, one clock later, and read as 0 for the low row, the
+//!   first of the table); out `p`, this cell's.
 //! - Per line: `dispmax`, `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
 //!   `same_polarity`, `one_sided`.
-//! - Traceback: `tb_diag` (anti-diagonal `i + j`), `tb_row` and `tb_row_up`;
-//!   the cell reads its choice of column `tb_diag - index` and shows it one
-//!   clock later on `tb_choice` when `tb_row` is its index, on
-//!   `tb_choice_up` when `tb_row_up` is (zero, i.e. `start`, otherwise, so
-//!   the array's outputs can be OR-ed).
+//! - Out `choice`, and `choice_word`: the choice in its two bits of the
+//!   array's [`CHOICE_WORD_BITS`]-bit memory word, zero elsewhere.
 //!
 //! ## Timing
-//! A column moves one cell per clock. The column in the cell's slot at
-//! clock `t` has its `P` on `p_next` and its choice written at the
-//! end of clock `t +` [`CELL_DEPTH`] `- 1`: stage A (search area,
-//! differences), B (distances), C (tests of eq. 7), D (gain), E
-//! (`G = g + P(i-1, j-1)`, start or node), F (up, left). Stage E reads
-//! `up_p` one clock before stage F, when it still holds the previous cell's
-//! `P` of column `j - 1`: the diagonal needs no register of its own. Bubbles
-//! (`c_valid` low) pass through; registers of a stage load only on a valid
-//! column.
+//! A node whose column is in the cell's slot at clock `t` has its `P` in
+//! `p` and its choice on `choice` from clock `t +` [`CELL_DEPTH`]: stage A
+//! (search area, differences), B (distances), C (tests of eq. 7), D
+//! (gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
+//! The node below, `(i+1, j)`, is two clocks behind in the next cell, so its
+//! stage G reads this `P` on `up_p` as soon as it is out; the node to the
+//! right, `(i, j+1)`, is two clocks behind in this cell, and its stage H
+//! reads `P(i, j)` one clock after it was out (a delay register); the
+//! diagonal node `(i+1, j+1)` is in stage E when `(i+1, j)` is in stage G,
+//! so it reads `P(i, j)` on `up_p` too. A bubble (`c_valid` low) leaves
+//! `P = 0` behind it, which is `P(i, -1)` and `P(i-1, -1)` for the column
+//! that follows: a line's first column needs no flag. The other stages
+//! load only on a valid column.
 
 use crate::params::*;
 use rust_hdl::prelude::*;
 
-/// Clocks from a column in a cell's slot to its `P` on `p_next` (stages
-/// A–F; in the `P` register one clock later).
-pub const CELL_DEPTH: usize = 6;
+/// Clocks from a column in a cell's slot to its node's `P` on `p` and its
+/// choice on `choice` (stages A–H).
+pub const CELL_DEPTH: usize = 8;
 
 /// The 2-bit choices, as `golden::dp::Choice` numbers them.
 pub const CHOICE_START: u64 = 0;
@@ -70,10 +73,10 @@ pub const CHOICE_UP: u64 = 2;
 /// `P = P(i, j-1)`.
 pub const CHOICE_LEFT: u64 = 3;
 
+
 #[derive(LogicBlock)]
 pub struct GainCell {
     pub clock: Signal<In, Clock>,
-    // Reference broadcast.
     pub ld_valid: Signal<In, Bit>,
     pub ld_index: Signal<In, Bits<INDEX_BITS>>,
     pub ld_pos: Signal<In, Bits<POS_BITS>>,
@@ -84,10 +87,8 @@ pub struct GainCell {
     pub ld_lev4: Signal<In, Bits<LEVEL_BITS>>,
     pub ld_lev5: Signal<In, Bits<LEVEL_BITS>>,
     pub ld_rising: Signal<In, Bit>,
-    // The column in this cell's slot.
     pub c_valid: Signal<In, Bit>,
-    pub c_first: Signal<In, Bit>,
-    pub c_j: Signal<In, Bits<INDEX_BITS>>,
+    pub c_hi: Signal<In, Bit>,
     pub c_pos: Signal<In, Bits<POS_BITS>>,
     pub c_lev0: Signal<In, Bits<LEVEL_BITS>>,
     pub c_lev1: Signal<In, Bits<LEVEL_BITS>>,
@@ -96,52 +97,54 @@ pub struct GainCell {
     pub c_lev4: Signal<In, Bits<LEVEL_BITS>>,
     pub c_lev5: Signal<In, Bits<LEVEL_BITS>>,
     pub c_rising: Signal<In, Bit>,
-    // The recurrence: P of the previous cell and this one (the array's
-    // registers), and the next P of this one.
     pub up_p: Signal<In, Bits<PATH_BITS>>,
-    pub own_p: Signal<In, Bits<PATH_BITS>>,
-    pub p_next: Signal<Out, Bits<PATH_BITS>>,
-    pub p_load: Signal<Out, Bit>,
-    pub p_clear: Signal<Out, Bit>,
-    // Per line and per design.
+    pub p: Signal<Out, Bits<PATH_BITS>>,
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
     pub below2: Signal<In, Bits<DIST_BITS>>,
     pub f1: Signal<In, Bits<GAIN_BITS>>,
     pub f3: Signal<In, Bits<GAIN_BITS>>,
     pub same_polarity: Signal<In, Bit>,
     pub one_sided: Signal<In, Bit>,
-    // Traceback.
-    pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
-    pub tb_row: Signal<In, Bits<INDEX_BITS>>,
-    pub tb_row_up: Signal<In, Bits<INDEX_BITS>>,
-    pub tb_choice: Signal<Out, Bits<2>>,
-    pub tb_choice_up: Signal<Out, Bits<2>>,
-    choices: RAM<Bits<2>, INDEX_BITS>,
-    index: Constant<Bits<INDEX_BITS>>,
-    index8: Constant<Bits<DIAG_BITS>>,
+    pub choice: Signal<Out, Bits<2>>,
+    pub choice_word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
+    row_lo: Constant<Bits<INDEX_BITS>>,
+    row_hi: Constant<Bits<INDEX_BITS>>,
+    top_cell: Constant<Bit>,
+    zero_word: Constant<Bits<CHOICE_WORD_BITS>>,
+    bit_lo: Constant<Bits<8>>,
+    bit_hi: Constant<Bits<8>>,
+    bit0: Constant<Bits<8>>,
+    bit1: Constant<Bits<8>>,
     gain_unit_per_dist: Constant<Bits<16>>,
-    choice_start: Constant<Bits<2>>,
     gain_msb: Constant<Bits<8>>,
     pos_sign: Constant<Bits<8>>,
     level_sign: Constant<Bits<8>>,
     sign_fill: Constant<Bits<SCORE_BITS>>,
     score_msb: Constant<Bits<8>>,
+    choice_start: Constant<Bits<2>>,
     choice_node: Constant<Bits<2>>,
     choice_up: Constant<Bits<2>>,
     choice_left: Constant<Bits<2>>,
-    // The reference declivity.
-    r_pos: DFF<Bits<POS_BITS>>,
-    r_lev0: DFF<Bits<LEVEL_BITS>>,
-    r_lev1: DFF<Bits<LEVEL_BITS>>,
-    r_lev2: DFF<Bits<LEVEL_BITS>>,
-    r_lev3: DFF<Bits<LEVEL_BITS>>,
-    r_lev4: DFF<Bits<LEVEL_BITS>>,
-    r_lev5: DFF<Bits<LEVEL_BITS>>,
-    r_rising: DFF<Bit>,
+    // The reference declivities of rows `index` (lo) and `index + cells` (hi).
+    lo_pos: DFF<Bits<POS_BITS>>,
+    lo_lev0: DFF<Bits<LEVEL_BITS>>,
+    lo_lev1: DFF<Bits<LEVEL_BITS>>,
+    lo_lev2: DFF<Bits<LEVEL_BITS>>,
+    lo_lev3: DFF<Bits<LEVEL_BITS>>,
+    lo_lev4: DFF<Bits<LEVEL_BITS>>,
+    lo_lev5: DFF<Bits<LEVEL_BITS>>,
+    lo_rising: DFF<Bit>,
+    hi_pos: DFF<Bits<POS_BITS>>,
+    hi_lev0: DFF<Bits<LEVEL_BITS>>,
+    hi_lev1: DFF<Bits<LEVEL_BITS>>,
+    hi_lev2: DFF<Bits<LEVEL_BITS>>,
+    hi_lev3: DFF<Bits<LEVEL_BITS>>,
+    hi_lev4: DFF<Bits<LEVEL_BITS>>,
+    hi_lev5: DFF<Bits<LEVEL_BITS>>,
+    hi_rising: DFF<Bit>,
     // Stage A: search area, polarity, level differences.
     a_valid: DFF<Bit>,
-    a_first: DFF<Bit>,
-    a_j: DFF<Bits<INDEX_BITS>>,
+    a_hi: DFF<Bit>,
     a_area: DFF<Bit>,
     a_same: DFF<Bit>,
     a_e0: DFF<Bits<LEVEL_BITS>>,
@@ -156,30 +159,46 @@ pub struct GainCell {
     a_s4: DFF<Bits<1>>,
     // Stage B: doubled distances.
     b_valid: DFF<Bit>,
-    b_first: DFF<Bit>,
-    b_j: DFF<Bits<INDEX_BITS>>,
+    b_hi: DFF<Bit>,
     b_ok: DFF<Bit>,
     b_l2: DFF<Bits<DIST_BITS>>,
     b_r2: DFF<Bits<DIST_BITS>>,
     // Stage C: eq. 7's tests.
     c2_valid: DFF<Bit>,
-    c2_first: DFF<Bit>,
-    c2_j: DFF<Bits<INDEX_BITS>>,
+    c2_hi: DFF<Bit>,
     c2_node: DFF<Bit>,
     c2_both: DFF<Bit>,
     c2_dist: DFF<Bits<DIST_SUM_BITS>>,
     // Stage D: the local gain.
     d_valid: DFF<Bit>,
-    d_first: DFF<Bit>,
-    d_j: DFF<Bits<INDEX_BITS>>,
+    d_hi: DFF<Bit>,
     d_node: DFF<Bit>,
     d_g: DFF<Bits<GAIN_BITS>>,
-    // Stage E: start or node.
+    // Stage E: G = g + P(i-1, j-1).
     e_valid: DFF<Bit>,
-    e_j: DFF<Bits<INDEX_BITS>>,
-    e_best: DFF<Bits<PATH_BITS>>,
     e_node: DFF<Bit>,
+    e_score: DFF<Bits<SCORE_BITS>>,
+    // Stage F: start or node.
+    f_valid: DFF<Bit>,
+    f_node: DFF<Bit>,
+    f_best: DFF<Bits<PATH_BITS>>,
+    // Stage G: the node above.
+    g_valid: DFF<Bit>,
+    g_best: DFF<Bits<PATH_BITS>>,
+    g_choice: DFF<Bits<2>>,
+    // Stage H: the node to the left; P and the choice.
+    p_reg: DFF<Bits<PATH_BITS>>,
+    p_d1: DFF<Bits<PATH_BITS>>,
+    choice_reg: DFF<Bits<2>>,
     // Combinational.
+    s_pos: Signal<Local, Bits<POS_BITS>>,
+    s_lev0: Signal<Local, Bits<LEVEL_BITS>>,
+    s_lev1: Signal<Local, Bits<LEVEL_BITS>>,
+    s_lev2: Signal<Local, Bits<LEVEL_BITS>>,
+    s_lev3: Signal<Local, Bits<LEVEL_BITS>>,
+    s_lev4: Signal<Local, Bits<LEVEL_BITS>>,
+    s_lev5: Signal<Local, Bits<LEVEL_BITS>>,
+    s_rising: Signal<Local, Bit>,
     diff_pos: Signal<Local, Bits<{ POS_BITS + 1 }>>,
     dr0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
@@ -201,22 +220,19 @@ pub struct GainCell {
     dist_gain: Signal<Local, Bits<32>>,
     f_sel: Signal<Local, Bits<GAIN_BITS>>,
     g_ext: Signal<Local, Bits<SCORE_BITS>>,
-    diag: Signal<Local, Bits<SCORE_BITS>>,
-    score: Signal<Local, Bits<SCORE_BITS>>,
+    up: Signal<Local, Bits<PATH_BITS>>,
     take_node: Signal<Local, Bit>,
-    left: Signal<Local, Bits<PATH_BITS>>,
     up_wins: Signal<Local, Bit>,
-    left_over_a: Signal<Local, Bit>,
-    left_over_up: Signal<Local, Bit>,
-    best2: Signal<Local, Bits<PATH_BITS>>,
-    choice2: Signal<Local, Bits<2>>,
-    read_col: Signal<Local, Bits<DIAG_BITS>>,
+    left_wins: Signal<Local, Bit>,
+    best: Signal<Local, Bits<PATH_BITS>>,
+    best_choice: Signal<Local, Bits<2>>,
 }
 
 impl GainCell {
-    /// The cell that holds reference declivity `index`.
-    pub fn new(index: usize) -> Self {
-        assert!(index < N_MAX, "cell index inside the array");
+    /// The cell of an array of `cells` that holds reference declivities
+    /// `index` and `index + cells`.
+    pub fn new(index: usize, cells: usize) -> Self {
+        assert!(index < cells && cells <= N_CELLS, "cell index inside an array of at most N_CELLS");
         GainCell {
             clock: Default::default(),
             ld_valid: Default::default(),
@@ -230,8 +246,7 @@ impl GainCell {
             ld_lev5: Default::default(),
             ld_rising: Default::default(),
             c_valid: Default::default(),
-            c_first: Default::default(),
-            c_j: Default::default(),
+            c_hi: Default::default(),
             c_pos: Default::default(),
             c_lev0: Default::default(),
             c_lev1: Default::default(),
@@ -241,45 +256,51 @@ impl GainCell {
             c_lev5: Default::default(),
             c_rising: Default::default(),
             up_p: Default::default(),
-            own_p: Default::default(),
-            p_next: Default::default(),
-            p_load: Default::default(),
-            p_clear: Default::default(),
+            p: Default::default(),
             dispmax: Default::default(),
             below2: Default::default(),
             f1: Default::default(),
             f3: Default::default(),
             same_polarity: Default::default(),
             one_sided: Default::default(),
-            tb_diag: Default::default(),
-            tb_row: Default::default(),
-            tb_row_up: Default::default(),
-            tb_choice: Default::default(),
-            tb_choice_up: Default::default(),
-            choices: Default::default(),
-            index: Constant::new((index as u64).into()),
-            index8: Constant::new((index as u64).into()),
+            choice: Default::default(),
+            choice_word: Default::default(),
+            row_lo: Constant::new((index as u64).into()),
+            row_hi: Constant::new(((index + cells) as u64).into()),
+            top_cell: Constant::new(index == 0),
+            zero_word: Constant::new(0u64.into()),
+            bit_lo: Constant::new(((2 * (index % CELLS_PER_CHOICE_WORD)) as u64).into()),
+            bit_hi: Constant::new(((2 * (index % CELLS_PER_CHOICE_WORD) + 1) as u64).into()),
+            bit0: Constant::new(0u64.into()),
+            bit1: Constant::new(1u64.into()),
             gain_unit_per_dist: Constant::new((1u64 << (GAIN_FRAC_BITS - 1)).into()),
-            choice_start: Constant::new(CHOICE_START.into()),
             gain_msb: Constant::new(((GAIN_BITS - 1) as u64).into()),
             pos_sign: Constant::new((POS_BITS as u64).into()),
             level_sign: Constant::new((LEVEL_BITS as u64).into()),
             sign_fill: Constant::new((((1u64 << SCORE_BITS) - 1) ^ ((1u64 << GAIN_BITS) - 1)).into()),
             score_msb: Constant::new(((SCORE_BITS - 1) as u64).into()),
+            choice_start: Constant::new(CHOICE_START.into()),
             choice_node: Constant::new(CHOICE_NODE.into()),
             choice_up: Constant::new(CHOICE_UP.into()),
             choice_left: Constant::new(CHOICE_LEFT.into()),
-            r_pos: Default::default(),
-            r_lev0: Default::default(),
-            r_lev1: Default::default(),
-            r_lev2: Default::default(),
-            r_lev3: Default::default(),
-            r_lev4: Default::default(),
-            r_lev5: Default::default(),
-            r_rising: Default::default(),
+            lo_pos: Default::default(),
+            lo_lev0: Default::default(),
+            lo_lev1: Default::default(),
+            lo_lev2: Default::default(),
+            lo_lev3: Default::default(),
+            lo_lev4: Default::default(),
+            lo_lev5: Default::default(),
+            lo_rising: Default::default(),
+            hi_pos: Default::default(),
+            hi_lev0: Default::default(),
+            hi_lev1: Default::default(),
+            hi_lev2: Default::default(),
+            hi_lev3: Default::default(),
+            hi_lev4: Default::default(),
+            hi_lev5: Default::default(),
+            hi_rising: Default::default(),
             a_valid: Default::default(),
-            a_first: Default::default(),
-            a_j: Default::default(),
+            a_hi: Default::default(),
             a_area: Default::default(),
             a_same: Default::default(),
             a_e0: Default::default(),
@@ -293,26 +314,39 @@ impl GainCell {
             a_s3: Default::default(),
             a_s4: Default::default(),
             b_valid: Default::default(),
-            b_first: Default::default(),
-            b_j: Default::default(),
+            b_hi: Default::default(),
             b_ok: Default::default(),
             b_l2: Default::default(),
             b_r2: Default::default(),
             c2_valid: Default::default(),
-            c2_first: Default::default(),
-            c2_j: Default::default(),
+            c2_hi: Default::default(),
             c2_node: Default::default(),
             c2_both: Default::default(),
             c2_dist: Default::default(),
             d_valid: Default::default(),
-            d_first: Default::default(),
-            d_j: Default::default(),
+            d_hi: Default::default(),
             d_node: Default::default(),
             d_g: Default::default(),
             e_valid: Default::default(),
-            e_j: Default::default(),
-            e_best: Default::default(),
             e_node: Default::default(),
+            e_score: Default::default(),
+            f_valid: Default::default(),
+            f_node: Default::default(),
+            f_best: Default::default(),
+            g_valid: Default::default(),
+            g_best: Default::default(),
+            g_choice: Default::default(),
+            p_reg: Default::default(),
+            p_d1: Default::default(),
+            choice_reg: Default::default(),
+            s_pos: Default::default(),
+            s_lev0: Default::default(),
+            s_lev1: Default::default(),
+            s_lev2: Default::default(),
+            s_lev3: Default::default(),
+            s_lev4: Default::default(),
+            s_lev5: Default::default(),
+            s_rising: Default::default(),
             diff_pos: Default::default(),
             dr0: Default::default(),
             dr1: Default::default(),
@@ -334,48 +368,69 @@ impl GainCell {
             dist_gain: Default::default(),
             f_sel: Default::default(),
             g_ext: Default::default(),
-            diag: Default::default(),
-            score: Default::default(),
+            up: Default::default(),
             take_node: Default::default(),
-            left: Default::default(),
             up_wins: Default::default(),
-            left_over_a: Default::default(),
-            left_over_up: Default::default(),
-            best2: Default::default(),
-            choice2: Default::default(),
-            read_col: Default::default(),
+            left_wins: Default::default(),
+            best: Default::default(),
+            best_choice: Default::default(),
         }
     }
 }
 
 impl Default for GainCell {
     fn default() -> Self {
-        GainCell::new(0)
+        GainCell::new(0, 1)
     }
 }
 
 impl Logic for GainCell {
     #[hdl_gen]
     fn update(&mut self) {
-        self.choices.read_clock.next = self.clock.val();
-        self.choices.write_clock.next = self.clock.val();
         dff_setup!(
-            self, clock, r_pos, r_lev0, r_lev1, r_lev2, r_lev3, r_lev4, r_lev5, r_rising, a_valid,
-            a_first, a_j, a_area, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_first, b_j, b_ok, b_l2,
-            b_r2, c2_valid, c2_first, c2_j, c2_node, c2_both, c2_dist, d_valid, d_first, d_j, d_node, d_g,
-            e_valid, e_j, e_best, e_node
+            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, a_valid, a_hi, a_area, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
         );
 
-        // ---- The reference declivity, from the broadcast.
-        if self.ld_valid.val() & (self.ld_index.val() == self.index.val()) {
-            self.r_pos.d.next = self.ld_pos.val();
-            self.r_lev0.d.next = self.ld_lev0.val();
-            self.r_lev1.d.next = self.ld_lev1.val();
-            self.r_lev2.d.next = self.ld_lev2.val();
-            self.r_lev3.d.next = self.ld_lev3.val();
-            self.r_lev4.d.next = self.ld_lev4.val();
-            self.r_lev5.d.next = self.ld_lev5.val();
-            self.r_rising.d.next = self.ld_rising.val();
+        // ---- The reference declivities, from the broadcast.
+        if self.ld_valid.val() & (self.ld_index.val() == self.row_lo.val()) {
+            self.lo_pos.d.next = self.ld_pos.val();
+            self.lo_lev0.d.next = self.ld_lev0.val();
+            self.lo_lev1.d.next = self.ld_lev1.val();
+            self.lo_lev2.d.next = self.ld_lev2.val();
+            self.lo_lev3.d.next = self.ld_lev3.val();
+            self.lo_lev4.d.next = self.ld_lev4.val();
+            self.lo_lev5.d.next = self.ld_lev5.val();
+            self.lo_rising.d.next = self.ld_rising.val();
+        }
+        if self.ld_valid.val() & (self.ld_index.val() == self.row_hi.val()) {
+            self.hi_pos.d.next = self.ld_pos.val();
+            self.hi_lev0.d.next = self.ld_lev0.val();
+            self.hi_lev1.d.next = self.ld_lev1.val();
+            self.hi_lev2.d.next = self.ld_lev2.val();
+            self.hi_lev3.d.next = self.ld_lev3.val();
+            self.hi_lev4.d.next = self.ld_lev4.val();
+            self.hi_lev5.d.next = self.ld_lev5.val();
+            self.hi_rising.d.next = self.ld_rising.val();
+        }
+        // The row of the column in the slot: the first pass meets the low
+        // row, the second the high one.
+        self.s_pos.next = self.lo_pos.q.val();
+        self.s_lev0.next = self.lo_lev0.q.val();
+        self.s_lev1.next = self.lo_lev1.q.val();
+        self.s_lev2.next = self.lo_lev2.q.val();
+        self.s_lev3.next = self.lo_lev3.q.val();
+        self.s_lev4.next = self.lo_lev4.q.val();
+        self.s_lev5.next = self.lo_lev5.q.val();
+        self.s_rising.next = self.lo_rising.q.val();
+        if self.c_hi.val() {
+            self.s_pos.next = self.hi_pos.q.val();
+            self.s_lev0.next = self.hi_lev0.q.val();
+            self.s_lev1.next = self.hi_lev1.q.val();
+            self.s_lev2.next = self.hi_lev2.q.val();
+            self.s_lev3.next = self.hi_lev3.q.val();
+            self.s_lev4.next = self.hi_lev4.q.val();
+            self.s_lev5.next = self.hi_lev5.q.val();
+            self.s_rising.next = self.hi_rising.q.val();
         }
 
         // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax) and
@@ -384,32 +439,31 @@ impl Logic for GainCell {
         // `!(a - b) = |a - b| - 1` with the sign bit beside it, the +1 being
         // the carry-in of stage B's adders; the third, with no carry-in left
         // for it, is a - b or b - a by the sign of a - b.
-        self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.r_pos.q.val())
+        self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.s_pos.val())
             - bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
-        self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev0.q.val())
+        self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev0.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val());
-        self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev1.q.val())
+        self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev1.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev1.val());
-        self.dr2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev2.q.val())
+        self.dr2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev2.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val());
         self.dc2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev2.q.val());
-        self.dr3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev3.q.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev2.val());
+        self.dr3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev3.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev3.val());
-        self.dr4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev4.q.val())
+        self.dr4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev4.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev4.val());
-        self.dr5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev5.q.val())
+        self.dr5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev5.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val());
         self.dc5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.r_lev5.q.val());
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev5.val());
         self.a_valid.d.next = self.c_valid.val();
         if self.c_valid.val() {
-            self.a_first.d.next = self.c_first.val();
-            self.a_j.d.next = self.c_j.val();
+            self.a_hi.d.next = self.c_hi.val();
             self.a_area.d.next = !self.diff_pos.val().get_bit(self.pos_sign.val().index())
                 & self.diff_pos.val().any()
                 & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.diff_pos.val()) < self.dispmax.val());
-            self.a_same.d.next = !self.same_polarity.val() | (self.r_rising.q.val() == self.c_rising.val());
+            self.a_same.d.next = !self.same_polarity.val() | (self.s_rising.val() == self.c_rising.val());
             self.a_e0.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr0.val());
             self.a_s0.d.next = 0.into();
             if self.dr0.val().get_bit(self.level_sign.val().index()) {
@@ -460,8 +514,7 @@ impl Logic for GainCell {
             + bit_cast::<DIST_BITS, 1>(self.a_s4.q.val());
         self.b_valid.d.next = self.a_valid.q.val();
         if self.a_valid.q.val() {
-            self.b_first.d.next = self.a_first.q.val();
-            self.b_j.d.next = self.a_j.q.val();
+            self.b_hi.d.next = self.a_hi.q.val();
             self.b_ok.d.next = self.a_area.q.val() & self.a_same.q.val();
             self.b_l2.d.next = self.l_sum.val();
             self.b_r2.d.next = self.r_sum.val();
@@ -481,8 +534,7 @@ impl Logic for GainCell {
         }
         self.c2_valid.d.next = self.b_valid.q.val();
         if self.b_valid.q.val() {
-            self.c2_first.d.next = self.b_first.q.val();
-            self.c2_j.d.next = self.b_j.q.val();
+            self.c2_hi.d.next = self.b_hi.q.val();
             self.c2_node.d.next = self.b_ok.q.val() & (self.lb.val() | self.rb.val());
             self.c2_both.d.next = self.lb.val() & self.rb.val();
             self.c2_dist.d.next = self.l_part.val() + self.r_part.val();
@@ -498,81 +550,80 @@ impl Logic for GainCell {
         }
         self.d_valid.d.next = self.c2_valid.q.val();
         if self.c2_valid.q.val() {
-            self.d_first.d.next = self.c2_first.q.val();
-            self.d_j.d.next = self.c2_j.q.val();
+            self.d_hi.d.next = self.c2_hi.q.val();
             self.d_node.d.next = self.c2_node.q.val();
             self.d_g.d.next = self.f_sel.val() - bit_cast::<GAIN_BITS, 32>(self.dist_gain.val());
         }
 
-        // ---- E: G = g + P(i-1, j-1); the node beats start only when G > 0.
-        // `up_p` still holds the previous cell's P of column j - 1.
+
+        // ---- E: G = g + P(i-1, j-1). `up_p` holds the cell above's P of
+        // column j - 1 now, two clocks before it shows column j's. Cell 0's
+        // low row is the table's first: nothing above it.
+        self.up.next = self.up_p.val();
+        if self.top_cell.val() & !self.d_hi.q.val() {
+            self.up.next = 0.into();
+        }
         self.g_ext.next = bit_cast::<SCORE_BITS, GAIN_BITS>(self.d_g.q.val());
         if self.d_g.q.val().get_bit(self.gain_msb.val().index()) {
             // Sign extension: wiring in hardware.
             self.g_ext.next = bit_cast::<SCORE_BITS, GAIN_BITS>(self.d_g.q.val()) | self.sign_fill.val();
         }
-        self.diag.next = bit_cast::<SCORE_BITS, PATH_BITS>(self.up_p.val());
-        if self.d_first.q.val() {
-            self.diag.next = 0.into();
-        }
-        self.score.next = self.g_ext.val() + self.diag.val();
-        self.take_node.next =
-            self.d_node.q.val() & !self.score.val().get_bit(self.score_msb.val().index()) & self.score.val().any();
         self.e_valid.d.next = self.d_valid.q.val();
         if self.d_valid.q.val() {
-            self.e_j.d.next = self.d_j.q.val();
-            self.e_node.d.next = self.take_node.val();
-            self.e_best.d.next = 0.into();
+            self.e_node.d.next = self.d_node.q.val();
+            self.e_score.d.next = self.g_ext.val() + bit_cast::<SCORE_BITS, PATH_BITS>(self.up.val());
+        }
+
+        // ---- F: the node beats start only when G > 0.
+        self.take_node.next =
+            self.e_node.q.val() & !self.e_score.q.val().get_bit(self.score_msb.val().index()) & self.e_score.q.val().any();
+        self.f_valid.d.next = self.e_valid.q.val();
+        if self.e_valid.q.val() {
+            self.f_node.d.next = self.take_node.val();
+            self.f_best.d.next = 0.into();
             if self.take_node.val() {
-                self.e_best.d.next = bit_cast::<PATH_BITS, SCORE_BITS>(self.score.val());
+                self.f_best.d.next = bit_cast::<PATH_BITS, SCORE_BITS>(self.e_score.q.val());
             }
         }
 
-        // ---- F: P(i, j) = max(start/node, up, left), a later candidate only
-        // when strictly greater: the three comparisons side by side, then
-        // the choice (`left > max(A, up)` is `left > up` when up won, else
-        // `left > A`).
-        self.left.next = self.own_p.val();
-        self.up_wins.next = self.up_p.val() > self.e_best.q.val();
-        self.left_over_a.next = self.left.val() > self.e_best.q.val();
-        self.left_over_up.next = self.left.val() > self.up_p.val();
-        self.best2.next = self.e_best.q.val();
-        self.choice2.next = self.choice_start.val();
-        if self.e_node.q.val() {
-            self.choice2.next = self.choice_node.val();
-        }
-        if self.up_wins.val() {
-            self.best2.next = self.up_p.val();
-            self.choice2.next = self.choice_up.val();
-            if self.left_over_up.val() {
-                self.best2.next = self.left.val();
-                self.choice2.next = self.choice_left.val();
+        // ---- G: P(i-1, j) only when strictly greater. (The same `up` as
+        // stage E's: the node in G is two clocks ahead, in the same row.)
+        self.up_wins.next = self.up.val() > self.f_best.q.val();
+        self.g_valid.d.next = self.f_valid.q.val();
+        if self.f_valid.q.val() {
+            self.g_best.d.next = self.f_best.q.val();
+            self.g_choice.d.next = self.choice_start.val();
+            if self.f_node.q.val() {
+                self.g_choice.d.next = self.choice_node.val();
             }
-        } else {
-            if self.left_over_a.val() {
-                self.best2.next = self.left.val();
-                self.choice2.next = self.choice_left.val();
+            if self.up_wins.val() {
+                self.g_best.d.next = self.up.val();
+                self.g_choice.d.next = self.choice_up.val();
             }
         }
-        self.p_next.next = self.best2.val();
-        self.p_load.next = self.e_valid.q.val();
-        // P(i, -1) = 0: cleared as column 0 enters stage E, so that stage F
-        // reads P(i, j - 1) straight from the register.
-        self.p_clear.next = self.d_valid.q.val() & self.d_first.q.val();
-        self.choices.write_address.next = self.e_j.q.val();
-        self.choices.write_data.next = self.choice2.val();
-        self.choices.write_enable.next = self.e_valid.q.val();
 
-        // ---- Traceback: the choice of column tb_diag - index.
-        self.read_col.next = self.tb_diag.val() - self.index8.val();
-        self.choices.read_address.next = bit_cast::<INDEX_BITS, DIAG_BITS>(self.read_col.val());
-        self.tb_choice.next = 0.into();
-        if self.tb_row.val() == self.index.val() {
-            self.tb_choice.next = self.choices.read_data.val();
+        // ---- H: P(i, j-1), out two clocks ago, only when strictly greater.
+        self.left_wins.next = self.p_d1.q.val() > self.g_best.q.val();
+        self.best.next = self.g_best.q.val();
+        self.best_choice.next = self.g_choice.q.val();
+        if self.left_wins.val() {
+            self.best.next = self.p_d1.q.val();
+            self.best_choice.next = self.choice_left.val();
         }
-        self.tb_choice_up.next = 0.into();
-        if self.tb_row_up.val() == self.index.val() {
-            self.tb_choice_up.next = self.choices.read_data.val();
+        // A bubble leaves P = 0 (a synchronous reset).
+        self.p_reg.d.next = 0.into();
+        if self.g_valid.q.val() {
+            self.p_reg.d.next = self.best.val();
         }
+        self.p_d1.d.next = self.p_reg.q.val();
+        self.choice_reg.d.next = self.best_choice.val();
+        self.p.next = self.p_reg.q.val();
+        self.choice.next = self.choice_reg.q.val();
+        // The choice in its two bits of the word: wiring in hardware.
+        self.choice_word.next = self
+            .zero_word
+            .val()
+            .replace_bit(self.bit_lo.val().index(), self.choice_reg.q.val().get_bit(self.bit0.val().index()))
+            .replace_bit(self.bit_hi.val().index(), self.choice_reg.q.val().get_bit(self.bit1.val().index()));
     }
 }

@@ -151,3 +151,21 @@ mod tests {
         assert!(N_MAX as u64 * gain_max < 1 << PATH_BITS);
     }
 }
+
+/// Reference declivities per gain cell: cell `c` of `N` holds rows `c` and
+/// `c + N` of the matching table (the column stream passes the array
+/// twice, interleaved), so one datapath serves two rows and each row's
+/// recurrence has two clocks per node.
+pub const ROWS_PER_CELL: usize = 2;
+/// Gain cells of the sensor's matcher: `N_MAX / ROWS_PER_CELL`.
+pub const N_CELLS: usize = N_MAX / ROWS_PER_CELL;
+/// Bits of a sweep clock count: up to `2·(2·N_MAX) + ` a few of pipeline.
+pub const SWEEP_BITS: usize = DIAG_BITS + 2;
+/// Bits of a word of the choice memory: the 2-bit choices of
+/// [`CELLS_PER_CHOICE_WORD`] cells, one anti-diagonal's worth of them. (32:
+/// rust-hdl simulates wider values as big integers.)
+pub const CHOICE_WORD_BITS: usize = 32;
+/// Cells whose choices share one memory word.
+pub const CELLS_PER_CHOICE_WORD: usize = CHOICE_WORD_BITS / 2;
+/// Memory words per anti-diagonal and row half for [`N_CELLS`] cells.
+pub const CHOICE_WORDS: usize = N_CELLS / CELLS_PER_CHOICE_WORD;

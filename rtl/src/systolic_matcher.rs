@@ -1,30 +1,52 @@
 //! The systolic array of the matcher (`DESIGN.md` §3): `N` [`GainCell`]s in
-//! a line, cell `i` holding reference declivity `i`, the other view's
-//! declivities streaming through the chain one cell per clock. Column `j`
-//! reaches cell `i` `i` clocks after cell 0, so the `N × M` table of eq. 9
-//! is swept in anti-diagonal wavefronts: the cells of anti-diagonal
-//! `s = i + j` compute their `P` on the same clock.
+//! a line, cell `c` holding reference declivities `c` and `c + N`, the
+//! other view's declivities streaming through the chain twice, one cell
+//! every two clocks: the first pass on even clocks meets the low rows
+//! `0 .. N`, the second, `2·N + 1` clocks behind on odd clocks, the high
+//! rows `N .. 2·N`. Node `(i, j)` is computed `2·(i + j) + [i ≥ N]` clocks
+//! after the sweep starts, so the `2N × M` table of eq. 9 is swept in
+//! anti-diagonal wavefronts, one every two clocks, and every dependency of
+//! a node is at least two clocks old: `P(i-1, j)` and `P(i, j-1)` two (three
+//! across the fold from row `N - 1` to row `N`), `P(i-1, j-1)` four.
+//!
+//! The cells' choices go to a block-RAM choice memory rather than into the
+//! cells: on each clock every cell has one node's choice (all of the low
+//! rows or all of the high rows, of one anti-diagonal), so word `d` of the
+//! low (high) half holds anti-diagonal `d` of the low (high) rows, two bits
+//! per cell, [`CELLS_PER_CHOICE_WORD`] cells per word.
 //!
 //! ## Ports
 //! - `ld_*`: the reference-declivity broadcast, to every cell (the cell
-//!   whose index is `ld_index` takes it).
-//! - `c_*`: the column stream, into the first slot of the column pipeline
-//!   (one register slot per cell, slot i read by cell i).
+//!   whose low or high row is `ld_index` takes it).
+//! - `c_*`: the column stream (`c_hi`: second pass), into cell 0's slot of
+//!   the column pipeline (two register slots per cell).
 //! - `dispmax`, `below2`, `f1`, `f3`, `same_polarity`, `one_sided`: to every
 //!   cell (see [`GainCell`]).
+//! - `cw_en`, `cw_diag`, `cw_hi`: write the choices now in the array's word
+//!   registers as anti-diagonal `cw_diag` of the low (`cw_hi` low) or high
+//!   rows. The engine counts them: the choices of the node whose column
+//!   entered at clock `t` are in the word registers at `t +` [`CHOICE_LAG`].
 //! - `tb_diag`, `tb_row`, `tb_row_up` in; `tb_choice`, `tb_choice_up` out:
-//!   the choices of cells `tb_row` and `tb_row_up` in anti-diagonal
-//!   `tb_diag` read one clock earlier, each the OR of the cells' outputs
-//!   (the others show zero).
+//!   the choices of rows `tb_row` and `tb_row_up` (now) on anti-diagonal
+//!   `tb_diag` (two clocks ago: memory read, then its output register).
 //!
 //! ## Timing
-//! Column `j` offered on `c_*` at clock `t - 1` sits in slot 0 at `t` and gives `P(i, j)` at the
-//! end of clock `t + i +` [`CELL_DEPTH`] `- 1`. Cell 0's `P(i-1, ·)` is the
-//! border, 0. Eq. 9 in `N + M - 1` wavefronts plus the cells' depth.
+//! Column `j` offered on `c_*` at clock `t - 1` sits in cell `c`'s slot at
+//! `t + 2c` and gives `P` and the choice of node `(c + N·c_hi, j)` in the
+//! cell at `t + 2c +` [`CELL_DEPTH`], in the word registers one clock
+//! later. The high rows' `P(N-1, ·)` comes from the last cell through one
+//! register; the low rows' `P(-1, ·)` is the border, 0.
 
-use crate::gain_cell::GainCell;
+use crate::gain_cell::{GainCell, CELL_DEPTH};
 use crate::params::*;
 use rust_hdl::prelude::*;
+
+/// Clocks from a column offered on `c_*` to its node's choice in the word
+/// registers, less the cell's slot offset `2c`: one into slot 0, the
+/// cell's depth, one into the word register. (The matcher's engine adds
+/// its own two clocks of record memory.)
+pub const CHOICE_LAG: usize = 1 + CELL_DEPTH + 1;
+
 
 #[derive(LogicBlock)]
 pub struct SystolicMatcher<const N: usize> {
@@ -40,8 +62,7 @@ pub struct SystolicMatcher<const N: usize> {
     pub ld_lev5: Signal<In, Bits<LEVEL_BITS>>,
     pub ld_rising: Signal<In, Bit>,
     pub c_valid: Signal<In, Bit>,
-    pub c_first: Signal<In, Bit>,
-    pub c_j: Signal<In, Bits<INDEX_BITS>>,
+    pub c_hi: Signal<In, Bit>,
     pub c_pos: Signal<In, Bits<POS_BITS>>,
     pub c_lev0: Signal<In, Bits<LEVEL_BITS>>,
     pub c_lev1: Signal<In, Bits<LEVEL_BITS>>,
@@ -56,33 +77,66 @@ pub struct SystolicMatcher<const N: usize> {
     pub f3: Signal<In, Bits<GAIN_BITS>>,
     pub same_polarity: Signal<In, Bit>,
     pub one_sided: Signal<In, Bit>,
+    pub cw_en: Signal<In, Bit>,
+    pub cw_diag: Signal<In, Bits<DIAG_BITS>>,
+    pub cw_hi: Signal<In, Bit>,
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
     pub tb_row: Signal<In, Bits<INDEX_BITS>>,
     pub tb_row_up: Signal<In, Bits<INDEX_BITS>>,
     pub tb_choice: Signal<Out, Bits<2>>,
     pub tb_choice_up: Signal<Out, Bits<2>>,
     pub cells: [GainCell; N],
-    // P of each cell.
-    p_reg: [DFF<Bits<PATH_BITS>>; N],
-    // The column pipeline: slot i is cell i's column.
-    col_valid: [DFF<Bit>; N],
-    col_first: [DFF<Bit>; N],
-    col_j: [DFF<Bits<INDEX_BITS>>; N],
-    col_pos: [DFF<Bits<POS_BITS>>; N],
-    col_lev0: [DFF<Bits<LEVEL_BITS>>; N],
-    col_lev1: [DFF<Bits<LEVEL_BITS>>; N],
-    col_lev2: [DFF<Bits<LEVEL_BITS>>; N],
-    col_lev3: [DFF<Bits<LEVEL_BITS>>; N],
-    col_lev4: [DFF<Bits<LEVEL_BITS>>; N],
-    col_lev5: [DFF<Bits<LEVEL_BITS>>; N],
-    col_rising: [DFF<Bit>; N],
-    choice_or: Signal<Local, Bits<2>>,
-    choice_up_or: Signal<Local, Bits<2>>,
+    col_a_valid: [DFF<Bit>; N],
+    col_a_hi: [DFF<Bit>; N],
+    col_a_pos: [DFF<Bits<POS_BITS>>; N],
+    col_a_lev0: [DFF<Bits<LEVEL_BITS>>; N],
+    col_a_lev1: [DFF<Bits<LEVEL_BITS>>; N],
+    col_a_lev2: [DFF<Bits<LEVEL_BITS>>; N],
+    col_a_lev3: [DFF<Bits<LEVEL_BITS>>; N],
+    col_a_lev4: [DFF<Bits<LEVEL_BITS>>; N],
+    col_a_lev5: [DFF<Bits<LEVEL_BITS>>; N],
+    col_a_rising: [DFF<Bit>; N],
+    col_b_valid: [DFF<Bit>; N],
+    col_b_hi: [DFF<Bit>; N],
+    col_b_pos: [DFF<Bits<POS_BITS>>; N],
+    col_b_lev0: [DFF<Bits<LEVEL_BITS>>; N],
+    col_b_lev1: [DFF<Bits<LEVEL_BITS>>; N],
+    col_b_lev2: [DFF<Bits<LEVEL_BITS>>; N],
+    col_b_lev3: [DFF<Bits<LEVEL_BITS>>; N],
+    col_b_lev4: [DFF<Bits<LEVEL_BITS>>; N],
+    col_b_lev5: [DFF<Bits<LEVEL_BITS>>; N],
+    col_b_rising: [DFF<Bit>; N],
+    wrap: DFF<Bits<PATH_BITS>>,
+    word_q: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    lo_ram: [RAM<Bits<CHOICE_WORD_BITS>, DIAG_BITS>; CHOICE_WORDS],
+    hi_ram: [RAM<Bits<CHOICE_WORD_BITS>, DIAG_BITS>; CHOICE_WORDS],
+    rd_lo: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    rd_hi: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    last_p: Signal<Local, Bits<PATH_BITS>>,
+    wacc: [Signal<Local, Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    row_hi: Signal<Local, Bit>,
+    row_cell: Signal<Local, Bits<INDEX_BITS>>,
+    row_word: Signal<Local, Bits<CHOICE_WORD_BITS>>,
+    row_widx: Signal<Local, Bits<2>>,
+    row_pair: Signal<Local, Bits<8>>,
+    up_hi: Signal<Local, Bit>,
+    up_cell: Signal<Local, Bits<INDEX_BITS>>,
+    up_word: Signal<Local, Bits<CHOICE_WORD_BITS>>,
+    up_widx: Signal<Local, Bits<2>>,
+    up_pair: Signal<Local, Bits<8>>,
+    cells_c: Constant<Bits<INDEX_BITS>>,
+    word_shift: Constant<Bits<8>>,
+    bit0: Constant<Bits<8>>,
+    w0: Constant<Bits<2>>,
+    w1: Constant<Bits<2>>,
+    w2: Constant<Bits<2>>,
+    w3: Constant<Bits<2>>,
 }
 
 impl<const N: usize> Default for SystolicMatcher<N> {
     fn default() -> Self {
-        assert!((1..=N_MAX).contains(&N), "1 ..= N_MAX cells");
+        assert!((1..=N_CELLS).contains(&N), "1 ..= N_CELLS cells");
+        assert_eq!(CHOICE_WORDS, 4, "the choice selection below names four words");
         SystolicMatcher {
             clock: Default::default(),
             ld_valid: Default::default(),
@@ -96,8 +150,7 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             ld_lev5: Default::default(),
             ld_rising: Default::default(),
             c_valid: Default::default(),
-            c_first: Default::default(),
-            c_j: Default::default(),
+            c_hi: Default::default(),
             c_pos: Default::default(),
             c_lev0: Default::default(),
             c_lev1: Default::default(),
@@ -112,26 +165,60 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             f3: Default::default(),
             same_polarity: Default::default(),
             one_sided: Default::default(),
+            cw_en: Default::default(),
+            cw_diag: Default::default(),
+            cw_hi: Default::default(),
             tb_diag: Default::default(),
             tb_row: Default::default(),
             tb_row_up: Default::default(),
             tb_choice: Default::default(),
             tb_choice_up: Default::default(),
-            cells: core::array::from_fn(GainCell::new),
-            p_reg: core::array::from_fn(|_| Default::default()),
-            col_valid: core::array::from_fn(|_| Default::default()),
-            col_first: core::array::from_fn(|_| Default::default()),
-            col_j: core::array::from_fn(|_| Default::default()),
-            col_pos: core::array::from_fn(|_| Default::default()),
-            col_lev0: core::array::from_fn(|_| Default::default()),
-            col_lev1: core::array::from_fn(|_| Default::default()),
-            col_lev2: core::array::from_fn(|_| Default::default()),
-            col_lev3: core::array::from_fn(|_| Default::default()),
-            col_lev4: core::array::from_fn(|_| Default::default()),
-            col_lev5: core::array::from_fn(|_| Default::default()),
-            col_rising: core::array::from_fn(|_| Default::default()),
-            choice_or: Default::default(),
-            choice_up_or: Default::default(),
+            cells: core::array::from_fn(|i| GainCell::new(i, N)),
+            col_a_valid: core::array::from_fn(|_| Default::default()),
+            col_a_hi: core::array::from_fn(|_| Default::default()),
+            col_a_pos: core::array::from_fn(|_| Default::default()),
+            col_a_lev0: core::array::from_fn(|_| Default::default()),
+            col_a_lev1: core::array::from_fn(|_| Default::default()),
+            col_a_lev2: core::array::from_fn(|_| Default::default()),
+            col_a_lev3: core::array::from_fn(|_| Default::default()),
+            col_a_lev4: core::array::from_fn(|_| Default::default()),
+            col_a_lev5: core::array::from_fn(|_| Default::default()),
+            col_a_rising: core::array::from_fn(|_| Default::default()),
+            col_b_valid: core::array::from_fn(|_| Default::default()),
+            col_b_hi: core::array::from_fn(|_| Default::default()),
+            col_b_pos: core::array::from_fn(|_| Default::default()),
+            col_b_lev0: core::array::from_fn(|_| Default::default()),
+            col_b_lev1: core::array::from_fn(|_| Default::default()),
+            col_b_lev2: core::array::from_fn(|_| Default::default()),
+            col_b_lev3: core::array::from_fn(|_| Default::default()),
+            col_b_lev4: core::array::from_fn(|_| Default::default()),
+            col_b_lev5: core::array::from_fn(|_| Default::default()),
+            col_b_rising: core::array::from_fn(|_| Default::default()),
+            wrap: Default::default(),
+            word_q: core::array::from_fn(|_| Default::default()),
+            lo_ram: core::array::from_fn(|_| Default::default()),
+            hi_ram: core::array::from_fn(|_| Default::default()),
+            rd_lo: core::array::from_fn(|_| Default::default()),
+            rd_hi: core::array::from_fn(|_| Default::default()),
+            last_p: Default::default(),
+            wacc: core::array::from_fn(|_| Default::default()),
+            row_hi: Default::default(),
+            row_cell: Default::default(),
+            row_word: Default::default(),
+            row_widx: Default::default(),
+            row_pair: Default::default(),
+            up_hi: Default::default(),
+            up_cell: Default::default(),
+            up_word: Default::default(),
+            up_widx: Default::default(),
+            up_pair: Default::default(),
+            cells_c: Constant::new((N as u64).into()),
+            word_shift: Constant::new((CELLS_PER_CHOICE_WORD.trailing_zeros() as u64).into()),
+            bit0: Constant::new(0u64.into()),
+            w0: Constant::new(0u64.into()),
+            w1: Constant::new(1u64.into()),
+            w2: Constant::new(2u64.into()),
+            w3: Constant::new(3u64.into()),
         }
     }
 }
@@ -157,100 +244,208 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].f3.next = self.f3.val();
             self.cells[i].same_polarity.next = self.same_polarity.val();
             self.cells[i].one_sided.next = self.one_sided.val();
-            self.cells[i].tb_diag.next = self.tb_diag.val();
-            self.cells[i].tb_row.next = self.tb_row.val();
-            self.cells[i].tb_row_up.next = self.tb_row_up.val();
         }
-        // The column pipeline: slot 0 takes the stream, slot i the column
-        // of slot i - 1; a bubble moves as one. Cell i reads slot i.
+        // The column pipeline: two slots per cell, `col_a[i]` (cell i's)
+        // then `col_b[i]`; slot a of cell 0 takes the stream. A column moves
+        // one slot per clock; a bubble moves as one.
         for i in 0..N {
-            self.p_reg[i].clock.next = self.clock.val();
-            self.p_reg[i].d.next = self.p_reg[i].q.val();
-            if self.cells[i].p_clear.val() {
-                self.p_reg[i].d.next = 0.into();
+            self.col_a_valid[i].clock.next = self.clock.val();
+            self.col_b_valid[i].clock.next = self.clock.val();
+            self.col_a_hi[i].clock.next = self.clock.val();
+            self.col_b_hi[i].clock.next = self.clock.val();
+            self.col_a_pos[i].clock.next = self.clock.val();
+            self.col_b_pos[i].clock.next = self.clock.val();
+            self.col_a_lev0[i].clock.next = self.clock.val();
+            self.col_b_lev0[i].clock.next = self.clock.val();
+            self.col_a_lev1[i].clock.next = self.clock.val();
+            self.col_b_lev1[i].clock.next = self.clock.val();
+            self.col_a_lev2[i].clock.next = self.clock.val();
+            self.col_b_lev2[i].clock.next = self.clock.val();
+            self.col_a_lev3[i].clock.next = self.clock.val();
+            self.col_b_lev3[i].clock.next = self.clock.val();
+            self.col_a_lev4[i].clock.next = self.clock.val();
+            self.col_b_lev4[i].clock.next = self.clock.val();
+            self.col_a_lev5[i].clock.next = self.clock.val();
+            self.col_b_lev5[i].clock.next = self.clock.val();
+            self.col_a_rising[i].clock.next = self.clock.val();
+            self.col_b_rising[i].clock.next = self.clock.val();
+            self.col_a_hi[i].d.next = self.col_a_hi[i].q.val();
+            self.col_b_hi[i].d.next = self.col_b_hi[i].q.val();
+            self.col_a_pos[i].d.next = self.col_a_pos[i].q.val();
+            self.col_b_pos[i].d.next = self.col_b_pos[i].q.val();
+            self.col_a_lev0[i].d.next = self.col_a_lev0[i].q.val();
+            self.col_b_lev0[i].d.next = self.col_b_lev0[i].q.val();
+            self.col_a_lev1[i].d.next = self.col_a_lev1[i].q.val();
+            self.col_b_lev1[i].d.next = self.col_b_lev1[i].q.val();
+            self.col_a_lev2[i].d.next = self.col_a_lev2[i].q.val();
+            self.col_b_lev2[i].d.next = self.col_b_lev2[i].q.val();
+            self.col_a_lev3[i].d.next = self.col_a_lev3[i].q.val();
+            self.col_b_lev3[i].d.next = self.col_b_lev3[i].q.val();
+            self.col_a_lev4[i].d.next = self.col_a_lev4[i].q.val();
+            self.col_b_lev4[i].d.next = self.col_b_lev4[i].q.val();
+            self.col_a_lev5[i].d.next = self.col_a_lev5[i].q.val();
+            self.col_b_lev5[i].d.next = self.col_b_lev5[i].q.val();
+            self.col_a_rising[i].d.next = self.col_a_rising[i].q.val();
+            self.col_b_rising[i].d.next = self.col_b_rising[i].q.val();
+            self.col_b_valid[i].d.next = self.col_a_valid[i].q.val();
+            if self.col_a_valid[i].q.val() {
+                self.col_b_hi[i].d.next = self.col_a_hi[i].q.val();
+                self.col_b_pos[i].d.next = self.col_a_pos[i].q.val();
+                self.col_b_lev0[i].d.next = self.col_a_lev0[i].q.val();
+                self.col_b_lev1[i].d.next = self.col_a_lev1[i].q.val();
+                self.col_b_lev2[i].d.next = self.col_a_lev2[i].q.val();
+                self.col_b_lev3[i].d.next = self.col_a_lev3[i].q.val();
+                self.col_b_lev4[i].d.next = self.col_a_lev4[i].q.val();
+                self.col_b_lev5[i].d.next = self.col_a_lev5[i].q.val();
+                self.col_b_rising[i].d.next = self.col_a_rising[i].q.val();
             }
-            if self.cells[i].p_load.val() {
-                self.p_reg[i].d.next = self.cells[i].p_next.val();
-            }
-            self.cells[i].own_p.next = self.p_reg[i].q.val();
-            self.col_valid[i].clock.next = self.clock.val();
-            self.col_first[i].clock.next = self.clock.val();
-            self.col_j[i].clock.next = self.clock.val();
-            self.col_pos[i].clock.next = self.clock.val();
-            self.col_lev0[i].clock.next = self.clock.val();
-            self.col_lev1[i].clock.next = self.clock.val();
-            self.col_lev2[i].clock.next = self.clock.val();
-            self.col_lev3[i].clock.next = self.clock.val();
-            self.col_lev4[i].clock.next = self.clock.val();
-            self.col_lev5[i].clock.next = self.clock.val();
-            self.col_rising[i].clock.next = self.clock.val();
-            self.col_valid[i].d.next = self.col_valid[i].q.val();
-            self.col_first[i].d.next = self.col_first[i].q.val();
-            self.col_j[i].d.next = self.col_j[i].q.val();
-            self.col_pos[i].d.next = self.col_pos[i].q.val();
-            self.col_lev0[i].d.next = self.col_lev0[i].q.val();
-            self.col_lev1[i].d.next = self.col_lev1[i].q.val();
-            self.col_lev2[i].d.next = self.col_lev2[i].q.val();
-            self.col_lev3[i].d.next = self.col_lev3[i].q.val();
-            self.col_lev4[i].d.next = self.col_lev4[i].q.val();
-            self.col_lev5[i].d.next = self.col_lev5[i].q.val();
-            self.col_rising[i].d.next = self.col_rising[i].q.val();
+            self.cells[i].c_valid.next = self.col_a_valid[i].q.val();
+            self.cells[i].c_hi.next = self.col_a_hi[i].q.val();
+            self.cells[i].c_pos.next = self.col_a_pos[i].q.val();
+            self.cells[i].c_lev0.next = self.col_a_lev0[i].q.val();
+            self.cells[i].c_lev1.next = self.col_a_lev1[i].q.val();
+            self.cells[i].c_lev2.next = self.col_a_lev2[i].q.val();
+            self.cells[i].c_lev3.next = self.col_a_lev3[i].q.val();
+            self.cells[i].c_lev4.next = self.col_a_lev4[i].q.val();
+            self.cells[i].c_lev5.next = self.col_a_lev5[i].q.val();
+            self.cells[i].c_rising.next = self.col_a_rising[i].q.val();
         }
         for i in 0..1 {
-            self.col_valid[i].d.next = self.c_valid.val();
+            self.col_a_valid[i].d.next = self.c_valid.val();
             if self.c_valid.val() {
-                self.col_first[i].d.next = self.c_first.val();
-                self.col_j[i].d.next = self.c_j.val();
-                self.col_pos[i].d.next = self.c_pos.val();
-                self.col_lev0[i].d.next = self.c_lev0.val();
-                self.col_lev1[i].d.next = self.c_lev1.val();
-                self.col_lev2[i].d.next = self.c_lev2.val();
-                self.col_lev3[i].d.next = self.c_lev3.val();
-                self.col_lev4[i].d.next = self.c_lev4.val();
-                self.col_lev5[i].d.next = self.c_lev5.val();
-                self.col_rising[i].d.next = self.c_rising.val();
+                self.col_a_hi[i].d.next = self.c_hi.val();
+                self.col_a_pos[i].d.next = self.c_pos.val();
+                self.col_a_lev0[i].d.next = self.c_lev0.val();
+                self.col_a_lev1[i].d.next = self.c_lev1.val();
+                self.col_a_lev2[i].d.next = self.c_lev2.val();
+                self.col_a_lev3[i].d.next = self.c_lev3.val();
+                self.col_a_lev4[i].d.next = self.c_lev4.val();
+                self.col_a_lev5[i].d.next = self.c_lev5.val();
+                self.col_a_rising[i].d.next = self.c_rising.val();
             }
-            self.cells[i].up_p.next = 0.into();
         }
         for i in 1..N {
-            self.col_valid[i].d.next = self.col_valid[i - 1].q.val();
-            if self.col_valid[i - 1].q.val() {
-                self.col_first[i].d.next = self.col_first[i - 1].q.val();
-                self.col_j[i].d.next = self.col_j[i - 1].q.val();
-                self.col_pos[i].d.next = self.col_pos[i - 1].q.val();
-                self.col_lev0[i].d.next = self.col_lev0[i - 1].q.val();
-                self.col_lev1[i].d.next = self.col_lev1[i - 1].q.val();
-                self.col_lev2[i].d.next = self.col_lev2[i - 1].q.val();
-                self.col_lev3[i].d.next = self.col_lev3[i - 1].q.val();
-                self.col_lev4[i].d.next = self.col_lev4[i - 1].q.val();
-                self.col_lev5[i].d.next = self.col_lev5[i - 1].q.val();
-                self.col_rising[i].d.next = self.col_rising[i - 1].q.val();
+            self.col_a_valid[i].d.next = self.col_b_valid[i - 1].q.val();
+            if self.col_b_valid[i - 1].q.val() {
+                self.col_a_hi[i].d.next = self.col_b_hi[i - 1].q.val();
+                self.col_a_pos[i].d.next = self.col_b_pos[i - 1].q.val();
+                self.col_a_lev0[i].d.next = self.col_b_lev0[i - 1].q.val();
+                self.col_a_lev1[i].d.next = self.col_b_lev1[i - 1].q.val();
+                self.col_a_lev2[i].d.next = self.col_b_lev2[i - 1].q.val();
+                self.col_a_lev3[i].d.next = self.col_b_lev3[i - 1].q.val();
+                self.col_a_lev4[i].d.next = self.col_b_lev4[i - 1].q.val();
+                self.col_a_lev5[i].d.next = self.col_b_lev5[i - 1].q.val();
+                self.col_a_rising[i].d.next = self.col_b_rising[i - 1].q.val();
             }
-            self.cells[i].up_p.next = self.p_reg[i - 1].q.val();
         }
+        // The recurrence: the cell above's P; for cell 0, the last cell's,
+        // one clock later (row N - 1 is three clocks ahead of row N).
         for i in 0..N {
-            self.cells[i].c_valid.next = self.col_valid[i].q.val();
-            self.cells[i].c_first.next = self.col_first[i].q.val();
-            self.cells[i].c_j.next = self.col_j[i].q.val();
-            self.cells[i].c_pos.next = self.col_pos[i].q.val();
-            self.cells[i].c_lev0.next = self.col_lev0[i].q.val();
-            self.cells[i].c_lev1.next = self.col_lev1[i].q.val();
-            self.cells[i].c_lev2.next = self.col_lev2[i].q.val();
-            self.cells[i].c_lev3.next = self.col_lev3[i].q.val();
-            self.cells[i].c_lev4.next = self.col_lev4[i].q.val();
-            self.cells[i].c_lev5.next = self.col_lev5[i].q.val();
-            self.cells[i].c_rising.next = self.col_rising[i].q.val();
+            self.last_p.next = self.cells[i].p.val();
         }
-        self.choice_or.next = 0.into();
-        for i in 0..N {
-            self.choice_or.next = self.choice_or.val() | self.cells[i].tb_choice.val();
+        self.wrap.clock.next = self.clock.val();
+        self.wrap.d.next = self.last_p.val();
+        for i in 0..1 {
+            self.cells[i].up_p.next = self.wrap.q.val();
         }
-        self.tb_choice.next = self.choice_or.val();
-        self.choice_up_or.next = 0.into();
-        for i in 0..N {
-            self.choice_up_or.next = self.choice_up_or.val() | self.cells[i].tb_choice_up.val();
+        for i in 1..N {
+            self.cells[i].up_p.next = self.cells[i - 1].p.val();
         }
-        self.tb_choice_up.next = self.choice_up_or.val();
 
+        // The choice memory: each cell's choice in its bits of its word
+        // (the other cells show zeros there), registered, written as one
+        // anti-diagonal of the low or high rows.
+        for k in 0..CHOICE_WORDS {
+            self.wacc[k].next = 0.into();
+        }
+        for i in 0..N {
+            self.wacc[i / CELLS_PER_CHOICE_WORD].next =
+                self.wacc[i / CELLS_PER_CHOICE_WORD].val() | self.cells[i].choice_word.val();
+        }
+        for k in 0..CHOICE_WORDS {
+            self.word_q[k].clock.next = self.clock.val();
+            self.word_q[k].d.next = self.wacc[k].val();
+            self.lo_ram[k].write_clock.next = self.clock.val();
+            self.hi_ram[k].write_clock.next = self.clock.val();
+            self.lo_ram[k].read_clock.next = self.clock.val();
+            self.hi_ram[k].read_clock.next = self.clock.val();
+            self.lo_ram[k].write_address.next = self.cw_diag.val();
+            self.hi_ram[k].write_address.next = self.cw_diag.val();
+            self.lo_ram[k].write_data.next = self.word_q[k].q.val();
+            self.hi_ram[k].write_data.next = self.word_q[k].q.val();
+            self.lo_ram[k].write_enable.next = self.cw_en.val() & !self.cw_hi.val();
+            self.hi_ram[k].write_enable.next = self.cw_en.val() & self.cw_hi.val();
+            self.lo_ram[k].read_address.next = self.tb_diag.val();
+            self.hi_ram[k].read_address.next = self.tb_diag.val();
+            self.rd_lo[k].clock.next = self.clock.val();
+            self.rd_hi[k].clock.next = self.clock.val();
+            self.rd_lo[k].d.next = self.lo_ram[k].read_data.val();
+            self.rd_hi[k].d.next = self.hi_ram[k].read_data.val();
+        }
+
+        // ---- Traceback reads: row r is the low row of cell r or the high
+        // row of cell r - N; its word, then its two bits.
+        self.row_hi.next = self.tb_row.val() >= self.cells_c.val();
+        self.row_cell.next = self.tb_row.val();
+        if self.row_hi.val() {
+            self.row_cell.next = self.tb_row.val() - self.cells_c.val();
+        }
+        self.row_widx.next = self.row_cell.val().get_bits::<2>(self.word_shift.val().index());
+        self.row_pair.next = bit_cast::<8, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()))
+            + bit_cast::<8, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()));
+        self.row_word.next = self.rd_lo[0].q.val();
+        if self.row_hi.val() {
+            self.row_word.next = self.rd_hi[0].q.val();
+        }
+        if self.row_widx.val() == self.w1.val() {
+            self.row_word.next = self.rd_lo[1].q.val();
+            if self.row_hi.val() {
+                self.row_word.next = self.rd_hi[1].q.val();
+            }
+        }
+        if self.row_widx.val() == self.w2.val() {
+            self.row_word.next = self.rd_lo[2].q.val();
+            if self.row_hi.val() {
+                self.row_word.next = self.rd_hi[2].q.val();
+            }
+        }
+        if self.row_widx.val() == self.w3.val() {
+            self.row_word.next = self.rd_lo[3].q.val();
+            if self.row_hi.val() {
+                self.row_word.next = self.rd_hi[3].q.val();
+            }
+        }
+        self.tb_choice.next = self.row_word.val().get_bits::<2>(self.row_pair.val().index());
+        self.up_hi.next = self.tb_row_up.val() >= self.cells_c.val();
+        self.up_cell.next = self.tb_row_up.val();
+        if self.up_hi.val() {
+            self.up_cell.next = self.tb_row_up.val() - self.cells_c.val();
+        }
+        self.up_widx.next = self.up_cell.val().get_bits::<2>(self.word_shift.val().index());
+        self.up_pair.next = bit_cast::<8, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()))
+            + bit_cast::<8, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()));
+        self.up_word.next = self.rd_lo[0].q.val();
+        if self.up_hi.val() {
+            self.up_word.next = self.rd_hi[0].q.val();
+        }
+        if self.up_widx.val() == self.w1.val() {
+            self.up_word.next = self.rd_lo[1].q.val();
+            if self.up_hi.val() {
+                self.up_word.next = self.rd_hi[1].q.val();
+            }
+        }
+        if self.up_widx.val() == self.w2.val() {
+            self.up_word.next = self.rd_lo[2].q.val();
+            if self.up_hi.val() {
+                self.up_word.next = self.rd_hi[2].q.val();
+            }
+        }
+        if self.up_widx.val() == self.w3.val() {
+            self.up_word.next = self.rd_lo[3].q.val();
+            if self.up_hi.val() {
+                self.up_word.next = self.rd_hi[3].q.val();
+            }
+        }
+        self.tb_choice_up.next = self.up_word.val().get_bits::<2>(self.up_pair.val().index());
     }
 }

@@ -5,15 +5,16 @@
 //!
 //! Every move lowers the anti-diagonal `i + j` by one (up, left) or two
 //! (node). So the walk reads the anti-diagonals in falling order, one per
-//! clock, whatever the path does: the cells' column memories are read at
-//! addresses known in advance (`tb_diag - i` in cell `i`), and the walker
-//! only picks its row's choice of the anti-diagonal read before, and skips
-//! the anti-diagonal a node jumps over. The row's choice travels through
-//! an OR over all cells, so it is registered: while the walker decides on
-//! one anti-diagonal, the array already shows the next one's choices of
-//! both rows the decision can leave it on (`tb_row` = its row, `tb_row_up`
-//! = the row above), and the next decision takes the right one. The pairs
-//! come out last first; a small stack turns them round.
+//! clock, whatever the path does: the array's choice memory, one word per
+//! anti-diagonal, is read at addresses known in advance (`tb_diag`), and
+//! the walker only picks its row's choice of the anti-diagonal read two
+//! clocks before (memory, then its output register), and skips the
+//! anti-diagonal a node jumps over. The row's choice is a selection out of
+//! the whole word, so it is registered: while the walker decides on one
+//! anti-diagonal, the array already shows the next one's choices of both
+//! rows the decision can leave it on (`tb_row` = its row, `tb_row_up` = the
+//! row above), and the next decision takes the right one. The pairs come
+//! out last first; a small stack turns them round.
 //!
 //! ## Ports
 //! - `start` (a pulse), `n`, `m`: the line's declivity counts; `start` is
@@ -25,13 +26,13 @@
 //!
 //! ## Timing
 //! After `start` at clock `t`, the walk reads anti-diagonal `n + m - 2`
-//! at `t + 1`, registers its row's choice at `t + 2` and decides on it at
-//! `t + 3`, then one anti-diagonal per clock
+//! at `t + 1`, has it at `t + 2`, registers its row's choice at `t + 3` and
+//! decides on it at `t + 4`, then one anti-diagonal per clock
 //! until the path starts (at most `n + m - 1` decisions); the `K` pairs
 //! then leave on consecutive clocks from two clocks after the last
 //! decision, and `out_last` one clock after the last pair: in all
 //! [`traceback_cycles`] clocks from `start` to `out_last`, at most
-//! `n + m + K + 3`.
+//! `n + m + K + 4`.
 
 use crate::gain_cell::{CHOICE_LEFT, CHOICE_NODE, CHOICE_START, CHOICE_UP};
 use crate::params::*;
@@ -44,7 +45,7 @@ const TB_EMIT: u64 = 2;
 /// Clocks from `start` to `out_last` for a line of `n` reference and `m`
 /// other declivities whose walk stops on anti-diagonal `stop_diag` (the
 /// `i + j` of the cell whose choice is `start`, or of the border cell it
-/// left last) with `k` pairs: three to the first decision, one per
+/// left last) with `k` pairs: four to the first decision, one per
 /// anti-diagonal from `n + m - 2` down to `stop_diag`, and `k + 2` to
 /// empty the stack (the first address, one read per pair, then the marker;
 /// just the marker when `k = 0`). An empty line (`n` or `m` zero) takes one.
@@ -53,7 +54,7 @@ pub const fn traceback_cycles(n: usize, m: usize, stop_diag: usize, k: usize) ->
         return 1;
     }
     let emit = if k == 0 { 1 } else { k + 2 };
-    3 + (n + m - 2 - stop_diag) + emit
+    4 + (n + m - 2 - stop_diag) + emit
 }
 
 #[derive(LogicBlock)]
@@ -81,6 +82,7 @@ pub struct Traceback {
     wi_up: DFF<Bits<INDEX_BITS>>,
     primed: DFF<Bit>,
     primed2: DFF<Bit>,
+    primed3: DFF<Bit>,
     moved: DFF<Bit>,
     here: DFF<Bits<2>>,
     above: DFF<Bits<2>>,
@@ -129,6 +131,7 @@ impl Default for Traceback {
             wi_up: Default::default(),
             primed: Default::default(),
             primed2: Default::default(),
+            primed3: Default::default(),
             moved: Default::default(),
             here: Default::default(),
             above: Default::default(),
@@ -159,7 +162,7 @@ impl Logic for Traceback {
         self.stack_i.write_clock.next = self.clock.val();
         self.stack_j.read_clock.next = self.clock.val();
         self.stack_j.write_clock.next = self.clock.val();
-        dff_setup!(self, clock, state, diag, wi, wj, wi_up, primed, primed2, moved, here, above, skip, count, left, k, pend);
+        dff_setup!(self, clock, state, diag, wi, wj, wi_up, primed, primed2, primed3, moved, here, above, skip, count, left, k, pend);
 
         self.tb_diag.next = self.diag.q.val();
         self.tb_row.next = self.wi.q.val();
@@ -191,6 +194,7 @@ impl Logic for Traceback {
                 self.count.d.next = 0.into();
                 self.primed.d.next = false;
                 self.primed2.d.next = false;
+                self.primed3.d.next = false;
                 self.skip.d.next = false;
                 self.wi.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 1);
                 self.wi_up.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 2);
@@ -209,7 +213,8 @@ impl Logic for Traceback {
             self.diag.d.next = self.diag.q.val() - 1;
             self.primed.d.next = true;
             self.primed2.d.next = self.primed.q.val();
-            if self.primed2.q.val() {
+            self.primed3.d.next = self.primed2.q.val();
+            if self.primed3.q.val() {
                 if self.skip.q.val() {
                     self.skip.d.next = false;
                 } else {

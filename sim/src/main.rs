@@ -92,7 +92,8 @@ the image) into --out, and with --vcd a waveform of the clocks during which --li
     /// Run the rows of a stereo pair through the rtl declivity matcher and compare with golden.
     #[command(long_about = "Run the rows of a rectified stereo pair (8-bit grey; colour is converted \
 with ITU-R 601 luma) through the cycle-accurate declivity matcher (rtl::declivity_matcher: a \
-systolic array of N_MAX = 128 gain cells and its traceback, left view as reference) and compare \
+systolic array of N_CELLS = 64 gain cells, each holding two of the N_MAX = 128 reference \
+declivities, and its traceback, left view as reference) and compare \
 every line with golden's matcher (eq. 4-9).
 
 Both matchers get the same inputs: golden's declivities of each row (hardware-parity detector), \
@@ -167,8 +168,9 @@ struct VerilogArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
-    /// Cells of the matcher's systolic array (4, 8, 16, 32, 64 or 128 = N_MAX; --top matcher only).
-    #[arg(long, default_value_t = rtl::params::N_MAX)]
+    /// Cells of the matcher's systolic array (2, 4, 8, 16, 32 or 64 = N_CELLS; each holds two
+    /// reference declivities; --top matcher only).
+    #[arg(long, default_value_t = rtl::params::N_CELLS)]
     cells: usize,
     /// Gain rule the matcher is generated for (--top matcher only).
     #[arg(long, value_enum, default_value_t = CliRule::Robust)]
@@ -183,8 +185,9 @@ struct SynthArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
-    /// Cells of the matcher's systolic array (4, 8, 16, 32, 64 or 128 = N_MAX; --top matcher only).
-    #[arg(long, default_value_t = rtl::params::N_MAX)]
+    /// Cells of the matcher's systolic array (2, 4, 8, 16, 32 or 64 = N_CELLS; each holds two
+    /// reference declivities; --top matcher only).
+    #[arg(long, default_value_t = rtl::params::N_CELLS)]
     cells: usize,
     /// Gain rule the matcher is generated for (--top matcher only).
     #[arg(long, value_enum, default_value_t = CliRule::Robust)]
@@ -323,7 +326,7 @@ impl CliRule {
 
 /// The Verilog of a block as the command line asks for it.
 fn block_verilog(top: sim::verilog::Top, cells: usize, rule: CliRule) -> Result<String, SimError> {
-    if top != sim::verilog::Top::Matcher && (cells != rtl::params::N_MAX || rule != CliRule::Robust) {
+    if top != sim::verilog::Top::Matcher && (cells != rtl::params::N_CELLS || rule != CliRule::Robust) {
         return Err(SimError::Argument("--cells and --rule apply to --top matcher only".into()));
     }
     sim::verilog::generate_with(top, cells, rule.rule()).ok_or_else(|| {
@@ -668,7 +671,7 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
     let name = a.left.display().to_string();
     let rule = a.rule.rule();
     let t0 = std::time::Instant::now();
-    let (mut report, outcomes) = match_image::<{ rtl::params::N_MAX }>(&name, &pairs, rule, dispmax, chunks, &|| bar.inc(1));
+    let (mut report, outcomes) = match_image::<{ rtl::params::N_CELLS }>(&name, &pairs, rule, dispmax, chunks, &|| bar.inc(1));
     let seconds = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
     report.max_cycles_line += rows.start;

@@ -25,12 +25,12 @@ impl Top {
 }
 
 /// The array sizes the matcher can be generated with (`--cells`).
-pub const MATCHER_CELLS: [usize; 6] = [4, 8, 16, 32, 64, 128];
+pub const MATCHER_CELLS: [usize; 6] = [2, 4, 8, 16, 32, 64];
 
-/// The Verilog of `top` (the matcher with `N_MAX` cells and the default
-/// gain rule); its top module is named `top`.
+/// The Verilog of `top` (the matcher with `N_CELLS` cells, `N_MAX` rows,
+/// and the default gain rule); its top module is named `top`.
 pub fn generate(top: Top) -> String {
-    generate_with(top, rtl::params::N_MAX, GainRule::default()).expect("N_MAX is a supported size")
+    generate_with(top, rtl::params::N_CELLS, GainRule::default()).expect("N_CELLS is a supported size")
 }
 
 /// The Verilog of `top`, the matcher with `cells` cells (one of
@@ -43,12 +43,12 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
             Some(generate_verilog(&uut))
         }
         Top::Matcher => match cells {
+            2 => Some(matcher_verilog::<2>(rule)),
             4 => Some(matcher_verilog::<4>(rule)),
             8 => Some(matcher_verilog::<8>(rule)),
             16 => Some(matcher_verilog::<16>(rule)),
             32 => Some(matcher_verilog::<32>(rule)),
             64 => Some(matcher_verilog::<64>(rule)),
-            128 => Some(matcher_verilog::<128>(rule)),
             _ => None,
         },
     }
