@@ -175,7 +175,7 @@ pub struct DeclivityMatcher<const N: usize> {
     pend_bank: DFF<Bit>,
     pend_n: DFF<Bits<COUNT_BITS>>,
     pend_m: DFF<Bits<COUNT_BITS>>,
-    pend_dt_sum: DFF<Bits<{ DT_BITS + 1 }>>,
+    pend_dt_sum: DFF<Bits<{ MATCH_DT_BITS + 1 }>>,
     pend_wide: DFF<Bit>,
     pend_full: DFF<Bit>,
     pend_sof: DFF<Bit>,
@@ -255,7 +255,7 @@ pub struct DeclivityMatcher<const N: usize> {
     o_addr: Signal<Local, Bits<DIAG_BITS>>,
     handoff: Signal<Local, Bit>,
     take: Signal<Local, Bit>,
-    dt_sum: Signal<Local, Bits<{ DT_BITS + 1 }>>,
+    dt_sum: Signal<Local, Bits<{ MATCH_DT_BITS + 1 }>>,
     sc_idx: Signal<Local, Bits<INDEX_BITS>>,
     nm: Signal<Local, Bits<SWEEP_BITS>>,
     sc2: Signal<Local, Bits<SWEEP_BITS>>,
@@ -282,6 +282,7 @@ pub struct DeclivityMatcher<const N: usize> {
     bit0: Constant<Bits<8>>,
     bit1: Constant<Bits<8>>,
     dt_frac: Constant<Bits<8>>,
+    dt_drop: Constant<Bits<8>>,
 }
 
 impl<const N: usize> DeclivityMatcher<N> {
@@ -451,7 +452,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             cells_c: Constant::new((N as u64).into()),
             bit0: Constant::new(0u64.into()),
             bit1: Constant::new(1u64.into()),
-            dt_frac: Constant::new(((DT_FRAC_BITS as u64) as u64).into()),
+            dt_frac: Constant::new((MATCH_DT_FRAC_BITS as u64).into()),
+            dt_drop: Constant::new(((DT_FRAC_BITS - MATCH_DT_FRAC_BITS) as u64).into()),
         }
     }
 }
@@ -544,8 +546,12 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         }
         // Both markers in and the slot free: the pair waits for the engine.
         self.handoff.next = self.r_done.q.val() & self.o_done.q.val() & !self.pend.q.val();
-        self.dt_sum.next = bit_cast::<{ DT_BITS + 1 }, DT_BITS>(self.r_dt_reg.q.val())
-            + bit_cast::<{ DT_BITS + 1 }, DT_BITS>(self.o_dt_reg.q.val());
+        // d_t,ref + d_t,other, each rounded down to MATCH_DT_FRAC_BITS.
+        self.dt_sum.next = bit_cast::<{ MATCH_DT_BITS + 1 }, MATCH_DT_BITS>(
+            self.r_dt_reg.q.val().get_bits::<MATCH_DT_BITS>(self.dt_drop.val().index()),
+        ) + bit_cast::<{ MATCH_DT_BITS + 1 }, MATCH_DT_BITS>(
+            self.o_dt_reg.q.val().get_bits::<MATCH_DT_BITS>(self.dt_drop.val().index()),
+        );
         if self.handoff.val() {
             self.pend.d.next = true;
             self.pend_bank.d.next = self.lbank.q.val();
@@ -585,16 +591,16 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.below2_reg.d.next = self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index());
             // (Saturating at the all-ones value: no doubled distance reaches
             // it, so every distance is then below gmax either way.)
-            if self.pend_dt_sum.q.val().get_bits::<DT_FRAC_BITS>(0).any()
+            if self.pend_dt_sum.q.val().get_bits::<MATCH_DT_FRAC_BITS>(0).any()
                 & !self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index()).all()
             {
                 self.below2_reg.d.next =
                     self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index()) + 1;
             }
-            self.f1_reg.d.next = bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val());
-            self.f3_reg.d.next = bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val())
-                + bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val())
-                + bit_cast::<GAIN_BITS, { DT_BITS + 1 }>(self.pend_dt_sum.q.val());
+            self.f1_reg.d.next = bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val());
+            self.f3_reg.d.next = bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val())
+                + bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val())
+                + bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val());
             self.e_wide.d.next = self.pend_wide.q.val();
             self.e_full.d.next = self.pend_full.q.val();
             self.e_sof.d.next = self.pend_sof.q.val();

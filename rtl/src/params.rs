@@ -101,13 +101,21 @@ pub const DIST_BITS: usize = 12;
 /// Bits of the doubled distances subtracted from `f(gmax)` (at most both
 /// sides).
 pub const DIST_SUM_BITS: usize = DIST_BITS + 1;
-/// Fraction bits of a gain: the unit is `2^-(DT_FRAC_BITS + 1)` grey levels,
-/// so `2·gmax = d_t,ref + d_t,other` (eq. 8) is exact and every local gain
-/// of eq. 7 is an integer in this unit.
-pub const GAIN_FRAC_BITS: usize = DT_FRAC_BITS + 1;
-/// Bits of a local gain (two's complement): `3·2·gmax < 3·2^(DT_BITS+1)`
-/// above, `-32·(2·lpd + 2·rpd) > -2^18` below.
-pub const GAIN_BITS: usize = DT_BITS + 4;
+/// Fraction bits of `d_t` as the matcher uses it: the detector's `d_t`
+/// rounded down to 1/2 grey level. (A threshold of typically 20–100 grey
+/// levels moves by less than half a level; golden's hardware-parity matcher
+/// rounds the same way. Four fraction bits fewer narrow every gain and path
+/// register of the array by four bits.)
+pub const MATCH_DT_FRAC_BITS: usize = 1;
+/// Bits of that `d_t`.
+pub const MATCH_DT_BITS: usize = DT_INT_BITS + MATCH_DT_FRAC_BITS;
+/// Fraction bits of a gain: the unit is `2^-(MATCH_DT_FRAC_BITS + 1)` grey
+/// levels, so `2·gmax = d_t,ref + d_t,other` (eq. 8) is exact and every
+/// local gain of eq. 7 is an integer in this unit.
+pub const GAIN_FRAC_BITS: usize = MATCH_DT_FRAC_BITS + 1;
+/// Bits of a local gain (two's complement): `3·gmax < 3·2^DT_INT_BITS` grey
+/// levels above, `-(2·lpd + 2·rpd)/2 > -2^DIST_BITS` below.
+pub const GAIN_BITS: usize = DT_INT_BITS + GAIN_FRAC_BITS + 3;
 /// Bits of a path gain `P(i, j) ≥ 0`: at most `N_MAX` nodes of the largest
 /// gain.
 pub const PATH_BITS: usize = GAIN_BITS - 1 + INDEX_BITS;

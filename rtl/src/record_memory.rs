@@ -44,17 +44,20 @@ pub struct RecordMemory {
     pub lev4: Signal<Out, Bits<LEVEL_BITS>>,
     pub lev5: Signal<Out, Bits<LEVEL_BITS>>,
     pub rising: Signal<Out, Bit>,
-    pos_mem: RAM<Bits<POS_BITS>, DIAG_BITS>,
+    // The position with the polarity above it (one block RAM, not a
+    // 1-bit LUT RAM whose read would sit on the address path).
+    pos_mem: RAM<Bits<{ POS_BITS + 1 }>, DIAG_BITS>,
     lev0_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
     lev1_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
     lev2_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
     lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
     lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
     lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    rise_mem: RAM<Bit, DIAG_BITS>,
     ends: Signal<Local, Bits<LEVEL_BITS>>,
     level_offset: Constant<Bits<LEVEL_BITS>>,
     amp_msb: Constant<Bits<8>>,
+    rise_bit: Constant<Bits<8>>,
+    bit0: Constant<Bits<8>>,
 }
 
 impl Default for RecordMemory {
@@ -88,10 +91,11 @@ impl Default for RecordMemory {
             lev3_mem: Default::default(),
             lev4_mem: Default::default(),
             lev5_mem: Default::default(),
-            rise_mem: Default::default(),
             ends: Default::default(),
             level_offset: Constant::new(LEVEL_OFFSET.into()),
             amp_msb: Constant::new(((AMP_BITS - 1) as u64).into()),
+            rise_bit: Constant::new((POS_BITS as u64).into()),
+            bit0: Constant::new(0u64.into()),
         }
     }
 }
@@ -113,15 +117,14 @@ impl Logic for RecordMemory {
         self.lev4_mem.write_clock.next = self.clock.val();
         self.lev5_mem.read_clock.next = self.clock.val();
         self.lev5_mem.write_clock.next = self.clock.val();
-        self.rise_mem.read_clock.next = self.clock.val();
-        self.rise_mem.write_clock.next = self.clock.val();
 
         self.ends.next = 0.into();
         if self.relative.val() {
             self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
                 + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val());
         }
-        self.pos_mem.write_data.next = self.w_pos.val();
+        self.pos_mem.write_data.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.w_pos.val())
+            .replace_bit(self.rise_bit.val().index(), !self.w_amp.val().get_bit(self.amp_msb.val().index()));
         self.lev0_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
             + self.level_offset.val()
@@ -146,7 +149,6 @@ impl Logic for RecordMemory {
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.rise_mem.write_data.next = !self.w_amp.val().get_bit(self.amp_msb.val().index());
 
         self.pos_mem.write_address.next = self.w_addr.val();
         self.lev0_mem.write_address.next = self.w_addr.val();
@@ -155,7 +157,6 @@ impl Logic for RecordMemory {
         self.lev3_mem.write_address.next = self.w_addr.val();
         self.lev4_mem.write_address.next = self.w_addr.val();
         self.lev5_mem.write_address.next = self.w_addr.val();
-        self.rise_mem.write_address.next = self.w_addr.val();
         self.pos_mem.write_enable.next = self.w_enable.val();
         self.lev0_mem.write_enable.next = self.w_enable.val();
         self.lev1_mem.write_enable.next = self.w_enable.val();
@@ -163,7 +164,6 @@ impl Logic for RecordMemory {
         self.lev3_mem.write_enable.next = self.w_enable.val();
         self.lev4_mem.write_enable.next = self.w_enable.val();
         self.lev5_mem.write_enable.next = self.w_enable.val();
-        self.rise_mem.write_enable.next = self.w_enable.val();
         self.pos_mem.read_address.next = self.r_addr.val();
         self.lev0_mem.read_address.next = self.r_addr.val();
         self.lev1_mem.read_address.next = self.r_addr.val();
@@ -171,14 +171,13 @@ impl Logic for RecordMemory {
         self.lev3_mem.read_address.next = self.r_addr.val();
         self.lev4_mem.read_address.next = self.r_addr.val();
         self.lev5_mem.read_address.next = self.r_addr.val();
-        self.rise_mem.read_address.next = self.r_addr.val();
-        self.pos.next = self.pos_mem.read_data.val();
+        self.pos.next = self.pos_mem.read_data.val().get_bits::<POS_BITS>(self.bit0.val().index());
         self.lev0.next = self.lev0_mem.read_data.val();
         self.lev1.next = self.lev1_mem.read_data.val();
         self.lev2.next = self.lev2_mem.read_data.val();
         self.lev3.next = self.lev3_mem.read_data.val();
         self.lev4.next = self.lev4_mem.read_data.val();
         self.lev5.next = self.lev5_mem.read_data.val();
-        self.rising.next = self.rise_mem.read_data.val();
+        self.rising.next = self.pos_mem.read_data.val().get_bit(self.rise_bit.val().index());
     }
 }

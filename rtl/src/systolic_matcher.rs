@@ -137,6 +137,7 @@ impl<const N: usize> Default for SystolicMatcher<N> {
     fn default() -> Self {
         assert!((1..=N_CELLS).contains(&N), "1 ..= N_CELLS cells");
         assert_eq!(CHOICE_WORDS, 4, "the choice selection below names four words");
+        assert_eq!(CELLS_PER_CHOICE_WORD, 16, "the word index below is written i / 16");
         SystolicMatcher {
             clock: Default::default(),
             ld_valid: Default::default(),
@@ -358,9 +359,10 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         for k in 0..CHOICE_WORDS {
             self.wacc[k].next = 0.into();
         }
+        // (`i / 16` is `i / CELLS_PER_CHOICE_WORD`: rust-hdl evaluates an
+        // index with literals only.)
         for i in 0..N {
-            self.wacc[i / CELLS_PER_CHOICE_WORD].next =
-                self.wacc[i / CELLS_PER_CHOICE_WORD].val() | self.cells[i].choice_word.val();
+            self.wacc[i / 16].next = self.wacc[i / 16].val() | self.cells[i].choice_word.val();
         }
         for k in 0..CHOICE_WORDS {
             self.word_q[k].clock.next = self.clock.val();

@@ -5,8 +5,9 @@
 //! formats: positions with `POS_FRAC_BITS` fraction bits, `d_t` with
 //! `DT_FRAC_BITS`. Golden's declivities are brought to those formats the way
 //! the detector makes them ([`quantize_line`]: positions rounded down, `d_t`
-//! to the nearest LSB), and golden's matcher run on the same values is the
-//! reference ([`golden_match`]). With those inputs every local gain is an
+//! to the nearest LSB), and golden's matcher run on the same values, `d_t`
+//! rounded down to the matcher's `MATCH_DT_FRAC_BITS` as the matcher does,
+//! is the reference ([`golden_match`]). With those inputs every local gain is an
 //! integer number of `2^-GAIN_FRAC_BITS` grey levels in both models, golden's
 //! f64 arithmetic on them is exact, and the fixed-point gain tolerance is
 //! zero: the rtl path must be golden's, node for node.
@@ -17,7 +18,7 @@ use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
 use rtl::declivity_matcher::{DeclivityMatcher, GainRule};
-use rtl::params::{DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
+use rtl::params::{DT_FRAC_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
 use rust_hdl::prelude::*;
 use serde::Serialize;
 
@@ -314,7 +315,8 @@ pub fn quantize_line(f: &LineFeatures) -> MatchLine {
 }
 
 /// The declivities of a [`MatchLine`] as golden's, with their fixed-point
-/// positions, and its `d_t` in grey levels.
+/// positions, and its `d_t` in grey levels as the matcher uses it: rounded
+/// down to `MATCH_DT_FRAC_BITS` fraction bits.
 pub fn dequantize(line: &MatchLine) -> (Vec<Declivity>, f64) {
     let decls = line
         .records
@@ -328,7 +330,8 @@ pub fn dequantize(line: &MatchLine) -> (Vec<Declivity>, f64) {
             right: r.right,
         })
         .collect();
-    (decls, line.dt as f64 / (1u32 << DT_FRAC_BITS) as f64)
+    let dt = line.dt >> (DT_FRAC_BITS - MATCH_DT_FRAC_BITS);
+    (decls, dt as f64 / (1u32 << MATCH_DT_FRAC_BITS) as f64)
 }
 
 /// Golden's matching of one quantized line pair: the gain table of eq. 4–8

@@ -9,8 +9,9 @@ pub enum Top {
     /// The declivity detector of one camera (`rtl::declivity_detector`).
     Detector,
     /// The matcher: systolic array of gain cells and traceback
-    /// (`rtl::declivity_matcher`), N_MAX = 128 cells unless --cells says
-    /// otherwise, the default gain rule (robust).
+    /// (`rtl::declivity_matcher`), N_CELLS = 64 cells holding N_MAX = 128
+    /// reference declivities unless --cells says otherwise, the default gain
+    /// rule (robust).
     Matcher,
 }
 
