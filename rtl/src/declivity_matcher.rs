@@ -76,11 +76,14 @@ impl GainRule {
     }
 }
 
-/// Clocks from the engine's sweep clock `sc` reading a column to the
-/// choices of its nodes in the array's word registers (less the cell's
-/// `2c`): record memory read, its output register, then the array's
-/// [`CHOICE_LAG`].
-pub const ENGINE_LAG: usize = 2 + CHOICE_LAG;
+/// Clocks from the engine's sweep clock `sc = T - 2c + 1` reading the
+/// column of node `(i, j)` (`T = 2·(i + j) + [i ≥ N]`, `c = i mod N`, the
+/// cell) to the node's choice in the array's word registers, less the
+/// cell's `2c`: the one clock by which the columns trail the references
+/// (so that a cell, which selects its reference a clock ahead of its slot,
+/// has reference 0 in time), record memory read, its output register, then
+/// the array's [`CHOICE_LAG`].
+pub const ENGINE_LAG: usize = 3 + CHOICE_LAG;
 
 /// Clocks of a sweep of `n` reference and `m` other declivities through
 /// `cells` cells, from the clock after the engine takes the pair to the
@@ -447,7 +450,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
             sweep_tail: Constant::new(((ENGINE_LAG - 4) as u64).into()),
-            second_start: Constant::new(((2 * N + 1) as u64).into()),
+            second_start: Constant::new(((2 * N + 2) as u64).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             cells_c: Constant::new((N as u64).into()),
             bit0: Constant::new(0u64.into()),
@@ -606,22 +609,22 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.e_sof.d.next = self.pend_sof.q.val();
         }
         // Sweep: clock sc reads reference sc, which the next clock
-        // broadcasts, and on even clocks column sc/2 for the low rows, on
-        // odd clocks from 2N + 1 column (sc - 2N - 1)/2 for the high rows
-        // (when there are any), which the next clock feeds to cell 0.
+        // broadcasts, and on odd clocks column (sc - 1)/2 for the low rows,
+        // on even clocks from 2N + 2 column (sc - 2N - 2)/2 for the high
+        // rows (when there are any), which the next clock feeds to cell 0.
         self.sc_idx.next = bit_cast::<INDEX_BITS, SWEEP_BITS>(self.sc.q.val());
         self.sc2.next = self.sc.q.val() - self.second_start.val();
         self.col_even.next = !self.sc.q.val().get_bit(self.bit0.val().index());
-        self.col_first.next = self.col_even.val()
+        self.col_first.next = !self.col_even.val()
             & (self.sc.q.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index())
                 < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()));
-        self.col_second.next = !self.col_even.val()
+        self.col_second.next = self.col_even.val()
             & (self.sc.q.val() >= self.second_start.val())
             & (self.sc2.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index())
                 < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()))
             & (self.en.q.val() > self.cells_c.val());
         self.col_j.next = self.sc.q.val().get_bits::<INDEX_BITS>(self.bit1.val().index());
-        if !self.col_even.val() {
+        if self.col_even.val() {
             self.col_j.next = self.sc2.val().get_bits::<INDEX_BITS>(self.bit1.val().index());
         }
         self.rd_bank_base.next = 0.into();
@@ -633,7 +636,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.ld_valid_d.d.next = false;
         self.c_valid_d.d.next = false;
         self.ld_index_d.d.next = self.sc_idx.val();
-        self.c_hi_d.d.next = !self.col_even.val();
+        self.c_hi_d.d.next = self.col_even.val();
         // The choices in the array's word registers now are those of the
         // nodes whose columns were read ENGINE_LAG clocks ago: anti-diagonal
         // (sc - ENGINE_LAG) / 2, low or high rows by its parity.

@@ -32,7 +32,9 @@
 //! - `c_valid`, `c_hi` (second pass: the high row), `c_pos`, `c_lev0..5`,
 //!   `c_rising`: the column in this cell's slot of the array's column
 //!   pipeline (registers of the [`crate::systolic_matcher::SystolicMatcher`],
-//!   which moves the column on by two slots, one cell, every two clocks).
+//!   which moves the column on by two slots, one cell, every two clocks);
+//!   `c_hi_next`: the pass of the column that will be in the slot next
+//!   clock (the cell selects its reference one clock ahead).
 //! - `up_p`: the `P` register of the cell above (cell `index - 1`; for cell
 //!   0, the last cell's, one clock later, and read as 0 for the low row, the
 //!   first of the table); out `p`, this cell's.
@@ -45,7 +47,8 @@
 //! ## Timing
 //! A node whose column is in the cell's slot at clock `t` has its `P` in
 //! `p` and its choice on `choice` from clock `t +` [`CELL_DEPTH`]: stage A
-//! (search area, differences), B (distances), C (tests of eq. 7), D
+//! (`X_i - X_j`, level differences), B (distances, search area), C (tests
+//! of eq. 7), D
 //! (gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
 //! The node below, `(i+1, j)`, is two clocks behind in the next cell, so its
 //! stage G reads this `P` on `up_p` as soon as it is out; the node to the
@@ -89,6 +92,7 @@ pub struct GainCell {
     pub ld_rising: Signal<In, Bit>,
     pub c_valid: Signal<In, Bit>,
     pub c_hi: Signal<In, Bit>,
+    pub c_hi_next: Signal<In, Bit>,
     pub c_pos: Signal<In, Bits<POS_BITS>>,
     pub c_lev0: Signal<In, Bits<LEVEL_BITS>>,
     pub c_lev1: Signal<In, Bits<LEVEL_BITS>>,
@@ -142,10 +146,20 @@ pub struct GainCell {
     hi_lev4: DFF<Bits<LEVEL_BITS>>,
     hi_lev5: DFF<Bits<LEVEL_BITS>>,
     hi_rising: DFF<Bit>,
+    // The reference of the column arriving next clock (a register: its
+    // select, the column's pass, goes to 75 multiplexers).
+    sel_pos: DFF<Bits<POS_BITS>>,
+    sel_lev0: DFF<Bits<LEVEL_BITS>>,
+    sel_lev1: DFF<Bits<LEVEL_BITS>>,
+    sel_lev2: DFF<Bits<LEVEL_BITS>>,
+    sel_lev3: DFF<Bits<LEVEL_BITS>>,
+    sel_lev4: DFF<Bits<LEVEL_BITS>>,
+    sel_lev5: DFF<Bits<LEVEL_BITS>>,
+    sel_rising: DFF<Bit>,
     // Stage A: search area, polarity, level differences.
     a_valid: DFF<Bit>,
     a_hi: DFF<Bit>,
-    a_area: DFF<Bit>,
+    a_diff: DFF<Bits<{ POS_BITS + 1 }>>,
     a_same: DFF<Bit>,
     a_e0: DFF<Bits<LEVEL_BITS>>,
     a_e1: DFF<Bits<LEVEL_BITS>>,
@@ -191,14 +205,6 @@ pub struct GainCell {
     p_d1: DFF<Bits<PATH_BITS>>,
     choice_reg: DFF<Bits<2>>,
     // Combinational.
-    s_pos: Signal<Local, Bits<POS_BITS>>,
-    s_lev0: Signal<Local, Bits<LEVEL_BITS>>,
-    s_lev1: Signal<Local, Bits<LEVEL_BITS>>,
-    s_lev2: Signal<Local, Bits<LEVEL_BITS>>,
-    s_lev3: Signal<Local, Bits<LEVEL_BITS>>,
-    s_lev4: Signal<Local, Bits<LEVEL_BITS>>,
-    s_lev5: Signal<Local, Bits<LEVEL_BITS>>,
-    s_rising: Signal<Local, Bit>,
     diff_pos: Signal<Local, Bits<{ POS_BITS + 1 }>>,
     dr0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
@@ -247,6 +253,7 @@ impl GainCell {
             ld_rising: Default::default(),
             c_valid: Default::default(),
             c_hi: Default::default(),
+            c_hi_next: Default::default(),
             c_pos: Default::default(),
             c_lev0: Default::default(),
             c_lev1: Default::default(),
@@ -299,9 +306,17 @@ impl GainCell {
             hi_lev4: Default::default(),
             hi_lev5: Default::default(),
             hi_rising: Default::default(),
+            sel_pos: Default::default(),
+            sel_lev0: Default::default(),
+            sel_lev1: Default::default(),
+            sel_lev2: Default::default(),
+            sel_lev3: Default::default(),
+            sel_lev4: Default::default(),
+            sel_lev5: Default::default(),
+            sel_rising: Default::default(),
             a_valid: Default::default(),
             a_hi: Default::default(),
-            a_area: Default::default(),
+            a_diff: Default::default(),
             a_same: Default::default(),
             a_e0: Default::default(),
             a_e1: Default::default(),
@@ -339,14 +354,6 @@ impl GainCell {
             p_reg: Default::default(),
             p_d1: Default::default(),
             choice_reg: Default::default(),
-            s_pos: Default::default(),
-            s_lev0: Default::default(),
-            s_lev1: Default::default(),
-            s_lev2: Default::default(),
-            s_lev3: Default::default(),
-            s_lev4: Default::default(),
-            s_lev5: Default::default(),
-            s_rising: Default::default(),
             diff_pos: Default::default(),
             dr0: Default::default(),
             dr1: Default::default(),
@@ -388,7 +395,7 @@ impl Logic for GainCell {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, a_valid, a_hi, a_area, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
+            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
         );
 
         // ---- The reference declivities, from the broadcast.
@@ -412,25 +419,25 @@ impl Logic for GainCell {
             self.hi_lev5.d.next = self.ld_lev5.val();
             self.hi_rising.d.next = self.ld_rising.val();
         }
-        // The row of the column in the slot: the first pass meets the low
-        // row, the second the high one.
-        self.s_pos.next = self.lo_pos.q.val();
-        self.s_lev0.next = self.lo_lev0.q.val();
-        self.s_lev1.next = self.lo_lev1.q.val();
-        self.s_lev2.next = self.lo_lev2.q.val();
-        self.s_lev3.next = self.lo_lev3.q.val();
-        self.s_lev4.next = self.lo_lev4.q.val();
-        self.s_lev5.next = self.lo_lev5.q.val();
-        self.s_rising.next = self.lo_rising.q.val();
-        if self.c_hi.val() {
-            self.s_pos.next = self.hi_pos.q.val();
-            self.s_lev0.next = self.hi_lev0.q.val();
-            self.s_lev1.next = self.hi_lev1.q.val();
-            self.s_lev2.next = self.hi_lev2.q.val();
-            self.s_lev3.next = self.hi_lev3.q.val();
-            self.s_lev4.next = self.hi_lev4.q.val();
-            self.s_lev5.next = self.hi_lev5.q.val();
-            self.s_rising.next = self.hi_rising.q.val();
+        // The row of the column in the slot next clock (now in the slot
+        // before): the first pass meets the low row, the second the high one.
+        self.sel_pos.d.next = self.lo_pos.q.val();
+        self.sel_lev0.d.next = self.lo_lev0.q.val();
+        self.sel_lev1.d.next = self.lo_lev1.q.val();
+        self.sel_lev2.d.next = self.lo_lev2.q.val();
+        self.sel_lev3.d.next = self.lo_lev3.q.val();
+        self.sel_lev4.d.next = self.lo_lev4.q.val();
+        self.sel_lev5.d.next = self.lo_lev5.q.val();
+        self.sel_rising.d.next = self.lo_rising.q.val();
+        if self.c_hi_next.val() {
+            self.sel_pos.d.next = self.hi_pos.q.val();
+            self.sel_lev0.d.next = self.hi_lev0.q.val();
+            self.sel_lev1.d.next = self.hi_lev1.q.val();
+            self.sel_lev2.d.next = self.hi_lev2.q.val();
+            self.sel_lev3.d.next = self.hi_lev3.q.val();
+            self.sel_lev4.d.next = self.hi_lev4.q.val();
+            self.sel_lev5.d.next = self.hi_lev5.q.val();
+            self.sel_rising.d.next = self.hi_rising.q.val();
         }
 
         // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax) and
@@ -439,31 +446,29 @@ impl Logic for GainCell {
         // `!(a - b) = |a - b| - 1` with the sign bit beside it, the +1 being
         // the carry-in of stage B's adders; the third, with no carry-in left
         // for it, is a - b or b - a by the sign of a - b.
-        self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.s_pos.val())
+        self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.sel_pos.q.val())
             - bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
-        self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev0.val())
+        self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev0.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val());
-        self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev1.val())
+        self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev1.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev1.val());
-        self.dr2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev2.val())
+        self.dr2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev2.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val());
         self.dc2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev2.val());
-        self.dr3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev3.val())
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev2.q.val());
+        self.dr3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev3.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev3.val());
-        self.dr4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev4.val())
+        self.dr4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev4.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev4.val());
-        self.dr5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev5.val())
+        self.dr5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev5.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val());
         self.dc5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.s_lev5.val());
+            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev5.q.val());
         self.a_valid.d.next = self.c_valid.val();
         if self.c_valid.val() {
             self.a_hi.d.next = self.c_hi.val();
-            self.a_area.d.next = !self.diff_pos.val().get_bit(self.pos_sign.val().index())
-                & self.diff_pos.val().any()
-                & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.diff_pos.val()) < self.dispmax.val());
-            self.a_same.d.next = !self.same_polarity.val() | (self.s_rising.val() == self.c_rising.val());
+            self.a_diff.d.next = self.diff_pos.val();
+            self.a_same.d.next = !self.same_polarity.val() | (self.sel_rising.q.val() == self.c_rising.val());
             self.a_e0.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr0.val());
             self.a_s0.d.next = 0.into();
             if self.dr0.val().get_bit(self.level_sign.val().index()) {
@@ -515,7 +520,10 @@ impl Logic for GainCell {
         self.b_valid.d.next = self.a_valid.q.val();
         if self.a_valid.q.val() {
             self.b_hi.d.next = self.a_hi.q.val();
-            self.b_ok.d.next = self.a_area.q.val() & self.a_same.q.val();
+            self.b_ok.d.next = !self.a_diff.q.val().get_bit(self.pos_sign.val().index())
+                & self.a_diff.q.val().any()
+                & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.a_diff.q.val()) < self.dispmax.val())
+                & self.a_same.q.val();
             self.b_l2.d.next = self.l_sum.val();
             self.b_r2.d.next = self.r_sum.val();
         }

@@ -312,6 +312,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].c_rising.next = self.col_a_rising[i].q.val();
         }
         for i in 0..1 {
+            self.cells[i].c_hi_next.next = self.c_hi.val();
             self.col_a_valid[i].d.next = self.c_valid.val();
             if self.c_valid.val() {
                 self.col_a_hi[i].d.next = self.c_hi.val();
@@ -326,6 +327,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             }
         }
         for i in 1..N {
+            self.cells[i].c_hi_next.next = self.col_b_hi[i - 1].q.val();
             self.col_a_valid[i].d.next = self.col_b_valid[i - 1].q.val();
             if self.col_b_valid[i - 1].q.val() {
                 self.col_a_hi[i].d.next = self.col_b_hi[i - 1].q.val();
