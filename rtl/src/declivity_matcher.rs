@@ -76,14 +76,12 @@ impl GainRule {
     }
 }
 
-/// Clocks from the engine's sweep clock `sc = T - 2c + 1` reading the
-/// column of node `(i, j)` (`T = 2·(i + j) + [i ≥ N]`, `c = i mod N`, the
-/// cell) to the node's choice in the array's word registers, less the
-/// cell's `2c`: the one clock by which the columns trail the references
-/// (so that a cell, which selects its reference a clock ahead of its slot,
-/// has reference 0 in time), record memory read, its output register, then
-/// the array's [`CHOICE_LAG`].
-pub const ENGINE_LAG: usize = 3 + CHOICE_LAG;
+/// Clocks from the engine's sweep clock `sc = T - 2c` reading the column
+/// of node `(i, j)` (`T = 2·(i + j) + [i ≥ N]`, `c = i mod N`, the cell)
+/// to the node's choice in the array's word registers, less the cell's
+/// `2c`: record memory read, its output register, then the array's
+/// [`CHOICE_LAG`].
+pub const ENGINE_LAG: usize = 2 + CHOICE_LAG;
 
 /// Clocks of a sweep of `n` reference and `m` other declivities through
 /// `cells` cells, from the clock after the engine takes the pair to the
@@ -261,7 +259,8 @@ pub struct DeclivityMatcher<const N: usize> {
     dt_sum: Signal<Local, Bits<{ MATCH_DT_BITS + 1 }>>,
     sc_idx: Signal<Local, Bits<INDEX_BITS>>,
     nm: Signal<Local, Bits<SWEEP_BITS>>,
-    sc2: Signal<Local, Bits<SWEEP_BITS>>,
+    sc_half: Signal<Local, Bits<SWEEP_HALF_BITS>>,
+    sc2: Signal<Local, Bits<SWEEP_HALF_BITS>>,
     col_even: Signal<Local, Bit>,
     col_first: Signal<Local, Bit>,
     col_second: Signal<Local, Bit>,
@@ -279,7 +278,7 @@ pub struct DeclivityMatcher<const N: usize> {
     eng_sweep: Constant<Bits<2>>,
     eng_trace: Constant<Bits<2>>,
     sweep_tail: Constant<Bits<SWEEP_BITS>>,
-    second_start: Constant<Bits<SWEEP_BITS>>,
+    cells_h: Constant<Bits<SWEEP_HALF_BITS>>,
     engine_lag: Constant<Bits<SWEEP_BITS>>,
     cells_c: Constant<Bits<COUNT_BITS>>,
     bit0: Constant<Bits<8>>,
@@ -433,6 +432,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             dt_sum: Default::default(),
             sc_idx: Default::default(),
             nm: Default::default(),
+            sc_half: Default::default(),
             sc2: Default::default(),
             col_even: Default::default(),
             col_first: Default::default(),
@@ -450,7 +450,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
             sweep_tail: Constant::new(((ENGINE_LAG - 4) as u64).into()),
-            second_start: Constant::new(((2 * N + 2) as u64).into()),
+            cells_h: Constant::new((N as u64).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             cells_c: Constant::new((N as u64).into()),
             bit0: Constant::new(0u64.into()),
@@ -609,23 +609,22 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.e_sof.d.next = self.pend_sof.q.val();
         }
         // Sweep: clock sc reads reference sc, which the next clock
-        // broadcasts, and on odd clocks column (sc - 1)/2 for the low rows,
-        // on even clocks from 2N + 2 column (sc - 2N - 2)/2 for the high
-        // rows (when there are any), which the next clock feeds to cell 0.
+        // broadcasts, and on even clocks column sc/2 for the low rows, on
+        // odd clocks from 2N + 1 column (sc - 2N - 1)/2 = sc/2 - N for the
+        // high rows (when there are any), which the next clock feeds to the
+        // array.
         self.sc_idx.next = bit_cast::<INDEX_BITS, SWEEP_BITS>(self.sc.q.val());
-        self.sc2.next = self.sc.q.val() - self.second_start.val();
+        self.sc_half.next = self.sc.q.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index());
+        self.sc2.next = self.sc_half.val() - self.cells_h.val();
         self.col_even.next = !self.sc.q.val().get_bit(self.bit0.val().index());
-        self.col_first.next = !self.col_even.val()
-            & (self.sc.q.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index())
-                < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()));
-        self.col_second.next = self.col_even.val()
-            & (self.sc.q.val() >= self.second_start.val())
-            & (self.sc2.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index())
-                < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()))
+        self.col_first.next = self.col_even.val() & (self.sc_half.val() < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()));
+        self.col_second.next = !self.col_even.val()
+            & (self.sc_half.val() >= self.cells_h.val())
+            & (self.sc2.val() < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()))
             & (self.en.q.val() > self.cells_c.val());
-        self.col_j.next = self.sc.q.val().get_bits::<INDEX_BITS>(self.bit1.val().index());
-        if self.col_even.val() {
-            self.col_j.next = self.sc2.val().get_bits::<INDEX_BITS>(self.bit1.val().index());
+        self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_HALF_BITS>(self.sc_half.val());
+        if !self.col_even.val() {
+            self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_HALF_BITS>(self.sc2.val());
         }
         self.rd_bank_base.next = 0.into();
         if self.ebank.q.val() {
@@ -636,7 +635,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.ld_valid_d.d.next = false;
         self.c_valid_d.d.next = false;
         self.ld_index_d.d.next = self.sc_idx.val();
-        self.c_hi_d.d.next = self.col_even.val();
+        self.c_hi_d.d.next = !self.col_even.val();
         // The choices in the array's word registers now are those of the
         // nodes whose columns were read ENGINE_LAG clocks ago: anti-diagonal
         // (sc - ENGINE_LAG) / 2, low or high rows by its parity.
@@ -735,9 +734,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         if self.q_valid.q.val() {
             self.w_i.d.next = self.q_i.q.val();
             self.w_j.d.next = self.q_j.q.val();
-            self.w_xr.d.next = self.r_mem.pos.val();
-            self.w_xo.d.next = self.o_mem.pos.val();
         }
+        // Block RAM outputs straight into registers: a block RAM's
+        // clock-to-out leaves no time for logic.
+        self.w_xr.d.next = self.r_mem.pos.val();
+        self.w_xo.d.next = self.o_mem.pos.val();
         if self.q_last.q.val() {
             self.w_count.d.next = self.q_count.q.val();
             self.w_n.d.next = self.en.q.val();

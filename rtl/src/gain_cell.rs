@@ -41,12 +41,12 @@
 //! - Per line: `dispmax`, `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
 //!   `same_polarity`, `one_sided`.
-//! - Out `choice`, and `choice_word`: the choice in its two bits of the
-//!   array's [`CHOICE_WORD_BITS`]-bit memory word, zero elsewhere.
+//! - Out `choice_word`: the choice in its two bits of the array's
+//!   [`CHOICE_WORD_BITS`]-bit memory word, zero elsewhere.
 //!
 //! ## Timing
 //! A node whose column is in the cell's slot at clock `t` has its `P` in
-//! `p` and its choice on `choice` from clock `t +` [`CELL_DEPTH`]: stage A
+//! `p` and its choice on `choice_word` from clock `t +` [`CELL_DEPTH`]: stage A
 //! (`X_i - X_j`, level differences), B (distances, search area), C (tests
 //! of eq. 7), D
 //! (gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
@@ -109,7 +109,6 @@ pub struct GainCell {
     pub f3: Signal<In, Bits<GAIN_BITS>>,
     pub same_polarity: Signal<In, Bit>,
     pub one_sided: Signal<In, Bit>,
-    pub choice: Signal<Out, Bits<2>>,
     pub choice_word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
     row_lo: Constant<Bits<INDEX_BITS>>,
     row_hi: Constant<Bits<INDEX_BITS>>,
@@ -270,7 +269,6 @@ impl GainCell {
             f3: Default::default(),
             same_polarity: Default::default(),
             one_sided: Default::default(),
-            choice: Default::default(),
             choice_word: Default::default(),
             row_lo: Constant::new((index as u64).into()),
             row_hi: Constant::new(((index + cells) as u64).into()),
@@ -626,7 +624,6 @@ impl Logic for GainCell {
         self.p_d1.d.next = self.p_reg.q.val();
         self.choice_reg.d.next = self.best_choice.val();
         self.p.next = self.p_reg.q.val();
-        self.choice.next = self.choice_reg.q.val();
         // The choice in its two bits of the word: wiring in hardware.
         self.choice_word.next = self
             .zero_word

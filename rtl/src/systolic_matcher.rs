@@ -18,8 +18,10 @@
 //! ## Ports
 //! - `ld_*`: the reference-declivity broadcast, to every cell (the cell
 //!   whose low or high row is `ld_index` takes it).
-//! - `c_*`: the column stream (`c_hi`: second pass), into cell 0's slot of
-//!   the column pipeline (two register slots per cell).
+//! - `c_*`: the column stream (`c_hi`: second pass), into the column
+//!   pipeline: two register slots per cell, b then a; a cell computes on
+//!   the column in its slot a and selects its reference (low or high row)
+//!   by the pass of the column in its slot b, a clock ahead.
 //! - `dispmax`, `below2`, `f1`, `f3`, `same_polarity`, `one_sided`: to every
 //!   cell (see [`GainCell`]).
 //! - `cw_en`, `cw_diag`, `cw_hi`: write the choices now in the array's word
@@ -31,10 +33,10 @@
 //!   `tb_diag` (two clocks ago: memory read, then its output register).
 //!
 //! ## Timing
-//! Column `j` offered on `c_*` at clock `t - 1` sits in cell `c`'s slot at
-//! `t + 2c` and gives `P` and the choice of node `(c + N·c_hi, j)` in the
-//! cell at `t + 2c +` [`CELL_DEPTH`], in the word registers one clock
-//! later. The high rows' `P(N-1, ·)` comes from the last cell through one
+//! Column `j` offered on `c_*` at clock `t - 1` sits in cell `c`'s slot b
+//! at `t + 2c`, in its slot a at `t + 2c + 1`, and gives `P` and the choice
+//! of node `(c + N·c_hi, j)` in the cell at `t + 2c + 1 +`
+//! [`CELL_DEPTH`], in the word registers one clock later. The high rows' `P(N-1, ·)` comes from the last cell through one
 //! register; the low rows' `P(-1, ·)` is the border, 0.
 
 use crate::gain_cell::{GainCell, CELL_DEPTH};
@@ -42,10 +44,10 @@ use crate::params::*;
 use rust_hdl::prelude::*;
 
 /// Clocks from a column offered on `c_*` to its node's choice in the word
-/// registers, less the cell's slot offset `2c`: one into slot 0, the
-/// cell's depth, one into the word register. (The matcher's engine adds
+/// registers, less the cell's slot offset `2c`: two into the cell's slot a,
+/// the cell's depth, one into the word register. (The matcher's engine adds
 /// its own two clocks of record memory.)
-pub const CHOICE_LAG: usize = 1 + CELL_DEPTH + 1;
+pub const CHOICE_LAG: usize = 2 + CELL_DEPTH + 1;
 
 
 #[derive(LogicBlock)]
@@ -115,15 +117,15 @@ pub struct SystolicMatcher<const N: usize> {
     last_p: Signal<Local, Bits<PATH_BITS>>,
     wacc: [Signal<Local, Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     row_hi: Signal<Local, Bit>,
-    row_cell: Signal<Local, Bits<INDEX_BITS>>,
+    row_cell: Signal<Local, Bits<CELL_BITS>>,
     row_word: Signal<Local, Bits<CHOICE_WORD_BITS>>,
     row_widx: Signal<Local, Bits<2>>,
-    row_pair: Signal<Local, Bits<8>>,
+    row_pair: Signal<Local, Bits<PAIR_BITS>>,
     up_hi: Signal<Local, Bit>,
-    up_cell: Signal<Local, Bits<INDEX_BITS>>,
+    up_cell: Signal<Local, Bits<CELL_BITS>>,
     up_word: Signal<Local, Bits<CHOICE_WORD_BITS>>,
     up_widx: Signal<Local, Bits<2>>,
-    up_pair: Signal<Local, Bits<8>>,
+    up_pair: Signal<Local, Bits<PAIR_BITS>>,
     cells_c: Constant<Bits<INDEX_BITS>>,
     word_shift: Constant<Bits<8>>,
     bit0: Constant<Bits<8>>,
@@ -246,9 +248,10 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].same_polarity.next = self.same_polarity.val();
             self.cells[i].one_sided.next = self.one_sided.val();
         }
-        // The column pipeline: two slots per cell, `col_a[i]` (cell i's)
-        // then `col_b[i]`; slot a of cell 0 takes the stream. A column moves
-        // one slot per clock; a bubble moves as one.
+        // The column pipeline: two slots per cell, `col_b[i]` then
+        // `col_a[i]` (cell i's); slot b of cell 0 takes the stream. A column
+        // moves one slot per clock; a bubble moves as one. The cell selects
+        // its reference by the pass of the column in its slot b.
         for i in 0..N {
             self.col_a_valid[i].clock.next = self.clock.val();
             self.col_b_valid[i].clock.next = self.clock.val();
@@ -288,17 +291,17 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.col_b_lev5[i].d.next = self.col_b_lev5[i].q.val();
             self.col_a_rising[i].d.next = self.col_a_rising[i].q.val();
             self.col_b_rising[i].d.next = self.col_b_rising[i].q.val();
-            self.col_b_valid[i].d.next = self.col_a_valid[i].q.val();
-            if self.col_a_valid[i].q.val() {
-                self.col_b_hi[i].d.next = self.col_a_hi[i].q.val();
-                self.col_b_pos[i].d.next = self.col_a_pos[i].q.val();
-                self.col_b_lev0[i].d.next = self.col_a_lev0[i].q.val();
-                self.col_b_lev1[i].d.next = self.col_a_lev1[i].q.val();
-                self.col_b_lev2[i].d.next = self.col_a_lev2[i].q.val();
-                self.col_b_lev3[i].d.next = self.col_a_lev3[i].q.val();
-                self.col_b_lev4[i].d.next = self.col_a_lev4[i].q.val();
-                self.col_b_lev5[i].d.next = self.col_a_lev5[i].q.val();
-                self.col_b_rising[i].d.next = self.col_a_rising[i].q.val();
+            self.col_a_valid[i].d.next = self.col_b_valid[i].q.val();
+            if self.col_b_valid[i].q.val() {
+                self.col_a_hi[i].d.next = self.col_b_hi[i].q.val();
+                self.col_a_pos[i].d.next = self.col_b_pos[i].q.val();
+                self.col_a_lev0[i].d.next = self.col_b_lev0[i].q.val();
+                self.col_a_lev1[i].d.next = self.col_b_lev1[i].q.val();
+                self.col_a_lev2[i].d.next = self.col_b_lev2[i].q.val();
+                self.col_a_lev3[i].d.next = self.col_b_lev3[i].q.val();
+                self.col_a_lev4[i].d.next = self.col_b_lev4[i].q.val();
+                self.col_a_lev5[i].d.next = self.col_b_lev5[i].q.val();
+                self.col_a_rising[i].d.next = self.col_b_rising[i].q.val();
             }
             self.cells[i].c_valid.next = self.col_a_valid[i].q.val();
             self.cells[i].c_hi.next = self.col_a_hi[i].q.val();
@@ -310,35 +313,34 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].c_lev4.next = self.col_a_lev4[i].q.val();
             self.cells[i].c_lev5.next = self.col_a_lev5[i].q.val();
             self.cells[i].c_rising.next = self.col_a_rising[i].q.val();
+            self.cells[i].c_hi_next.next = self.col_b_hi[i].q.val();
         }
         for i in 0..1 {
-            self.cells[i].c_hi_next.next = self.c_hi.val();
-            self.col_a_valid[i].d.next = self.c_valid.val();
+            self.col_b_valid[i].d.next = self.c_valid.val();
             if self.c_valid.val() {
-                self.col_a_hi[i].d.next = self.c_hi.val();
-                self.col_a_pos[i].d.next = self.c_pos.val();
-                self.col_a_lev0[i].d.next = self.c_lev0.val();
-                self.col_a_lev1[i].d.next = self.c_lev1.val();
-                self.col_a_lev2[i].d.next = self.c_lev2.val();
-                self.col_a_lev3[i].d.next = self.c_lev3.val();
-                self.col_a_lev4[i].d.next = self.c_lev4.val();
-                self.col_a_lev5[i].d.next = self.c_lev5.val();
-                self.col_a_rising[i].d.next = self.c_rising.val();
+                self.col_b_hi[i].d.next = self.c_hi.val();
+                self.col_b_pos[i].d.next = self.c_pos.val();
+                self.col_b_lev0[i].d.next = self.c_lev0.val();
+                self.col_b_lev1[i].d.next = self.c_lev1.val();
+                self.col_b_lev2[i].d.next = self.c_lev2.val();
+                self.col_b_lev3[i].d.next = self.c_lev3.val();
+                self.col_b_lev4[i].d.next = self.c_lev4.val();
+                self.col_b_lev5[i].d.next = self.c_lev5.val();
+                self.col_b_rising[i].d.next = self.c_rising.val();
             }
         }
         for i in 1..N {
-            self.cells[i].c_hi_next.next = self.col_b_hi[i - 1].q.val();
-            self.col_a_valid[i].d.next = self.col_b_valid[i - 1].q.val();
-            if self.col_b_valid[i - 1].q.val() {
-                self.col_a_hi[i].d.next = self.col_b_hi[i - 1].q.val();
-                self.col_a_pos[i].d.next = self.col_b_pos[i - 1].q.val();
-                self.col_a_lev0[i].d.next = self.col_b_lev0[i - 1].q.val();
-                self.col_a_lev1[i].d.next = self.col_b_lev1[i - 1].q.val();
-                self.col_a_lev2[i].d.next = self.col_b_lev2[i - 1].q.val();
-                self.col_a_lev3[i].d.next = self.col_b_lev3[i - 1].q.val();
-                self.col_a_lev4[i].d.next = self.col_b_lev4[i - 1].q.val();
-                self.col_a_lev5[i].d.next = self.col_b_lev5[i - 1].q.val();
-                self.col_a_rising[i].d.next = self.col_b_rising[i - 1].q.val();
+            self.col_b_valid[i].d.next = self.col_a_valid[i - 1].q.val();
+            if self.col_a_valid[i - 1].q.val() {
+                self.col_b_hi[i].d.next = self.col_a_hi[i - 1].q.val();
+                self.col_b_pos[i].d.next = self.col_a_pos[i - 1].q.val();
+                self.col_b_lev0[i].d.next = self.col_a_lev0[i - 1].q.val();
+                self.col_b_lev1[i].d.next = self.col_a_lev1[i - 1].q.val();
+                self.col_b_lev2[i].d.next = self.col_a_lev2[i - 1].q.val();
+                self.col_b_lev3[i].d.next = self.col_a_lev3[i - 1].q.val();
+                self.col_b_lev4[i].d.next = self.col_a_lev4[i - 1].q.val();
+                self.col_b_lev5[i].d.next = self.col_a_lev5[i - 1].q.val();
+                self.col_b_rising[i].d.next = self.col_a_rising[i - 1].q.val();
             }
         }
         // The recurrence: the cell above's P; for cell 0, the last cell's,
@@ -390,13 +392,13 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         // ---- Traceback reads: row r is the low row of cell r or the high
         // row of cell r - N; its word, then its two bits.
         self.row_hi.next = self.tb_row.val() >= self.cells_c.val();
-        self.row_cell.next = self.tb_row.val();
+        self.row_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row.val());
         if self.row_hi.val() {
-            self.row_cell.next = self.tb_row.val() - self.cells_c.val();
+            self.row_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row.val() - self.cells_c.val());
         }
         self.row_widx.next = self.row_cell.val().get_bits::<2>(self.word_shift.val().index());
-        self.row_pair.next = bit_cast::<8, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()))
-            + bit_cast::<8, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()));
+        self.row_pair.next = bit_cast::<PAIR_BITS, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()))
+            + bit_cast::<PAIR_BITS, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()));
         self.row_word.next = self.rd_lo[0].q.val();
         if self.row_hi.val() {
             self.row_word.next = self.rd_hi[0].q.val();
@@ -421,13 +423,13 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         }
         self.tb_choice.next = self.row_word.val().get_bits::<2>(self.row_pair.val().index());
         self.up_hi.next = self.tb_row_up.val() >= self.cells_c.val();
-        self.up_cell.next = self.tb_row_up.val();
+        self.up_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row_up.val());
         if self.up_hi.val() {
-            self.up_cell.next = self.tb_row_up.val() - self.cells_c.val();
+            self.up_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row_up.val() - self.cells_c.val());
         }
         self.up_widx.next = self.up_cell.val().get_bits::<2>(self.word_shift.val().index());
-        self.up_pair.next = bit_cast::<8, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()))
-            + bit_cast::<8, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()));
+        self.up_pair.next = bit_cast::<PAIR_BITS, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()))
+            + bit_cast::<PAIR_BITS, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()));
         self.up_word.next = self.rd_lo[0].q.val();
         if self.up_hi.val() {
             self.up_word.next = self.rd_hi[0].q.val();

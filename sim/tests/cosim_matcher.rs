@@ -10,21 +10,21 @@
 //!
 //! The vectors (`corner.trace`, `corner_paper.trace`: the hand-built cases
 //! under the robust and the paper gain rule; `real.trace`: 30 Tsukuba rows)
-//! use a 16-cell array: Icarus runs them in seconds (the 128-cell Verilog is
-//! eight times the logic), and 16 is the smallest size at which a real
-//! Tsukuba row keeps a fair part of its declivities (they have 30–80;
-//! beyond the array's cells a line's records are dropped and it is flagged
-//! full). The matcher's cycle behaviour does not depend on the cell count
-//! except through that limit: the record memories hold `N_MAX` entries per
-//! bank at every size, and the sweep and traceback take the same clocks for
-//! the same (kept) declivities. The sensor's 128-cell array has its own
-//! vector (`real_128_cells.trace`, 12 rows), run under Verilator only.
+//! use a 16-cell array holding 32 reference declivities: Icarus runs them
+//! in seconds (the sensor's 64-cell Verilog is four times the logic), and a
+//! real Tsukuba row keeps a fair part of its declivities (they have 30–80;
+//! beyond the array's rows a line's records are dropped and it is flagged
+//! full). The matcher's cycle behaviour depends on the cell count only
+//! through that limit and the fold between the cells' low and high rows:
+//! the record memories hold `N_MAX` entries per bank at every size. The
+//! sensor's 64-cell array has its own vector (`real_64_cells.trace`, 12
+//! rows), run under Verilator only.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rtl::declivity_matcher::GainRule;
-use rtl::params::{DT_FRAC_BITS, POS_FRAC_BITS};
+use rtl::params::{DT_FRAC_BITS, N_CELLS, POS_FRAC_BITS, ROWS_PER_CELL};
 use sim::cosim::{self, CosimError, Options, Simulator, Trace, VectorRng};
 use sim::matcher::{check_line, golden_match, image_lines, MatchLine, MatchRecord, MatchedLine};
 use sim::matcher_cosim::matcher_trace;
@@ -32,6 +32,8 @@ use sim::verilog::{generate_with, Top};
 
 /// Cells of the array the vectors are recorded for.
 const CELLS: usize = 16;
+/// Declivities per side that array keeps.
+const HELD: usize = ROWS_PER_CELL * CELLS;
 /// The gain rule of the vectors (the sensor's default).
 const RULE: GainRule = GainRule::Robust;
 /// The corner vectors' search bound: 40 px.
@@ -163,15 +165,16 @@ fn corner_pairs() -> Vec<(&'static str, MatchLine, MatchLine)> {
         p.1.dt = 0xffff;
         p.2.dt = (rtl::params::THRESHOLD_PER_MEDIAN * 255.0 * (1 << DT_FRAC_BITS) as f64).round() as u32;
     }
-    // Exactly the cells, one more, and many more (dropped, m_full).
-    let full = random_line(&mut rng, CELLS, 200, 15);
-    pairs.push(("as many declivities as cells", full.clone(), shifted(&mut rng, &full, 5 * 16 + 3)));
-    let over = random_line(&mut rng, CELLS + 1, 200, 15);
-    pairs.push(("one declivity more than the cells", over.clone(), shifted(&mut rng, &over, 7 * 16)));
-    let many = random_line(&mut rng, 2 * CELLS + 5, 100, 12);
+    // Exactly as many as the array holds, one more, and many more
+    // (dropped, m_full).
+    let full = random_line(&mut rng, HELD, 200, 15);
+    pairs.push(("as many declivities as the array holds", full.clone(), shifted(&mut rng, &full, 5 * 16 + 3)));
+    let over = random_line(&mut rng, HELD + 1, 200, 15);
+    pairs.push(("one declivity more than the array holds", over.clone(), shifted(&mut rng, &over, 7 * 16)));
+    let many = random_line(&mut rng, 2 * HELD + 5, 100, 12);
     let mut many_other = shifted(&mut rng, &many, 3 * 16 + 9);
-    many_other.records.truncate(CELLS + 3);
-    pairs.push(("more declivities than cells on both sides", many, many_other));
+    many_other.records.truncate(HELD + 3);
+    pairs.push(("more declivities than the array holds on both sides", many, many_other));
     // The detector's flags pass through to the marker.
     let mut flagged = random_line(&mut rng, 4, 300, 18);
     flagged.wide = true;
@@ -239,12 +242,12 @@ fn committed(name: &str, fresh: &Trace) -> Trace {
     cosim::committed_trace(&vectors().join(name), fresh).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// A line as the array keeps it: its first `cells` records, flagged full
-/// when some were dropped.
+/// A line as an array of `cells` cells keeps it: its first
+/// `ROWS_PER_CELL · cells` records, flagged full when some were dropped.
 fn kept(l: &MatchLine, cells: usize) -> MatchLine {
     let mut k = l.clone();
-    k.full |= k.records.len() > cells;
-    k.records.truncate(cells);
+    k.full |= k.records.len() > ROWS_PER_CELL * cells;
+    k.records.truncate(ROWS_PER_CELL * cells);
     k
 }
 
@@ -319,10 +322,10 @@ fn cosim_matcher_vectors_are_current_and_carry_matches() {
         let (r, o) = pair("ties between equal paths");
         let g = golden_match(r, o, DISPMAX, v.rule);
         assert_eq!((g.nodes.len(), g.path_gain(&[(0, 0), (2, 1)])), (2, Some(g.gain)), "several optimal paths");
-        let over = got[case("more declivities than cells on both sides")].marker;
-        assert_eq!((over.n, over.m, over.full), (CELLS as u32, CELLS as u32, true));
-        let exact = got[case("as many declivities as cells")].marker;
-        assert_eq!((exact.n, exact.full), (CELLS as u32, false));
+        let over = got[case("more declivities than the array holds on both sides")].marker;
+        assert_eq!((over.n, over.m, over.full), (HELD as u32, HELD as u32, true));
+        let exact = got[case("as many declivities as the array holds")].marker;
+        assert_eq!((exact.n, exact.full), (HELD as u32, false));
     }
     eprintln!("{:.1} s", t0.elapsed().as_secs_f64());
 }
@@ -356,24 +359,24 @@ fn cosim_matcher_verilator_matches_rust_on_corner_cases_and_real_rows() {
     check_vectors(Simulator::Verilator);
 }
 
-/// Rows of `real_pairs` for the sensor's 128-cell array.
-const ROWS_128: usize = 12;
+/// Rows of `real_pairs` for the sensor's 64-cell array.
+const ROWS_SENSOR: usize = 12;
 
-/// The sensor's matcher, `N_MAX` = 128 cells, under Verilator on the first
-/// `ROWS_128` rows of the real vectors, recorded on their own
-/// (`real_128_cells.trace`): with 128 cells no record is dropped, so the
-/// engine's clocks, and with them the back-pressure on the inputs, differ
-/// from the 16-cell array's. Measured on two cores: generating the Verilog
+/// The sensor's matcher, `N_CELLS` = 64 cells holding `N_MAX` = 128
+/// declivities, under Verilator on the first `ROWS_SENSOR` rows of the real
+/// vectors, recorded on their own (`real_64_cells.trace`): with 128 rows no
+/// record is dropped, so the engine's clocks, and with them the
+/// back-pressure on the inputs, differ from the 16-cell array's. Measured on two cores: generating the Verilog
 /// and recording take 2–3 s, Verilator's build of the 250 000 lines 54–56 s
 /// (Icarus is left to the 16-cell vectors).
 #[test]
-fn cosim_matcher_128_cells_verilator_matches_rust_on_real_rows() {
-    const N: usize = rtl::params::N_MAX;
+fn cosim_matcher_64_cells_verilator_matches_rust_on_real_rows() {
+    const N: usize = N_CELLS;
     let t0 = Instant::now();
     let d = design(N, RULE);
     let (mut pairs, dispmax) = real_pairs();
-    pairs.truncate(ROWS_128);
-    let v = Vector { file: "real_128_cells.trace", rule: RULE, pairs, dispmax };
+    pairs.truncate(ROWS_SENSOR);
+    let v = Vector { file: "real_64_cells.trace", rule: RULE, pairs, dispmax };
     let (fresh, got) = matcher_trace::<N>(&d, v.rule, v.dispmax, &v.pairs).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("{N} cells: Verilog and recording {:.1} s", t0.elapsed().as_secs_f64());
     check_against_golden(v.file, &v, &got, N);
@@ -411,20 +414,20 @@ const ACCEPTED: &[(&str, &str)] = &[
     ("UNUSEDPARAM", "rust-hdl declares a localparam for every state of an enum in each module that holds it"),
 ];
 
-/// On the sensor's 128-cell Verilog (9–14 s measured on two cores).
+/// On the sensor's 64-cell Verilog.
 #[test]
 fn matcher_verilog_lints_clean_but_for_the_accepted_warnings() {
     let t0 = Instant::now();
-    let warnings = cosim::lint_verilator(&design(rtl::params::N_MAX, RULE)).unwrap_or_else(|e| panic!("{e}"));
+    let warnings = cosim::lint_verilator(&design(N_CELLS, RULE)).unwrap_or_else(|e| panic!("{e}"));
     let counts = cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?} ({:.1} s)", t0.elapsed().as_secs_f64());
 }
 
-/// On the sensor's 128-cell Verilog (15–21 s measured on two cores).
+/// On the sensor's 64-cell Verilog.
 #[test]
 fn matcher_synthesizes_in_yosys_without_latches() {
     let t0 = Instant::now();
-    let check = sim::synth::yosys_latch_check(&design(rtl::params::N_MAX, RULE), "top").unwrap_or_else(|e| panic!("{e}"));
+    let check = sim::synth::yosys_latch_check(&design(N_CELLS, RULE), "top").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
     assert!(check.cells > 10_000, "the matcher is not empty: {} cells", check.cells);
     eprintln!("{} cells after proc, no latch ({:.1} s)", check.cells, t0.elapsed().as_secs_f64());
