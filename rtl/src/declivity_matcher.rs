@@ -7,9 +7,12 @@
 //!   when both markers have arrived; it then waits in a one-line slot for
 //!   the engine, and the next pair loads into the other bank.
 //! - **Engine**: sweeps the pair through the [`SystolicMatcher`] (the
-//!   reference declivities broadcast to their cells one per clock just ahead
-//!   of the wavefront, the other view's streamed into cell 0), then runs the
-//!   [`Traceback`] and turns its pairs into matches with their positions.
+//!   reference declivities broadcast to their cells one per clock ahead of
+//!   the wavefront, the other view's streamed into the array twice, the
+//!   second pass for the cells' high rows on the odd clocks when the line
+//!   has more than `N` reference declivities), then runs the [`Traceback`]
+//!   and turns its pairs into matches with their positions. The per-line
+//!   gain constants use `d_t` rounded down to [`MATCH_DT_FRAC_BITS`].
 //!
 //! The gain rule is a generation-time choice: [`GainRule::Paper`] is eq. 4–8
 //! as written, [`GainRule::Robust`] the default mode of golden (`Robust`:
@@ -23,8 +26,8 @@
 //!   reference, `sof`. Out: `r_ready`, `o_ready`: records and markers are
 //!   taken only while ready (a side is not ready from its marker until the
 //!   pair is handed to the engine, nor while a complete pair waits). A
-//!   side's records beyond `N` (the cells; [`N_MAX`] in the sensor) are
-//!   dropped and the line flagged full.
+//!   side's records beyond `2·N` (two per cell; [`N_MAX`] in the sensor's
+//!   [`N_CELLS`] cells) are dropped and the line flagged full.
 //! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits.
 //! - Out, a stream without back-pressure: `m_valid` with `m_last` low is a
 //!   match, reference order: `m_ref`, `m_other` (indices in their lines),
@@ -41,8 +44,9 @@
 //! registers), its matches on the clocks just before, one per clock. The
 //! engine takes the next pair the clock after the traceback ends. Loading
 //! the next pair overlaps the engine's work on this one; the worst line,
-//! `n = m = N_MAX`, costs at most `line_cycles(N_MAX, N_MAX, 0, N_MAX)`
-//! = 653 clocks.
+//! `n = m = N_MAX`, costs at most
+//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 914 clocks, inside the
+//! 1024 of a `W_MAX` line.
 
 use crate::params::*;
 use crate::record_memory::RecordMemory;

@@ -48,7 +48,7 @@
 //! A node whose column is in the cell's slot at clock `t` has its `P` in
 //! `p` and its choice on `choice_word` from clock `t +` [`CELL_DEPTH`]: stage A
 //! (`X_i - X_j`, level differences), B (distances, search area), C (tests
-//! of eq. 7), D
+//! of eq. 7), S (the distances' sum), D
 //! (gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
 //! The node below, `(i+1, j)`, is two clocks behind in the next cell, so its
 //! stage G reads this `P` on `up_p` as soon as it is out; the node to the
@@ -64,8 +64,8 @@ use crate::params::*;
 use rust_hdl::prelude::*;
 
 /// Clocks from a column in a cell's slot to its node's `P` on `p` and its
-/// choice on `choice` (stages A–H).
-pub const CELL_DEPTH: usize = 8;
+/// choice on `choice_word` (stages A–H, S between C and D).
+pub const CELL_DEPTH: usize = 9;
 
 /// The 2-bit choices, as `golden::dp::Choice` numbers them.
 pub const CHOICE_START: u64 = 0;
@@ -181,7 +181,14 @@ pub struct GainCell {
     c2_hi: DFF<Bit>,
     c2_node: DFF<Bit>,
     c2_both: DFF<Bit>,
-    c2_dist: DFF<Bits<DIST_SUM_BITS>>,
+    c2_l: DFF<Bits<DIST_BITS>>,
+    c2_r: DFF<Bits<DIST_BITS>>,
+    // Stage S: the distances' sum.
+    s_valid: DFF<Bit>,
+    s_hi: DFF<Bit>,
+    s_node: DFF<Bit>,
+    s_both: DFF<Bit>,
+    s_dist: DFF<Bits<DIST_SUM_BITS>>,
     // Stage D: the local gain.
     d_valid: DFF<Bit>,
     d_hi: DFF<Bit>,
@@ -219,8 +226,6 @@ pub struct GainCell {
     r_sum: Signal<Local, Bits<DIST_BITS>>,
     lb: Signal<Local, Bit>,
     rb: Signal<Local, Bit>,
-    l_part: Signal<Local, Bits<DIST_SUM_BITS>>,
-    r_part: Signal<Local, Bits<DIST_SUM_BITS>>,
     dist16: Signal<Local, Bits<16>>,
     dist_gain: Signal<Local, Bits<32>>,
     f_sel: Signal<Local, Bits<GAIN_BITS>>,
@@ -335,7 +340,13 @@ impl GainCell {
             c2_hi: Default::default(),
             c2_node: Default::default(),
             c2_both: Default::default(),
-            c2_dist: Default::default(),
+            c2_l: Default::default(),
+            c2_r: Default::default(),
+            s_valid: Default::default(),
+            s_hi: Default::default(),
+            s_node: Default::default(),
+            s_both: Default::default(),
+            s_dist: Default::default(),
             d_valid: Default::default(),
             d_hi: Default::default(),
             d_node: Default::default(),
@@ -367,8 +378,6 @@ impl GainCell {
             r_sum: Default::default(),
             lb: Default::default(),
             rb: Default::default(),
-            l_part: Default::default(),
-            r_part: Default::default(),
             dist16: Default::default(),
             dist_gain: Default::default(),
             f_sel: Default::default(),
@@ -393,7 +402,7 @@ impl Logic for GainCell {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
+            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
         );
 
         // ---- The reference declivities, from the broadcast.
@@ -527,40 +536,49 @@ impl Logic for GainCell {
         }
 
         // ---- C: eq. 7's tests, `d < gmax ⇔ 2d < ⌈2·gmax⌉`, and the
-        // distances the gain subtracts.
+        // distances the gain subtracts, each registered or cleared (a
+        // register's synchronous reset, no logic).
         self.lb.next = self.b_l2.q.val() < self.below2.val();
         self.rb.next = self.b_r2.q.val() < self.below2.val();
-        self.l_part.next = 0.into();
-        if self.lb.val() | !self.one_sided.val() {
-            self.l_part.next = bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.b_l2.q.val());
-        }
-        self.r_part.next = 0.into();
-        if self.rb.val() | !self.one_sided.val() {
-            self.r_part.next = bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.b_r2.q.val());
-        }
         self.c2_valid.d.next = self.b_valid.q.val();
         if self.b_valid.q.val() {
             self.c2_hi.d.next = self.b_hi.q.val();
             self.c2_node.d.next = self.b_ok.q.val() & (self.lb.val() | self.rb.val());
             self.c2_both.d.next = self.lb.val() & self.rb.val();
-            self.c2_dist.d.next = self.l_part.val() + self.r_part.val();
+            self.c2_l.d.next = 0.into();
+            if self.lb.val() | !self.one_sided.val() {
+                self.c2_l.d.next = self.b_l2.q.val();
+            }
+            self.c2_r.d.next = 0.into();
+            if self.rb.val() | !self.one_sided.val() {
+                self.c2_r.d.next = self.b_r2.q.val();
+            }
+        }
+
+        // ---- S: the distances' sum.
+        self.s_valid.d.next = self.c2_valid.q.val();
+        if self.c2_valid.q.val() {
+            self.s_hi.d.next = self.c2_hi.q.val();
+            self.s_node.d.next = self.c2_node.q.val();
+            self.s_both.d.next = self.c2_both.q.val();
+            self.s_dist.d.next = bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.c2_l.q.val())
+                + bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.c2_r.q.val());
         }
 
         // ---- D: g = f(gmax) - (lpd + rpd) in gain units (a product by a
         // power of two: a shift in hardware, cheap in rust-hdl's simulation).
-        self.dist16.next = bit_cast::<16, DIST_SUM_BITS>(self.c2_dist.q.val());
+        self.dist16.next = bit_cast::<16, DIST_SUM_BITS>(self.s_dist.q.val());
         self.dist_gain.next = self.dist16.val() * self.gain_unit_per_dist.val();
         self.f_sel.next = self.f1.val();
-        if self.c2_both.q.val() {
+        if self.s_both.q.val() {
             self.f_sel.next = self.f3.val();
         }
-        self.d_valid.d.next = self.c2_valid.q.val();
-        if self.c2_valid.q.val() {
-            self.d_hi.d.next = self.c2_hi.q.val();
-            self.d_node.d.next = self.c2_node.q.val();
+        self.d_valid.d.next = self.s_valid.q.val();
+        if self.s_valid.q.val() {
+            self.d_hi.d.next = self.s_hi.q.val();
+            self.d_node.d.next = self.s_node.q.val();
             self.d_g.d.next = self.f_sel.val() - bit_cast::<GAIN_BITS, 32>(self.dist_gain.val());
         }
-
 
         // ---- E: G = g + P(i-1, j-1). `up_p` holds the cell above's P of
         // column j - 1 now, two clocks before it shows column j's. Cell 0's

@@ -14,9 +14,11 @@
 //!   0–2) and `rising`.
 //!
 //! ## Timing
-//! One write and one read per clock (block or LUT RAM with a registered
-//! read, as the synthesis maps it); a read of the address written on the
-//! same clock returns the old record.
+//! One write and one read per clock (block RAM with a registered read). The
+//! matcher never reads an address on the clock it writes it (the loader
+//! writes one bank while the engine reads the other), and its Verilog tells
+//! the synthesis so (`no_rw_check`): what such a read returns is left
+//! undefined.
 
 use crate::params::*;
 use rust_hdl::prelude::*;

@@ -57,11 +57,38 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
 
 /// The matcher's Verilog, built on a thread with room for the block (see
 /// [`crate::matcher::build_matcher`]).
+///
+/// Every memory of the matcher is marked `no_rw_check`: none is read at an
+/// address on the clock that address is written (the loader writes one
+/// bank of the record memories while the engine reads the other; the choice
+/// memory is written during the sweep and read during the traceback that
+/// follows it; the traceback's stack is written while walking and read
+/// while emitting), so Yosys needs no bypass logic between a block RAM's
+/// output and its register, where the RAM's clock-to-out leaves no time.
 fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
     let uut: Box<DeclivityMatcher<N>> = crate::matcher::build_matcher::<N>(rule);
-    std::thread::Builder::new()
+    let v = std::thread::Builder::new()
         .stack_size(1 << 30)
         .spawn(move || generate_verilog(&*uut))
         .and_then(|h| h.join().map_err(|_| std::io::Error::other("generating the matcher's Verilog panicked")))
-        .expect("a thread to generate the Verilog")
+        .expect("a thread to generate the Verilog");
+    mark_memories_no_rw_check(&v)
+}
+
+/// `v` with the attribute `(* no_rw_check *)` on each memory rust-hdl's
+/// `RAM` declares (`reg[W:0] mem[D:0];`).
+fn mark_memories_no_rw_check(v: &str) -> String {
+    let mut out = String::with_capacity(v.len() + 4096);
+    for line in v.lines() {
+        let t = line.trim_start();
+        if t.starts_with("reg[") && t.contains("] mem[") {
+            out.push_str(&line[..line.len() - t.len()]);
+            out.push_str("(* no_rw_check *) ");
+            out.push_str(t);
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+    }
+    out
 }
