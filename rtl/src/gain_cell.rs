@@ -155,6 +155,12 @@ pub struct GainCell {
     sel_lev4: DFF<Bits<LEVEL_BITS>>,
     sel_lev5: DFF<Bits<LEVEL_BITS>>,
     sel_rising: DFF<Bit>,
+    // The line's constants, registered in the cell (one clock after the
+    // engine's: the broadcast's long wires end at a register).
+    k_dispmax: DFF<Bits<DISPMAX_BITS>>,
+    k_below2: DFF<Bits<DIST_BITS>>,
+    k_f1: DFF<Bits<GAIN_BITS>>,
+    k_f3: DFF<Bits<GAIN_BITS>>,
     // Stage A: search area, polarity, level differences.
     a_valid: DFF<Bit>,
     a_hi: DFF<Bit>,
@@ -317,6 +323,10 @@ impl GainCell {
             sel_lev4: Default::default(),
             sel_lev5: Default::default(),
             sel_rising: Default::default(),
+            k_dispmax: Default::default(),
+            k_below2: Default::default(),
+            k_f1: Default::default(),
+            k_f3: Default::default(),
             a_valid: Default::default(),
             a_hi: Default::default(),
             a_diff: Default::default(),
@@ -402,8 +412,13 @@ impl Logic for GainCell {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
+            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, k_dispmax, k_below2, k_f1, k_f3, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
         );
+
+        self.k_dispmax.d.next = self.dispmax.val();
+        self.k_below2.d.next = self.below2.val();
+        self.k_f1.d.next = self.f1.val();
+        self.k_f3.d.next = self.f3.val();
 
         // ---- The reference declivities, from the broadcast.
         if self.ld_valid.val() & (self.ld_index.val() == self.row_lo.val()) {
@@ -529,7 +544,7 @@ impl Logic for GainCell {
             self.b_hi.d.next = self.a_hi.q.val();
             self.b_ok.d.next = !self.a_diff.q.val().get_bit(self.pos_sign.val().index())
                 & self.a_diff.q.val().any()
-                & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.a_diff.q.val()) < self.dispmax.val())
+                & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.a_diff.q.val()) < self.k_dispmax.q.val())
                 & self.a_same.q.val();
             self.b_l2.d.next = self.l_sum.val();
             self.b_r2.d.next = self.r_sum.val();
@@ -538,8 +553,8 @@ impl Logic for GainCell {
         // ---- C: eq. 7's tests, `d < gmax ⇔ 2d < ⌈2·gmax⌉`, and the
         // distances the gain subtracts, each registered or cleared (a
         // register's synchronous reset, no logic).
-        self.lb.next = self.b_l2.q.val() < self.below2.val();
-        self.rb.next = self.b_r2.q.val() < self.below2.val();
+        self.lb.next = self.b_l2.q.val() < self.k_below2.q.val();
+        self.rb.next = self.b_r2.q.val() < self.k_below2.q.val();
         self.c2_valid.d.next = self.b_valid.q.val();
         if self.b_valid.q.val() {
             self.c2_hi.d.next = self.b_hi.q.val();
@@ -569,9 +584,9 @@ impl Logic for GainCell {
         // power of two: a shift in hardware, cheap in rust-hdl's simulation).
         self.dist16.next = bit_cast::<16, DIST_SUM_BITS>(self.s_dist.q.val());
         self.dist_gain.next = self.dist16.val() * self.gain_unit_per_dist.val();
-        self.f_sel.next = self.f1.val();
+        self.f_sel.next = self.k_f1.q.val();
         if self.s_both.q.val() {
-            self.f_sel.next = self.f3.val();
+            self.f_sel.next = self.k_f3.q.val();
         }
         self.d_valid.d.next = self.s_valid.q.val();
         if self.s_valid.q.val() {
