@@ -45,7 +45,7 @@
 //! engine takes the next pair the clock after the traceback ends. Loading
 //! the next pair overlaps the engine's work on this one; the worst line,
 //! `n = m = N_MAX`, costs at most
-//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 914 clocks, inside the
+//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 917 clocks, inside the
 //! 1024 of a `W_MAX` line.
 
 use crate::params::*;
@@ -83,9 +83,9 @@ impl GainRule {
 /// Clocks from the engine's sweep clock `sc = T - 2c` reading the column
 /// of node `(i, j)` (`T = 2·(i + j) + [i ≥ N]`, `c = i mod N`, the cell)
 /// to the node's choice in the array's word registers, less the cell's
-/// `2c`: record memory read, its output register, then the array's
-/// [`CHOICE_LAG`].
-pub const ENGINE_LAG: usize = 2 + CHOICE_LAG;
+/// `2c`: record memory read, its output register, the register that
+/// drives the array, then the array's [`CHOICE_LAG`].
+pub const ENGINE_LAG: usize = 3 + CHOICE_LAG;
 
 /// Clocks of a sweep of `n` reference and `m` other declivities through
 /// `cells` cells, from the clock after the engine takes the pair to the
@@ -201,8 +201,30 @@ pub struct DeclivityMatcher<const N: usize> {
     ld_index_d: DFF<Bits<INDEX_BITS>>,
     c_valid_d: DFF<Bit>,
     c_hi_d: DFF<Bit>,
-    // The record memories' outputs registered before the broadcast and the
-    // array (a block RAM's clock-to-out leaves no time for the wiring).
+    // The record memories' outputs registered twice before the broadcast
+    // and the array: first into a register of their own, next to the RAM (a
+    // block RAM's clock-to-out leaves time for little else), then into the
+    // register that drives the wires; the control bits alongside.
+    ld_valid_e: DFF<Bit>,
+    ld_index_e: DFF<Bits<INDEX_BITS>>,
+    c_valid_e: DFF<Bit>,
+    c_hi_e: DFF<Bit>,
+    ld_pos_r: DFF<Bits<POS_BITS>>,
+    ld_lev0_r: DFF<Bits<LEVEL_BITS>>,
+    ld_lev1_r: DFF<Bits<LEVEL_BITS>>,
+    ld_lev2_r: DFF<Bits<LEVEL_BITS>>,
+    ld_lev3_r: DFF<Bits<LEVEL_BITS>>,
+    ld_lev4_r: DFF<Bits<LEVEL_BITS>>,
+    ld_lev5_r: DFF<Bits<LEVEL_BITS>>,
+    ld_rising_r: DFF<Bit>,
+    c_pos_r: DFF<Bits<POS_BITS>>,
+    c_lev0_r: DFF<Bits<LEVEL_BITS>>,
+    c_lev1_r: DFF<Bits<LEVEL_BITS>>,
+    c_lev2_r: DFF<Bits<LEVEL_BITS>>,
+    c_lev3_r: DFF<Bits<LEVEL_BITS>>,
+    c_lev4_r: DFF<Bits<LEVEL_BITS>>,
+    c_lev5_r: DFF<Bits<LEVEL_BITS>>,
+    c_rising_r: DFF<Bit>,
     ld_valid_q: DFF<Bit>,
     ld_index_q: DFF<Bits<INDEX_BITS>>,
     ld_pos_q: DFF<Bits<POS_BITS>>,
@@ -378,6 +400,26 @@ impl<const N: usize> DeclivityMatcher<N> {
             ld_index_d: Default::default(),
             c_valid_d: Default::default(),
             c_hi_d: Default::default(),
+            ld_valid_e: Default::default(),
+            ld_index_e: Default::default(),
+            c_valid_e: Default::default(),
+            c_hi_e: Default::default(),
+            ld_pos_r: Default::default(),
+            ld_lev0_r: Default::default(),
+            ld_lev1_r: Default::default(),
+            ld_lev2_r: Default::default(),
+            ld_lev3_r: Default::default(),
+            ld_lev4_r: Default::default(),
+            ld_lev5_r: Default::default(),
+            ld_rising_r: Default::default(),
+            c_pos_r: Default::default(),
+            c_lev0_r: Default::default(),
+            c_lev1_r: Default::default(),
+            c_lev2_r: Default::default(),
+            c_lev3_r: Default::default(),
+            c_lev4_r: Default::default(),
+            c_lev5_r: Default::default(),
+            c_rising_r: Default::default(),
             ld_valid_q: Default::default(),
             ld_index_q: Default::default(),
             ld_pos_q: Default::default(),
@@ -484,7 +526,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, ld_valid_q, ld_index_q, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
+            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, ld_valid_e, ld_index_e, c_valid_e, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r, ld_valid_q, ld_index_q, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -670,26 +712,46 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.o_mem.r_addr.next = self.o_rd.val();
 
         // ---- The array.
-        self.ld_valid_q.d.next = self.ld_valid_d.q.val();
-        self.ld_index_q.d.next = self.ld_index_d.q.val();
-        self.ld_pos_q.d.next = self.r_mem.pos.val();
-        self.ld_lev0_q.d.next = self.r_mem.lev0.val();
-        self.ld_lev1_q.d.next = self.r_mem.lev1.val();
-        self.ld_lev2_q.d.next = self.r_mem.lev2.val();
-        self.ld_lev3_q.d.next = self.r_mem.lev3.val();
-        self.ld_lev4_q.d.next = self.r_mem.lev4.val();
-        self.ld_lev5_q.d.next = self.r_mem.lev5.val();
-        self.ld_rising_q.d.next = self.r_mem.rising.val();
-        self.c_valid_q.d.next = self.c_valid_d.q.val();
-        self.c_hi_q.d.next = self.c_hi_d.q.val();
-        self.c_pos_q.d.next = self.o_mem.pos.val();
-        self.c_lev0_q.d.next = self.o_mem.lev0.val();
-        self.c_lev1_q.d.next = self.o_mem.lev1.val();
-        self.c_lev2_q.d.next = self.o_mem.lev2.val();
-        self.c_lev3_q.d.next = self.o_mem.lev3.val();
-        self.c_lev4_q.d.next = self.o_mem.lev4.val();
-        self.c_lev5_q.d.next = self.o_mem.lev5.val();
-        self.c_rising_q.d.next = self.o_mem.rising.val();
+        self.ld_valid_e.d.next = self.ld_valid_d.q.val();
+        self.ld_index_e.d.next = self.ld_index_d.q.val();
+        self.ld_valid_q.d.next = self.ld_valid_e.q.val();
+        self.ld_index_q.d.next = self.ld_index_e.q.val();
+        self.ld_pos_r.d.next = self.r_mem.pos.val();
+        self.ld_pos_q.d.next = self.ld_pos_r.q.val();
+        self.ld_lev0_r.d.next = self.r_mem.lev0.val();
+        self.ld_lev0_q.d.next = self.ld_lev0_r.q.val();
+        self.ld_lev1_r.d.next = self.r_mem.lev1.val();
+        self.ld_lev1_q.d.next = self.ld_lev1_r.q.val();
+        self.ld_lev2_r.d.next = self.r_mem.lev2.val();
+        self.ld_lev2_q.d.next = self.ld_lev2_r.q.val();
+        self.ld_lev3_r.d.next = self.r_mem.lev3.val();
+        self.ld_lev3_q.d.next = self.ld_lev3_r.q.val();
+        self.ld_lev4_r.d.next = self.r_mem.lev4.val();
+        self.ld_lev4_q.d.next = self.ld_lev4_r.q.val();
+        self.ld_lev5_r.d.next = self.r_mem.lev5.val();
+        self.ld_lev5_q.d.next = self.ld_lev5_r.q.val();
+        self.ld_rising_r.d.next = self.r_mem.rising.val();
+        self.ld_rising_q.d.next = self.ld_rising_r.q.val();
+        self.c_valid_e.d.next = self.c_valid_d.q.val();
+        self.c_hi_e.d.next = self.c_hi_d.q.val();
+        self.c_valid_q.d.next = self.c_valid_e.q.val();
+        self.c_hi_q.d.next = self.c_hi_e.q.val();
+        self.c_pos_r.d.next = self.o_mem.pos.val();
+        self.c_pos_q.d.next = self.c_pos_r.q.val();
+        self.c_lev0_r.d.next = self.o_mem.lev0.val();
+        self.c_lev0_q.d.next = self.c_lev0_r.q.val();
+        self.c_lev1_r.d.next = self.o_mem.lev1.val();
+        self.c_lev1_q.d.next = self.c_lev1_r.q.val();
+        self.c_lev2_r.d.next = self.o_mem.lev2.val();
+        self.c_lev2_q.d.next = self.c_lev2_r.q.val();
+        self.c_lev3_r.d.next = self.o_mem.lev3.val();
+        self.c_lev3_q.d.next = self.c_lev3_r.q.val();
+        self.c_lev4_r.d.next = self.o_mem.lev4.val();
+        self.c_lev4_q.d.next = self.c_lev4_r.q.val();
+        self.c_lev5_r.d.next = self.o_mem.lev5.val();
+        self.c_lev5_q.d.next = self.c_lev5_r.q.val();
+        self.c_rising_r.d.next = self.o_mem.rising.val();
+        self.c_rising_q.d.next = self.c_rising_r.q.val();
         self.array.ld_valid.next = self.ld_valid_q.q.val();
         self.array.ld_index.next = self.ld_index_q.q.val();
         self.array.ld_pos.next = self.ld_pos_q.q.val();

@@ -30,7 +30,8 @@
 //!   entered at clock `t` are in the word registers at `t +` [`CHOICE_LAG`].
 //! - `tb_diag`, `tb_row`, `tb_row_up` in; `tb_choice`, `tb_choice_up` out:
 //!   the choices of rows `tb_row` and `tb_row_up` (now) on anti-diagonal
-//!   `tb_diag` (two clocks ago: memory read, then its output register).
+//!   `tb_diag` (three clocks ago: memory read, its output register next to
+//!   the block RAM, then the register that feeds the selection).
 //!
 //! ## Timing
 //! Column `j` offered on `c_*` at clock `t - 1` sits in cell `c`'s slot b
@@ -114,6 +115,8 @@ pub struct SystolicMatcher<const N: usize> {
     hi_ram: [RAM<Bits<CHOICE_WORD_BITS>, DIAG_BITS>; CHOICE_WORDS],
     rd_lo: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     rd_hi: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    rd2_lo: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    rd2_hi: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     last_p: Signal<Local, Bits<PATH_BITS>>,
     wacc: [Signal<Local, Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     row_hi: Signal<Local, Bit>,
@@ -203,6 +206,8 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             hi_ram: core::array::from_fn(|_| Default::default()),
             rd_lo: core::array::from_fn(|_| Default::default()),
             rd_hi: core::array::from_fn(|_| Default::default()),
+            rd2_lo: core::array::from_fn(|_| Default::default()),
+            rd2_hi: core::array::from_fn(|_| Default::default()),
             last_p: Default::default(),
             wacc: core::array::from_fn(|_| Default::default()),
             row_hi: Default::default(),
@@ -387,6 +392,10 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.rd_hi[k].clock.next = self.clock.val();
             self.rd_lo[k].d.next = self.lo_ram[k].read_data.val();
             self.rd_hi[k].d.next = self.hi_ram[k].read_data.val();
+            self.rd2_lo[k].clock.next = self.clock.val();
+            self.rd2_hi[k].clock.next = self.clock.val();
+            self.rd2_lo[k].d.next = self.rd_lo[k].q.val();
+            self.rd2_hi[k].d.next = self.rd_hi[k].q.val();
         }
 
         // ---- Traceback reads: row r is the low row of cell r or the high
@@ -399,26 +408,26 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         self.row_widx.next = self.row_cell.val().get_bits::<2>(self.word_shift.val().index());
         self.row_pair.next = bit_cast::<PAIR_BITS, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()))
             + bit_cast::<PAIR_BITS, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()));
-        self.row_word.next = self.rd_lo[0].q.val();
+        self.row_word.next = self.rd2_lo[0].q.val();
         if self.row_hi.val() {
-            self.row_word.next = self.rd_hi[0].q.val();
+            self.row_word.next = self.rd2_hi[0].q.val();
         }
         if self.row_widx.val() == self.w1.val() {
-            self.row_word.next = self.rd_lo[1].q.val();
+            self.row_word.next = self.rd2_lo[1].q.val();
             if self.row_hi.val() {
-                self.row_word.next = self.rd_hi[1].q.val();
+                self.row_word.next = self.rd2_hi[1].q.val();
             }
         }
         if self.row_widx.val() == self.w2.val() {
-            self.row_word.next = self.rd_lo[2].q.val();
+            self.row_word.next = self.rd2_lo[2].q.val();
             if self.row_hi.val() {
-                self.row_word.next = self.rd_hi[2].q.val();
+                self.row_word.next = self.rd2_hi[2].q.val();
             }
         }
         if self.row_widx.val() == self.w3.val() {
-            self.row_word.next = self.rd_lo[3].q.val();
+            self.row_word.next = self.rd2_lo[3].q.val();
             if self.row_hi.val() {
-                self.row_word.next = self.rd_hi[3].q.val();
+                self.row_word.next = self.rd2_hi[3].q.val();
             }
         }
         self.tb_choice.next = self.row_word.val().get_bits::<2>(self.row_pair.val().index());
@@ -430,26 +439,26 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         self.up_widx.next = self.up_cell.val().get_bits::<2>(self.word_shift.val().index());
         self.up_pair.next = bit_cast::<PAIR_BITS, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()))
             + bit_cast::<PAIR_BITS, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()));
-        self.up_word.next = self.rd_lo[0].q.val();
+        self.up_word.next = self.rd2_lo[0].q.val();
         if self.up_hi.val() {
-            self.up_word.next = self.rd_hi[0].q.val();
+            self.up_word.next = self.rd2_hi[0].q.val();
         }
         if self.up_widx.val() == self.w1.val() {
-            self.up_word.next = self.rd_lo[1].q.val();
+            self.up_word.next = self.rd2_lo[1].q.val();
             if self.up_hi.val() {
-                self.up_word.next = self.rd_hi[1].q.val();
+                self.up_word.next = self.rd2_hi[1].q.val();
             }
         }
         if self.up_widx.val() == self.w2.val() {
-            self.up_word.next = self.rd_lo[2].q.val();
+            self.up_word.next = self.rd2_lo[2].q.val();
             if self.up_hi.val() {
-                self.up_word.next = self.rd_hi[2].q.val();
+                self.up_word.next = self.rd2_hi[2].q.val();
             }
         }
         if self.up_widx.val() == self.w3.val() {
-            self.up_word.next = self.rd_lo[3].q.val();
+            self.up_word.next = self.rd2_lo[3].q.val();
             if self.up_hi.val() {
-                self.up_word.next = self.rd_hi[3].q.val();
+                self.up_word.next = self.rd2_hi[3].q.val();
             }
         }
         self.tb_choice_up.next = self.up_word.val().get_bits::<2>(self.up_pair.val().index());

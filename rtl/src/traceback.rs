@@ -7,8 +7,8 @@
 //! (node). So the walk reads the anti-diagonals in falling order, one per
 //! clock, whatever the path does: the array's choice memory, one word per
 //! anti-diagonal, is read at addresses known in advance (`tb_diag`), and
-//! the walker only picks its row's choice of the anti-diagonal read two
-//! clocks before (memory, then its output register), and skips the
+//! the walker only picks its row's choice of the anti-diagonal read three
+//! clocks before (memory, then two registers), and skips the
 //! anti-diagonal a node jumps over. The row's choice is a selection out of
 //! the whole word, so it is registered: while the walker decides on one
 //! anti-diagonal, the array already shows the next one's choices of both
@@ -26,13 +26,13 @@
 //!
 //! ## Timing
 //! After `start` at clock `t`, the walk reads anti-diagonal `n + m - 2`
-//! at `t + 1`, has it at `t + 2`, registers its row's choice at `t + 3` and
-//! decides on it at `t + 4`, then one anti-diagonal per clock
+//! at `t + 1`, has it at `t + 3`, registers its row's choice at `t + 4` and
+//! decides on it at `t + 5`, then one anti-diagonal per clock
 //! until the path starts (at most `n + m - 1` decisions); the `K` pairs
 //! then leave on consecutive clocks from two clocks after the last
 //! decision, and `out_last` one clock after the last pair: in all
 //! [`traceback_cycles`] clocks from `start` to `out_last`, at most
-//! `n + m + K + 4`.
+//! `n + m + K + 5`.
 
 use crate::gain_cell::{CHOICE_LEFT, CHOICE_NODE, CHOICE_START, CHOICE_UP};
 use crate::params::*;
@@ -45,7 +45,7 @@ const TB_EMIT: u64 = 2;
 /// Clocks from `start` to `out_last` for a line of `n` reference and `m`
 /// other declivities whose walk stops on anti-diagonal `stop_diag` (the
 /// `i + j` of the cell whose choice is `start`, or of the border cell it
-/// left last) with `k` pairs: four to the first decision, one per
+/// left last) with `k` pairs: five to the first decision, one per
 /// anti-diagonal from `n + m - 2` down to `stop_diag`, and `k + 2` to
 /// empty the stack (the first address, one read per pair, then the marker;
 /// just the marker when `k = 0`). An empty line (`n` or `m` zero) takes one.
@@ -54,7 +54,7 @@ pub const fn traceback_cycles(n: usize, m: usize, stop_diag: usize, k: usize) ->
         return 1;
     }
     let emit = if k == 0 { 1 } else { k + 2 };
-    4 + (n + m - 2 - stop_diag) + emit
+    5 + (n + m - 2 - stop_diag) + emit
 }
 
 #[derive(LogicBlock)]
@@ -83,6 +83,7 @@ pub struct Traceback {
     primed: DFF<Bit>,
     primed2: DFF<Bit>,
     primed3: DFF<Bit>,
+    primed4: DFF<Bit>,
     moved: DFF<Bit>,
     here: DFF<Bits<2>>,
     above: DFF<Bits<2>>,
@@ -132,6 +133,7 @@ impl Default for Traceback {
             primed: Default::default(),
             primed2: Default::default(),
             primed3: Default::default(),
+            primed4: Default::default(),
             moved: Default::default(),
             here: Default::default(),
             above: Default::default(),
@@ -162,7 +164,7 @@ impl Logic for Traceback {
         self.stack_i.write_clock.next = self.clock.val();
         self.stack_j.read_clock.next = self.clock.val();
         self.stack_j.write_clock.next = self.clock.val();
-        dff_setup!(self, clock, state, diag, wi, wj, wi_up, primed, primed2, primed3, moved, here, above, skip, count, left, k, pend);
+        dff_setup!(self, clock, state, diag, wi, wj, wi_up, primed, primed2, primed3, primed4, moved, here, above, skip, count, left, k, pend);
 
         self.tb_diag.next = self.diag.q.val();
         self.tb_row.next = self.wi.q.val();
@@ -195,6 +197,7 @@ impl Logic for Traceback {
                 self.primed.d.next = false;
                 self.primed2.d.next = false;
                 self.primed3.d.next = false;
+                self.primed4.d.next = false;
                 self.skip.d.next = false;
                 self.wi.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 1);
                 self.wi_up.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 2);
@@ -214,7 +217,8 @@ impl Logic for Traceback {
             self.primed.d.next = true;
             self.primed2.d.next = self.primed.q.val();
             self.primed3.d.next = self.primed2.q.val();
-            if self.primed3.q.val() {
+            self.primed4.d.next = self.primed3.q.val();
+            if self.primed4.q.val() {
                 if self.skip.q.val() {
                     self.skip.d.next = false;
                 } else {
