@@ -192,6 +192,7 @@ pub struct DeclivityMatcher<const N: usize> {
     sc: DFF<Bits<SWEEP_BITS>>,
     sweep_end: DFF<Bits<SWEEP_BITS>>,
     below2_reg: DFF<Bits<DIST_BITS>>,
+    dm1_reg: DFF<Bits<{ POS_BITS + 1 }>>,
     f1_reg: DFF<Bits<GAIN_BITS>>,
     f3_reg: DFF<Bits<GAIN_BITS>>,
     e_wide: DFF<Bit>,
@@ -391,6 +392,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             sc: Default::default(),
             sweep_end: Default::default(),
             below2_reg: Default::default(),
+            dm1_reg: Default::default(),
             f1_reg: Default::default(),
             f3_reg: Default::default(),
             e_wide: Default::default(),
@@ -525,7 +527,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, ld_valid_e, ld_index_e, c_valid_e, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r, ld_valid_q, ld_index_q, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -772,7 +774,12 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.c_lev4.next = self.c_lev4_q.q.val();
         self.array.c_lev5.next = self.c_lev5_q.q.val();
         self.array.c_rising.next = self.c_rising_q.q.val();
-        self.array.dispmax.next = self.dispmax.val();
+        // Eq. 6's bound less one LSB (0 for a zero bound: no node then).
+        self.dm1_reg.d.next = 0.into();
+        if self.dispmax.val().any() {
+            self.dm1_reg.d.next = bit_cast::<{ POS_BITS + 1 }, DISPMAX_BITS>(self.dispmax.val()) - 1;
+        }
+        self.array.dispmax_m1.next = self.dm1_reg.q.val();
         self.array.below2.next = self.below2_reg.q.val();
         self.array.f1.next = self.f1_reg.q.val();
         self.array.f3.next = self.f3_reg.q.val();

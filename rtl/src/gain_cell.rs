@@ -38,7 +38,8 @@
 //! - `up_p`: the `P` register of the cell above (cell `index - 1`; for cell
 //!   0, the last cell's, one clock later, and read as 0 for the low row, the
 //!   first of the table); out `p`, this cell's.
-//! - Per line: `dispmax`, `below2` (`⌈2·gmax⌉`, compared with doubled
+//! - Per line: `dispmax_m1` (eq. 6's bound less one LSB; 0 for a zero
+//!   bound), `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
 //!   `same_polarity`, `one_sided`.
 //! - Out `choice_word`: the choice in its two bits of the array's
@@ -103,7 +104,7 @@ pub struct GainCell {
     pub c_rising: Signal<In, Bit>,
     pub up_p: Signal<In, Bits<PATH_BITS>>,
     pub p: Signal<Out, Bits<PATH_BITS>>,
-    pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
+    pub dispmax_m1: Signal<In, Bits<{ POS_BITS + 1 }>>,
     pub below2: Signal<In, Bits<DIST_BITS>>,
     pub f1: Signal<In, Bits<GAIN_BITS>>,
     pub f3: Signal<In, Bits<GAIN_BITS>>,
@@ -120,7 +121,6 @@ pub struct GainCell {
     bit1: Constant<Bits<8>>,
     gain_unit_per_dist: Constant<Bits<16>>,
     gain_msb: Constant<Bits<8>>,
-    pos_sign: Constant<Bits<8>>,
     level_sign: Constant<Bits<8>>,
     sign_fill: Constant<Bits<SCORE_BITS>>,
     score_msb: Constant<Bits<8>>,
@@ -155,12 +155,6 @@ pub struct GainCell {
     sel_lev4: DFF<Bits<LEVEL_BITS>>,
     sel_lev5: DFF<Bits<LEVEL_BITS>>,
     sel_rising: DFF<Bit>,
-    // The line's constants, registered in the cell (one clock after the
-    // engine's: the broadcast's long wires end at a register).
-    k_dispmax: DFF<Bits<DISPMAX_BITS>>,
-    k_below2: DFF<Bits<DIST_BITS>>,
-    k_f1: DFF<Bits<GAIN_BITS>>,
-    k_f3: DFF<Bits<GAIN_BITS>>,
     // Stage A: search area, polarity, level differences.
     a_valid: DFF<Bit>,
     a_hi: DFF<Bit>,
@@ -274,7 +268,7 @@ impl GainCell {
             c_rising: Default::default(),
             up_p: Default::default(),
             p: Default::default(),
-            dispmax: Default::default(),
+            dispmax_m1: Default::default(),
             below2: Default::default(),
             f1: Default::default(),
             f3: Default::default(),
@@ -291,7 +285,6 @@ impl GainCell {
             bit1: Constant::new(1u64.into()),
             gain_unit_per_dist: Constant::new((1u64 << (GAIN_FRAC_BITS - 1)).into()),
             gain_msb: Constant::new(((GAIN_BITS - 1) as u64).into()),
-            pos_sign: Constant::new((POS_BITS as u64).into()),
             level_sign: Constant::new((LEVEL_BITS as u64).into()),
             sign_fill: Constant::new((((1u64 << SCORE_BITS) - 1) ^ ((1u64 << GAIN_BITS) - 1)).into()),
             score_msb: Constant::new(((SCORE_BITS - 1) as u64).into()),
@@ -323,10 +316,6 @@ impl GainCell {
             sel_lev4: Default::default(),
             sel_lev5: Default::default(),
             sel_rising: Default::default(),
-            k_dispmax: Default::default(),
-            k_below2: Default::default(),
-            k_f1: Default::default(),
-            k_f3: Default::default(),
             a_valid: Default::default(),
             a_hi: Default::default(),
             a_diff: Default::default(),
@@ -412,13 +401,8 @@ impl Logic for GainCell {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, k_dispmax, k_below2, k_f1, k_f3, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
+            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
         );
-
-        self.k_dispmax.d.next = self.dispmax.val();
-        self.k_below2.d.next = self.below2.val();
-        self.k_f1.d.next = self.f1.val();
-        self.k_f3.d.next = self.f3.val();
 
         // ---- The reference declivities, from the broadcast.
         if self.ld_valid.val() & (self.ld_index.val() == self.row_lo.val()) {
@@ -462,14 +446,15 @@ impl Logic for GainCell {
             self.sel_rising.d.next = self.hi_rising.q.val();
         }
 
-        // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax) and
+        // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax), as
+        // d - 1 = X_i + !X_j, and
         // |level differences|. One subtraction gives d and its sign. Of each
         // side's three |a - b|, two are kept as a - b or its ones' complement
         // `!(a - b) = |a - b| - 1` with the sign bit beside it, the +1 being
         // the carry-in of stage B's adders; the third, with no carry-in left
         // for it, is a - b or b - a by the sign of a - b.
         self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.sel_pos.q.val())
-            - bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
+            + !bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
         self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev0.q.val())
             - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val());
         self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev1.q.val())
@@ -542,10 +527,9 @@ impl Logic for GainCell {
         self.b_valid.d.next = self.a_valid.q.val();
         if self.a_valid.q.val() {
             self.b_hi.d.next = self.a_hi.q.val();
-            self.b_ok.d.next = !self.a_diff.q.val().get_bit(self.pos_sign.val().index())
-                & self.a_diff.q.val().any()
-                & (bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.a_diff.q.val()) < self.k_dispmax.q.val())
-                & self.a_same.q.val();
+            // 0 < d < dispmax ⇔ d - 1 < dispmax - 1 unsigned: d ≤ 0 wraps
+            // d - 1 above every bound.
+            self.b_ok.d.next = (self.a_diff.q.val() < self.dispmax_m1.val()) & self.a_same.q.val();
             self.b_l2.d.next = self.l_sum.val();
             self.b_r2.d.next = self.r_sum.val();
         }
@@ -553,8 +537,8 @@ impl Logic for GainCell {
         // ---- C: eq. 7's tests, `d < gmax ⇔ 2d < ⌈2·gmax⌉`, and the
         // distances the gain subtracts, each registered or cleared (a
         // register's synchronous reset, no logic).
-        self.lb.next = self.b_l2.q.val() < self.k_below2.q.val();
-        self.rb.next = self.b_r2.q.val() < self.k_below2.q.val();
+        self.lb.next = self.b_l2.q.val() < self.below2.val();
+        self.rb.next = self.b_r2.q.val() < self.below2.val();
         self.c2_valid.d.next = self.b_valid.q.val();
         if self.b_valid.q.val() {
             self.c2_hi.d.next = self.b_hi.q.val();
@@ -584,9 +568,9 @@ impl Logic for GainCell {
         // power of two: a shift in hardware, cheap in rust-hdl's simulation).
         self.dist16.next = bit_cast::<16, DIST_SUM_BITS>(self.s_dist.q.val());
         self.dist_gain.next = self.dist16.val() * self.gain_unit_per_dist.val();
-        self.f_sel.next = self.k_f1.q.val();
+        self.f_sel.next = self.f1.val();
         if self.s_both.q.val() {
-            self.f_sel.next = self.k_f3.q.val();
+            self.f_sel.next = self.f3.val();
         }
         self.d_valid.d.next = self.s_valid.q.val();
         if self.s_valid.q.val() {

@@ -22,8 +22,9 @@
 //!   pipeline: two register slots per cell, b then a; a cell computes on
 //!   the column in its slot a and selects its reference (low or high row)
 //!   by the pass of the column in its slot b, a clock ahead.
-//! - `dispmax`, `below2`, `f1`, `f3`, `same_polarity`, `one_sided`: to every
-//!   cell (see [`GainCell`]).
+//! - `dispmax_m1`, `below2`, `f1`, `f3`: the line's constants, passed down
+//!   the cells one per clock; `same_polarity`, `one_sided`: to every cell
+//!   (see [`GainCell`]).
 //! - `cw_en`, `cw_diag`, `cw_hi`: write the choices now in the array's word
 //!   registers as anti-diagonal `cw_diag` of the low (`cw_hi` low) or high
 //!   rows. The engine counts them: the choices of the node whose column
@@ -74,7 +75,7 @@ pub struct SystolicMatcher<const N: usize> {
     pub c_lev4: Signal<In, Bits<LEVEL_BITS>>,
     pub c_lev5: Signal<In, Bits<LEVEL_BITS>>,
     pub c_rising: Signal<In, Bit>,
-    pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
+    pub dispmax_m1: Signal<In, Bits<{ POS_BITS + 1 }>>,
     pub below2: Signal<In, Bits<DIST_BITS>>,
     pub f1: Signal<In, Bits<GAIN_BITS>>,
     pub f3: Signal<In, Bits<GAIN_BITS>>,
@@ -109,6 +110,10 @@ pub struct SystolicMatcher<const N: usize> {
     col_b_lev4: [DFF<Bits<LEVEL_BITS>>; N],
     col_b_lev5: [DFF<Bits<LEVEL_BITS>>; N],
     col_b_rising: [DFF<Bit>; N],
+    k_dispmax_m1: [DFF<Bits<{ POS_BITS + 1 }>>; N],
+    k_below2: [DFF<Bits<DIST_BITS>>; N],
+    k_f1: [DFF<Bits<GAIN_BITS>>; N],
+    k_f3: [DFF<Bits<GAIN_BITS>>; N],
     wrap: DFF<Bits<PATH_BITS>>,
     word_q: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     lo_ram: [RAM<Bits<CHOICE_WORD_BITS>, DIAG_BITS>; CHOICE_WORDS],
@@ -165,7 +170,7 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             c_lev4: Default::default(),
             c_lev5: Default::default(),
             c_rising: Default::default(),
-            dispmax: Default::default(),
+            dispmax_m1: Default::default(),
             below2: Default::default(),
             f1: Default::default(),
             f3: Default::default(),
@@ -200,6 +205,10 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             col_b_lev4: core::array::from_fn(|_| Default::default()),
             col_b_lev5: core::array::from_fn(|_| Default::default()),
             col_b_rising: core::array::from_fn(|_| Default::default()),
+            k_dispmax_m1: core::array::from_fn(|_| Default::default()),
+            k_below2: core::array::from_fn(|_| Default::default()),
+            k_f1: core::array::from_fn(|_| Default::default()),
+            k_f3: core::array::from_fn(|_| Default::default()),
             wrap: Default::default(),
             word_q: core::array::from_fn(|_| Default::default()),
             lo_ram: core::array::from_fn(|_| Default::default()),
@@ -246,12 +255,33 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].ld_lev4.next = self.ld_lev4.val();
             self.cells[i].ld_lev5.next = self.ld_lev5.val();
             self.cells[i].ld_rising.next = self.ld_rising.val();
-            self.cells[i].dispmax.next = self.dispmax.val();
-            self.cells[i].below2.next = self.below2.val();
-            self.cells[i].f1.next = self.f1.val();
-            self.cells[i].f3.next = self.f3.val();
             self.cells[i].same_polarity.next = self.same_polarity.val();
             self.cells[i].one_sided.next = self.one_sided.val();
+        }
+        // The line's constants travel down the array one cell per clock (a
+        // register in every cell: no wire crosses the array; a cell's first
+        // node of a line comes more than i clocks after the engine sets them).
+        for i in 0..N {
+            self.k_dispmax_m1[i].clock.next = self.clock.val();
+            self.cells[i].dispmax_m1.next = self.k_dispmax_m1[i].q.val();
+            self.k_below2[i].clock.next = self.clock.val();
+            self.cells[i].below2.next = self.k_below2[i].q.val();
+            self.k_f1[i].clock.next = self.clock.val();
+            self.cells[i].f1.next = self.k_f1[i].q.val();
+            self.k_f3[i].clock.next = self.clock.val();
+            self.cells[i].f3.next = self.k_f3[i].q.val();
+        }
+        for i in 0..1 {
+            self.k_dispmax_m1[i].d.next = self.dispmax_m1.val();
+            self.k_below2[i].d.next = self.below2.val();
+            self.k_f1[i].d.next = self.f1.val();
+            self.k_f3[i].d.next = self.f3.val();
+        }
+        for i in 1..N {
+            self.k_dispmax_m1[i].d.next = self.k_dispmax_m1[i - 1].q.val();
+            self.k_below2[i].d.next = self.k_below2[i - 1].q.val();
+            self.k_f1[i].d.next = self.k_f1[i - 1].q.val();
+            self.k_f3[i].d.next = self.k_f3[i - 1].q.val();
         }
         // The column pipeline: two slots per cell, `col_b[i]` then
         // `col_a[i]` (cell i's); slot b of cell 0 takes the stream. A column
