@@ -206,9 +206,9 @@ pub struct DeclivityMatcher<const N: usize> {
     // and the array: first into a register of their own, next to the RAM (a
     // block RAM's clock-to-out leaves time for little else), then into the
     // register that drives the wires; the control bits alongside.
-    ld_valid_e: DFF<Bit>,
-    ld_index_e: DFF<Bits<INDEX_BITS>>,
     c_valid_e: DFF<Bit>,
+    ld_first: DFF<Bit>,
+    ld_first_hi: DFF<Bit>,
     c_hi_e: DFF<Bit>,
     ld_pos_r: DFF<Bits<POS_BITS>>,
     ld_lev0_r: DFF<Bits<LEVEL_BITS>>,
@@ -226,8 +226,6 @@ pub struct DeclivityMatcher<const N: usize> {
     c_lev4_r: DFF<Bits<LEVEL_BITS>>,
     c_lev5_r: DFF<Bits<LEVEL_BITS>>,
     c_rising_r: DFF<Bit>,
-    ld_valid_q: DFF<Bit>,
-    ld_index_q: DFF<Bits<INDEX_BITS>>,
     ld_pos_q: DFF<Bits<POS_BITS>>,
     ld_lev0_q: DFF<Bits<LEVEL_BITS>>,
     ld_lev1_q: DFF<Bits<LEVEL_BITS>>,
@@ -308,6 +306,7 @@ pub struct DeclivityMatcher<const N: usize> {
     cells_h: Constant<Bits<SWEEP_HALF_BITS>>,
     engine_lag: Constant<Bits<SWEEP_BITS>>,
     cells_c: Constant<Bits<COUNT_BITS>>,
+    cells_i: Constant<Bits<INDEX_BITS>>,
     bit0: Constant<Bits<8>>,
     bit1: Constant<Bits<8>>,
     dt_frac: Constant<Bits<8>>,
@@ -402,9 +401,9 @@ impl<const N: usize> DeclivityMatcher<N> {
             ld_index_d: Default::default(),
             c_valid_d: Default::default(),
             c_hi_d: Default::default(),
-            ld_valid_e: Default::default(),
-            ld_index_e: Default::default(),
             c_valid_e: Default::default(),
+            ld_first: Default::default(),
+            ld_first_hi: Default::default(),
             c_hi_e: Default::default(),
             ld_pos_r: Default::default(),
             ld_lev0_r: Default::default(),
@@ -422,8 +421,6 @@ impl<const N: usize> DeclivityMatcher<N> {
             c_lev4_r: Default::default(),
             c_lev5_r: Default::default(),
             c_rising_r: Default::default(),
-            ld_valid_q: Default::default(),
-            ld_index_q: Default::default(),
             ld_pos_q: Default::default(),
             ld_lev0_q: Default::default(),
             ld_lev1_q: Default::default(),
@@ -501,6 +498,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             cells_h: Constant::new((N as u64).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             cells_c: Constant::new((N as u64).into()),
+            cells_i: Constant::new((N as u64).into()),
             bit0: Constant::new(0u64.into()),
             bit1: Constant::new(1u64.into()),
             dt_frac: Constant::new((MATCH_DT_FRAC_BITS as u64).into()),
@@ -528,7 +526,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, ld_valid_e, ld_index_e, c_valid_e, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r, ld_valid_q, ld_index_q, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
+            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r,  ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -714,10 +712,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.o_mem.r_addr.next = self.o_rd.val();
 
         // ---- The array.
-        self.ld_valid_e.d.next = self.ld_valid_d.q.val();
-        self.ld_index_e.d.next = self.ld_index_d.q.val();
-        self.ld_valid_q.d.next = self.ld_valid_e.q.val();
-        self.ld_index_q.d.next = self.ld_index_e.q.val();
+        // Load tokens: high the clock before references 0 and N are on the
+        // broadcast (the array moves them on to the cells).
+        self.ld_first.d.next = self.ld_valid_d.q.val() & !self.ld_index_d.q.val().any();
+        self.ld_first_hi.d.next = self.ld_valid_d.q.val() & (self.ld_index_d.q.val() == self.cells_i.val());
         self.ld_pos_r.d.next = self.r_mem.pos.val();
         self.ld_pos_q.d.next = self.ld_pos_r.q.val();
         self.ld_lev0_r.d.next = self.r_mem.lev0.val();
@@ -754,8 +752,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.c_lev5_q.d.next = self.c_lev5_r.q.val();
         self.c_rising_r.d.next = self.o_mem.rising.val();
         self.c_rising_q.d.next = self.c_rising_r.q.val();
-        self.array.ld_valid.next = self.ld_valid_q.q.val();
-        self.array.ld_index.next = self.ld_index_q.q.val();
+        self.array.ld_first.next = self.ld_first.q.val();
+        self.array.ld_first_hi.next = self.ld_first_hi.q.val();
         self.array.ld_pos.next = self.ld_pos_q.q.val();
         self.array.ld_lev0.next = self.ld_lev0_q.q.val();
         self.array.ld_lev1.next = self.ld_lev1_q.q.val();

@@ -25,10 +25,10 @@
 //!   choice, which leaves on `choice` for the array's choice memory.
 //!
 //! ## Ports
-//! - `ld_valid`, `ld_index`, `ld_pos`, `ld_lev0..5`, `ld_rising`: the
-//!   reference-declivity broadcast; the cell whose low or high row is
-//!   `ld_index` takes the declivity (position `X_i`, levels left 0–2 then
-//!   right 0–2, polarity).
+//! - `ld_pos`, `ld_lev0..5`, `ld_rising`: the reference-declivity
+//!   broadcast (position `X_i`, levels left 0–2 then right 0–2, polarity),
+//!   taken as the cell's low row when `ld_lo` is high, as its high row when
+//!   `ld_hi` is (the array's load tokens: no index comparison in the cell).
 //! - `c_valid`, `c_hi` (second pass: the high row), `c_pos`, `c_lev0..5`,
 //!   `c_rising`: the column in this cell's slot of the array's column
 //!   pipeline (registers of the [`crate::systolic_matcher::SystolicMatcher`],
@@ -81,8 +81,8 @@ pub const CHOICE_LEFT: u64 = 3;
 #[derive(LogicBlock)]
 pub struct GainCell {
     pub clock: Signal<In, Clock>,
-    pub ld_valid: Signal<In, Bit>,
-    pub ld_index: Signal<In, Bits<INDEX_BITS>>,
+    pub ld_lo: Signal<In, Bit>,
+    pub ld_hi: Signal<In, Bit>,
     pub ld_pos: Signal<In, Bits<POS_BITS>>,
     pub ld_lev0: Signal<In, Bits<LEVEL_BITS>>,
     pub ld_lev1: Signal<In, Bits<LEVEL_BITS>>,
@@ -111,8 +111,6 @@ pub struct GainCell {
     pub same_polarity: Signal<In, Bit>,
     pub one_sided: Signal<In, Bit>,
     pub choice_word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
-    row_lo: Constant<Bits<INDEX_BITS>>,
-    row_hi: Constant<Bits<INDEX_BITS>>,
     top_cell: Constant<Bit>,
     zero_word: Constant<Bits<CHOICE_WORD_BITS>>,
     bit_lo: Constant<Bits<8>>,
@@ -245,8 +243,8 @@ impl GainCell {
         assert!(index < cells && cells <= N_CELLS, "cell index inside an array of at most N_CELLS");
         GainCell {
             clock: Default::default(),
-            ld_valid: Default::default(),
-            ld_index: Default::default(),
+            ld_lo: Default::default(),
+            ld_hi: Default::default(),
             ld_pos: Default::default(),
             ld_lev0: Default::default(),
             ld_lev1: Default::default(),
@@ -275,8 +273,6 @@ impl GainCell {
             same_polarity: Default::default(),
             one_sided: Default::default(),
             choice_word: Default::default(),
-            row_lo: Constant::new((index as u64).into()),
-            row_hi: Constant::new(((index + cells) as u64).into()),
             top_cell: Constant::new(index == 0),
             zero_word: Constant::new(0u64.into()),
             bit_lo: Constant::new(((2 * (index % CELLS_PER_CHOICE_WORD)) as u64).into()),
@@ -405,7 +401,7 @@ impl Logic for GainCell {
         );
 
         // ---- The reference declivities, from the broadcast.
-        if self.ld_valid.val() & (self.ld_index.val() == self.row_lo.val()) {
+        if self.ld_lo.val() {
             self.lo_pos.d.next = self.ld_pos.val();
             self.lo_lev0.d.next = self.ld_lev0.val();
             self.lo_lev1.d.next = self.ld_lev1.val();
@@ -415,7 +411,7 @@ impl Logic for GainCell {
             self.lo_lev5.d.next = self.ld_lev5.val();
             self.lo_rising.d.next = self.ld_rising.val();
         }
-        if self.ld_valid.val() & (self.ld_index.val() == self.row_hi.val()) {
+        if self.ld_hi.val() {
             self.hi_pos.d.next = self.ld_pos.val();
             self.hi_lev0.d.next = self.ld_lev0.val();
             self.hi_lev1.d.next = self.ld_lev1.val();

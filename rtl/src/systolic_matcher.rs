@@ -16,8 +16,11 @@
 //! per cell, [`CELLS_PER_CHOICE_WORD`] cells per word.
 //!
 //! ## Ports
-//! - `ld_*`: the reference-declivity broadcast, to every cell (the cell
-//!   whose low or high row is `ld_index` takes it).
+//! - `ld_pos`, `ld_lev0..5`, `ld_rising`: the reference-declivity
+//!   broadcast, to every cell, references `0, 1, 2, …` on consecutive
+//!   clocks; `ld_first` (`ld_first_hi`) high one clock before reference 0
+//!   (`N`) is on it starts a load token down the cells, so that cell `c`
+//!   takes reference `c` (`c + N`).
 //! - `c_*`: the column stream (`c_hi`: second pass), into the column
 //!   pipeline: two register slots per cell, b then a; a cell computes on
 //!   the column in its slot a and selects its reference (low or high row)
@@ -55,8 +58,8 @@ pub const CHOICE_LAG: usize = 2 + CELL_DEPTH + 1;
 #[derive(LogicBlock)]
 pub struct SystolicMatcher<const N: usize> {
     pub clock: Signal<In, Clock>,
-    pub ld_valid: Signal<In, Bit>,
-    pub ld_index: Signal<In, Bits<INDEX_BITS>>,
+    pub ld_first: Signal<In, Bit>,
+    pub ld_first_hi: Signal<In, Bit>,
     pub ld_pos: Signal<In, Bits<POS_BITS>>,
     pub ld_lev0: Signal<In, Bits<LEVEL_BITS>>,
     pub ld_lev1: Signal<In, Bits<LEVEL_BITS>>,
@@ -114,6 +117,8 @@ pub struct SystolicMatcher<const N: usize> {
     k_below2: [DFF<Bits<DIST_BITS>>; N],
     k_f1: [DFF<Bits<GAIN_BITS>>; N],
     k_f3: [DFF<Bits<GAIN_BITS>>; N],
+    tok_lo: [DFF<Bit>; N],
+    tok_hi: [DFF<Bit>; N],
     wrap: DFF<Bits<PATH_BITS>>,
     word_q: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     lo_ram: [RAM<Bits<CHOICE_WORD_BITS>, DIAG_BITS>; CHOICE_WORDS],
@@ -150,8 +155,8 @@ impl<const N: usize> Default for SystolicMatcher<N> {
         assert_eq!(CELLS_PER_CHOICE_WORD, 16, "the word index below is written i / 16");
         SystolicMatcher {
             clock: Default::default(),
-            ld_valid: Default::default(),
-            ld_index: Default::default(),
+            ld_first: Default::default(),
+            ld_first_hi: Default::default(),
             ld_pos: Default::default(),
             ld_lev0: Default::default(),
             ld_lev1: Default::default(),
@@ -209,6 +214,8 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             k_below2: core::array::from_fn(|_| Default::default()),
             k_f1: core::array::from_fn(|_| Default::default()),
             k_f3: core::array::from_fn(|_| Default::default()),
+            tok_lo: core::array::from_fn(|_| Default::default()),
+            tok_hi: core::array::from_fn(|_| Default::default()),
             wrap: Default::default(),
             word_q: core::array::from_fn(|_| Default::default()),
             lo_ram: core::array::from_fn(|_| Default::default()),
@@ -245,8 +252,6 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
     fn update(&mut self) {
         for i in 0..N {
             self.cells[i].clock.next = self.clock.val();
-            self.cells[i].ld_valid.next = self.ld_valid.val();
-            self.cells[i].ld_index.next = self.ld_index.val();
             self.cells[i].ld_pos.next = self.ld_pos.val();
             self.cells[i].ld_lev0.next = self.ld_lev0.val();
             self.cells[i].ld_lev1.next = self.ld_lev1.val();
@@ -257,6 +262,24 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.cells[i].ld_rising.next = self.ld_rising.val();
             self.cells[i].same_polarity.next = self.same_polarity.val();
             self.cells[i].one_sided.next = self.one_sided.val();
+        }
+        // The load tokens: reference r is on the broadcast when the low
+        // token is in cell r (r < N) or the high token in cell r - N; they
+        // enter cell 0 with references 0 and N and move one cell per clock
+        // as the references follow one another.
+        for i in 0..N {
+            self.tok_lo[i].clock.next = self.clock.val();
+            self.tok_hi[i].clock.next = self.clock.val();
+            self.cells[i].ld_lo.next = self.tok_lo[i].q.val();
+            self.cells[i].ld_hi.next = self.tok_hi[i].q.val();
+        }
+        for i in 0..1 {
+            self.tok_lo[i].d.next = self.ld_first.val();
+            self.tok_hi[i].d.next = self.ld_first_hi.val();
+        }
+        for i in 1..N {
+            self.tok_lo[i].d.next = self.tok_lo[i - 1].q.val();
+            self.tok_hi[i].d.next = self.tok_hi[i - 1].q.val();
         }
         // The line's constants travel down the array one cell per clock (a
         // register in every cell: no wire crosses the array; a cell's first
