@@ -3,8 +3,8 @@
 //! The hardware half of the project (`DESIGN.md` §3): a declivity detector
 //! per camera (one pixel per clock, ping-pong line buffer, |ΔI| histogram and
 //! median for `d_t`, extrema tracking and the eq. 3 divider), a systolic
-//! matcher (one processing element per reference declivity computing eq. 4–9
-//! in fixed point), a traceback, an interpolator/depth stage and the top level
+//! matcher (processing elements of two reference declivities each computing
+//! eq. 4–9 in fixed point), a traceback, an interpolator/depth stage and the top level
 //! joining them. Each block generates Verilog that is co-simulated bit-exactly
 //! against the Rust model and checked against `golden`.
 //!
@@ -21,6 +21,7 @@ pub mod declivity_tracker;
 pub mod position_divider;
 pub mod gain_cell;
 pub mod systolic_matcher;
+pub mod choice_select;
 pub mod traceback;
 pub mod record_memory;
 pub mod declivity_matcher;

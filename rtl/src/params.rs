@@ -153,7 +153,11 @@ mod tests {
         assert!(2 * (N_MAX - 1) < 1 << DIAG_BITS);
         assert!(LEVEL_OFFSET + 2 * 255 < 1 << LEVEL_BITS && LEVEL_OFFSET >= 2 * 255);
         assert!(3 * 2 * 510 < 1 << DIST_BITS);
-        let gain_max = 3 * 2 * ((1u64 << DT_BITS) - 1);
+        // f(gmax) at most 3·gmax = 3·(d_t,ref + d_t,other)/2 in gain units,
+        // each d_t at most the largest of MATCH_DT_BITS.
+        let gain_max = 3 * 2 * ((1u64 << MATCH_DT_BITS) - 1);
+        assert_eq!(GAIN_FRAC_BITS, MATCH_DT_FRAC_BITS + 1);
+        assert!(MATCH_DT_FRAC_BITS <= DT_FRAC_BITS);
         let gain_min = (1u64 << GAIN_FRAC_BITS) / 2 * 2 * 3 * 2 * 510;
         assert!(gain_max < 1 << (GAIN_BITS - 1) && gain_min <= 1 << (GAIN_BITS - 1));
         assert!(N_MAX as u64 * gain_max < 1 << PATH_BITS);

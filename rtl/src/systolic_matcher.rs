@@ -44,6 +44,7 @@
 //! [`CELL_DEPTH`], in the word registers one clock later. The high rows' `P(N-1, ·)` comes from the last cell through one
 //! register; the low rows' `P(-1, ·)` is the border, 0.
 
+use crate::choice_select::ChoiceSelect;
 use crate::gain_cell::{GainCell, CELL_DEPTH};
 use crate::params::*;
 use rust_hdl::prelude::*;
@@ -93,6 +94,8 @@ pub struct SystolicMatcher<const N: usize> {
     pub tb_choice: Signal<Out, Bits<2>>,
     pub tb_choice_up: Signal<Out, Bits<2>>,
     pub cells: [GainCell; N],
+    pub row_select: ChoiceSelect,
+    pub up_select: ChoiceSelect,
     col_a_valid: [DFF<Bit>; N],
     col_a_hi: [DFF<Bit>; N],
     col_a_pos: [DFF<Bits<POS_BITS>>; N],
@@ -129,23 +132,6 @@ pub struct SystolicMatcher<const N: usize> {
     rd2_hi: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     last_p: Signal<Local, Bits<PATH_BITS>>,
     wacc: [Signal<Local, Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
-    row_hi: Signal<Local, Bit>,
-    row_cell: Signal<Local, Bits<CELL_BITS>>,
-    row_word: Signal<Local, Bits<CHOICE_WORD_BITS>>,
-    row_widx: Signal<Local, Bits<2>>,
-    row_pair: Signal<Local, Bits<PAIR_BITS>>,
-    up_hi: Signal<Local, Bit>,
-    up_cell: Signal<Local, Bits<CELL_BITS>>,
-    up_word: Signal<Local, Bits<CHOICE_WORD_BITS>>,
-    up_widx: Signal<Local, Bits<2>>,
-    up_pair: Signal<Local, Bits<PAIR_BITS>>,
-    cells_c: Constant<Bits<INDEX_BITS>>,
-    word_shift: Constant<Bits<8>>,
-    bit0: Constant<Bits<8>>,
-    w0: Constant<Bits<2>>,
-    w1: Constant<Bits<2>>,
-    w2: Constant<Bits<2>>,
-    w3: Constant<Bits<2>>,
 }
 
 impl<const N: usize> Default for SystolicMatcher<N> {
@@ -190,6 +176,8 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             tb_choice: Default::default(),
             tb_choice_up: Default::default(),
             cells: core::array::from_fn(|i| GainCell::new(i, N)),
+            row_select: ChoiceSelect::new(N),
+            up_select: ChoiceSelect::new(N),
             col_a_valid: core::array::from_fn(|_| Default::default()),
             col_a_hi: core::array::from_fn(|_| Default::default()),
             col_a_pos: core::array::from_fn(|_| Default::default()),
@@ -226,23 +214,6 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             rd2_hi: core::array::from_fn(|_| Default::default()),
             last_p: Default::default(),
             wacc: core::array::from_fn(|_| Default::default()),
-            row_hi: Default::default(),
-            row_cell: Default::default(),
-            row_word: Default::default(),
-            row_widx: Default::default(),
-            row_pair: Default::default(),
-            up_hi: Default::default(),
-            up_cell: Default::default(),
-            up_word: Default::default(),
-            up_widx: Default::default(),
-            up_pair: Default::default(),
-            cells_c: Constant::new((N as u64).into()),
-            word_shift: Constant::new((CELLS_PER_CHOICE_WORD.trailing_zeros() as u64).into()),
-            bit0: Constant::new(0u64.into()),
-            w0: Constant::new(0u64.into()),
-            w1: Constant::new(1u64.into()),
-            w2: Constant::new(2u64.into()),
-            w3: Constant::new(3u64.into()),
         }
     }
 }
@@ -451,69 +422,26 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.rd2_hi[k].d.next = self.rd_hi[k].q.val();
         }
 
-        // ---- Traceback reads: row r is the low row of cell r or the high
-        // row of cell r - N; its word, then its two bits.
-        self.row_hi.next = self.tb_row.val() >= self.cells_c.val();
-        self.row_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row.val());
-        if self.row_hi.val() {
-            self.row_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row.val() - self.cells_c.val());
-        }
-        self.row_widx.next = self.row_cell.val().get_bits::<2>(self.word_shift.val().index());
-        self.row_pair.next = bit_cast::<PAIR_BITS, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()))
-            + bit_cast::<PAIR_BITS, 4>(self.row_cell.val().get_bits::<4>(self.bit0.val().index()));
-        self.row_word.next = self.rd2_lo[0].q.val();
-        if self.row_hi.val() {
-            self.row_word.next = self.rd2_hi[0].q.val();
-        }
-        if self.row_widx.val() == self.w1.val() {
-            self.row_word.next = self.rd2_lo[1].q.val();
-            if self.row_hi.val() {
-                self.row_word.next = self.rd2_hi[1].q.val();
-            }
-        }
-        if self.row_widx.val() == self.w2.val() {
-            self.row_word.next = self.rd2_lo[2].q.val();
-            if self.row_hi.val() {
-                self.row_word.next = self.rd2_hi[2].q.val();
-            }
-        }
-        if self.row_widx.val() == self.w3.val() {
-            self.row_word.next = self.rd2_lo[3].q.val();
-            if self.row_hi.val() {
-                self.row_word.next = self.rd2_hi[3].q.val();
-            }
-        }
-        self.tb_choice.next = self.row_word.val().get_bits::<2>(self.row_pair.val().index());
-        self.up_hi.next = self.tb_row_up.val() >= self.cells_c.val();
-        self.up_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row_up.val());
-        if self.up_hi.val() {
-            self.up_cell.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.tb_row_up.val() - self.cells_c.val());
-        }
-        self.up_widx.next = self.up_cell.val().get_bits::<2>(self.word_shift.val().index());
-        self.up_pair.next = bit_cast::<PAIR_BITS, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()))
-            + bit_cast::<PAIR_BITS, 4>(self.up_cell.val().get_bits::<4>(self.bit0.val().index()));
-        self.up_word.next = self.rd2_lo[0].q.val();
-        if self.up_hi.val() {
-            self.up_word.next = self.rd2_hi[0].q.val();
-        }
-        if self.up_widx.val() == self.w1.val() {
-            self.up_word.next = self.rd2_lo[1].q.val();
-            if self.up_hi.val() {
-                self.up_word.next = self.rd2_hi[1].q.val();
-            }
-        }
-        if self.up_widx.val() == self.w2.val() {
-            self.up_word.next = self.rd2_lo[2].q.val();
-            if self.up_hi.val() {
-                self.up_word.next = self.rd2_hi[2].q.val();
-            }
-        }
-        if self.up_widx.val() == self.w3.val() {
-            self.up_word.next = self.rd2_lo[3].q.val();
-            if self.up_hi.val() {
-                self.up_word.next = self.rd2_hi[3].q.val();
-            }
-        }
-        self.tb_choice_up.next = self.up_word.val().get_bits::<2>(self.up_pair.val().index());
+        // ---- Traceback reads: the choices of rows tb_row and tb_row_up.
+        self.row_select.lo0.next = self.rd2_lo[0].q.val();
+        self.row_select.hi0.next = self.rd2_hi[0].q.val();
+        self.row_select.lo1.next = self.rd2_lo[1].q.val();
+        self.row_select.hi1.next = self.rd2_hi[1].q.val();
+        self.row_select.lo2.next = self.rd2_lo[2].q.val();
+        self.row_select.hi2.next = self.rd2_hi[2].q.val();
+        self.row_select.lo3.next = self.rd2_lo[3].q.val();
+        self.row_select.hi3.next = self.rd2_hi[3].q.val();
+        self.row_select.row.next = self.tb_row.val();
+        self.tb_choice.next = self.row_select.choice.val();
+        self.up_select.lo0.next = self.rd2_lo[0].q.val();
+        self.up_select.hi0.next = self.rd2_hi[0].q.val();
+        self.up_select.lo1.next = self.rd2_lo[1].q.val();
+        self.up_select.hi1.next = self.rd2_hi[1].q.val();
+        self.up_select.lo2.next = self.rd2_lo[2].q.val();
+        self.up_select.hi2.next = self.rd2_hi[2].q.val();
+        self.up_select.lo3.next = self.rd2_lo[3].q.val();
+        self.up_select.hi3.next = self.rd2_hi[3].q.val();
+        self.up_select.row.next = self.tb_row_up.val();
+        self.tb_choice_up.next = self.up_select.choice.val();
     }
 }
