@@ -58,8 +58,10 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
 /// The matcher's Verilog, built on a thread with room for the block (see
 /// [`crate::matcher::build_matcher`]).
 ///
-/// Every memory of the matcher is marked `no_rw_check`: none is read at an
-/// address on the clock that address is written (the loader writes one
+/// Every memory of the matcher is marked `no_rw_check`: no read whose data
+/// is used is at an address on the clock that address is written (the
+/// memories are read on every clock, but only these reads count: the loader
+/// writes one
 /// bank of the record memories while the engine reads the other; the choice
 /// memory is written during the sweep and read during the traceback that
 /// follows it; the traceback's stack is written while walking and read
