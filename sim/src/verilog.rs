@@ -61,8 +61,8 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
 /// Every memory of the matcher is marked `no_rw_check`: no read whose data
 /// is used is at an address on the clock that address is written (the
 /// memories are read on every clock, but only these reads count: the loader
-/// writes one
-/// bank of the record memories while the engine reads the other; the choice
+/// writes one bank of the record memories while the engine reads the other;
+/// the choice
 /// memory is written during the sweep and read during the traceback that
 /// follows it; the traceback's stack is written while walking and read
 /// while emitting), so Yosys needs no bypass logic between a block RAM's
