@@ -62,10 +62,9 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
 /// is used is at an address on the clock that address is written (the
 /// memories are read on every clock, but only these reads count: the loader
 /// writes one bank of the record memories while the engine reads the other;
-/// the choice
-/// memory is written during the sweep and read during the traceback that
-/// follows it; the traceback's stack is written while walking and read
-/// while emitting), so Yosys needs no bypass logic between a block RAM's
+/// the choice memory is written during the sweep and read during the
+/// traceback that follows it; the traceback's stack is written while walking
+/// and read while emitting), so Yosys needs no bypass logic between a block RAM's
 /// output and its register, where the RAM's clock-to-out leaves no time.
 fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
     let uut: Box<DeclivityMatcher<N>> = crate::matcher::build_matcher::<N>(rule);
