@@ -198,6 +198,7 @@ pub struct DeclivityMatcher<const N: usize> {
     e_wide: DFF<Bit>,
     e_full: DFF<Bit>,
     e_sof: DFF<Bit>,
+    e_fold: DFF<Bit>,
     ld_valid_d: DFF<Bit>,
     ld_index_d: DFF<Bits<INDEX_BITS>>,
     c_valid_d: DFF<Bit>,
@@ -284,6 +285,8 @@ pub struct DeclivityMatcher<const N: usize> {
     dt_sum: Signal<Local, Bits<{ MATCH_DT_BITS + 1 }>>,
     sc_idx: Signal<Local, Bits<INDEX_BITS>>,
     nm: Signal<Local, Bits<SWEEP_BITS>>,
+    sweep_base: Signal<Local, Bits<SWEEP_BITS>>,
+    pend_fold: Signal<Local, Bit>,
     sc_half: Signal<Local, Bits<SWEEP_HALF_BITS>>,
     sc2: Signal<Local, Bits<SWEEP_HALF_BITS>>,
     col_even: Signal<Local, Bit>,
@@ -397,6 +400,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             e_wide: Default::default(),
             e_full: Default::default(),
             e_sof: Default::default(),
+            e_fold: Default::default(),
             ld_valid_d: Default::default(),
             ld_index_d: Default::default(),
             c_valid_d: Default::default(),
@@ -477,6 +481,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             dt_sum: Default::default(),
             sc_idx: Default::default(),
             nm: Default::default(),
+            sweep_base: Default::default(),
+            pend_fold: Default::default(),
             sc_half: Default::default(),
             sc2: Default::default(),
             col_even: Default::default(),
@@ -526,7 +532,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r,  ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
+            e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -623,6 +629,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.take.next = (self.eng.q.val() == self.eng_idle.val()) & self.pend.q.val();
         self.nm.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.pend_n.q.val())
             + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.pend_m.q.val());
+        self.sweep_base.next = self.nm.val() + self.nm.val() + self.sweep_tail.val();
+        // More reference declivities than cells: the high rows are used, the
+        // columns pass the array a second time.
+        self.pend_fold.next = self.pend_n.q.val() > self.cells_c.val();
         // ⌈2·gmax⌉ = ⌈(d_t,ref + d_t,other) / 2^DT_FRAC_BITS⌉: the integer
         // part, plus one when a fraction bit is set.
         if self.take.val() {
@@ -633,10 +643,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.em.d.next = self.pend_m.q.val();
             self.sc.d.next = 0.into();
             // 2·(n + m) + [n > N] + the tail: see `sweep_cycles`.
-            self.sweep_end.d.next = self.nm.val() + self.nm.val() + self.sweep_tail.val();
-            if self.pend_n.q.val() > self.cells_c.val() {
-                self.sweep_end.d.next = self.nm.val() + self.nm.val() + self.sweep_tail.val() + 1;
+            self.sweep_end.d.next = self.sweep_base.val();
+            if self.pend_fold.val() {
+                self.sweep_end.d.next = self.sweep_base.val() + 1;
             }
+            self.e_fold.d.next = self.pend_fold.val();
             self.below2_reg.d.next = self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index());
             // (Saturating at the all-ones value: no doubled distance reaches
             // it, so every distance is then below gmax either way.)
@@ -667,7 +678,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.col_second.next = !self.col_even.val()
             & (self.sc_half.val() >= self.cells_h.val())
             & (self.sc2.val() < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()))
-            & (self.en.q.val() > self.cells_c.val());
+            & self.e_fold.q.val();
         self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_HALF_BITS>(self.sc_half.val());
         if !self.col_even.val() {
             self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_HALF_BITS>(self.sc2.val());
