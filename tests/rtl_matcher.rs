@@ -30,7 +30,7 @@
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
-use rtl::declivity_matcher::{line_cycles, GainRule};
+use rtl::declivity_matcher::{line_cycles, GainRule, TAKE_AFTER_MARKER};
 use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
 use sim::matcher::{
     agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
@@ -276,8 +276,9 @@ proptest! {
         }
     }
 
-    /// `line_cycles(n, m, stop_diag, k, CELLS)` from the engine taking a pair (two
-    /// clocks after its second marker, engine idle) to its marker.
+    /// `line_cycles(n, m, stop_diag, k, CELLS)` from the engine taking a pair
+    /// (`TAKE_AFTER_MARKER` clocks after its second marker, engine idle) to its
+    /// marker.
     #[test]
     fn prop_engine_clocks_per_line_equal_the_documented_formula((cases, dispmax, rule) in any_stream()) {
         let got = run(&cases, dispmax, rule, true)?;
@@ -285,7 +286,7 @@ proptest! {
             let want = golden_match(&c.reference, &c.other, dispmax, rule);
             let (n, m, k) = (c.reference.records.len(), c.other.records.len(), want.nodes.len());
             let formula = line_cycles(n, m, want.stop_diag, k, CELLS) as u64;
-            prop_assert_eq!(g.marker_cycle - g.input_done_cycle - 2, formula, "{:?}: n {} m {} k {} stop {}", c.kind, n, m, k, want.stop_diag);
+            prop_assert_eq!(g.marker_cycle - g.input_done_cycle - TAKE_AFTER_MARKER, formula, "{:?}: n {} m {} k {} stop {}", c.kind, n, m, k, want.stop_diag);
         }
     }
 }
@@ -304,7 +305,7 @@ fn loading_the_next_pair_overlaps_matching_the_current_one() {
         let got = run(&cases, 20 * PX, GainRule::Robust, false).expect("runs");
         for k in 1..cases.len() {
             let (prev, cur) = (&got[k - 1], &got[k]);
-            if cur.input_done_cycle + 2 <= prev.marker_cycle - 2 {
+            if cur.input_done_cycle + TAKE_AFTER_MARKER <= prev.marker_cycle - 2 {
                 let want = golden_match(&cases[k].reference, &cases[k].other, 20 * PX, GainRule::Robust);
                 let lc = line_cycles(cases[k].reference.records.len(), cases[k].other.records.len(), want.stop_diag, want.nodes.len(), CELLS);
                 assert_eq!(cur.marker_cycle - prev.marker_cycle, lc as u64 - 2, "pair {k} of {:?}", cases.iter().map(|c| c.kind).collect::<Vec<_>>());
@@ -352,7 +353,7 @@ fn the_worst_line_pair_of_n_max_declivities_fits_in_the_line_time_of_a_w_max_lin
     let want = golden_match(&reference, &other, dispmax, GainRule::Robust);
     assert_eq!(want.nodes.len(), N_MAX, "the path takes every pair");
     assert_eq!(got[0].pairs(), want.nodes);
-    let clocks = got[0].marker_cycle - got[0].input_done_cycle - 2;
+    let clocks = got[0].marker_cycle - got[0].input_done_cycle - TAKE_AFTER_MARKER;
     assert_eq!(clocks, line_cycles(N_MAX, N_MAX, want.stop_diag, N_MAX, N_CELLS) as u64);
     assert!(clocks <= W_MAX as u64, "{clocks} clocks for the worst line against {W_MAX} pixels of a W_MAX line");
     eprintln!("worst line: {clocks} clocks (stop diagonal {})", want.stop_diag);

@@ -38,7 +38,8 @@
 //!
 //! ## Timing
 //! With the engine idle, a pair whose second marker is taken at clock `t`
-//! waits in the slot from `t + 1` and is taken by the engine at `t + 2`;
+//! is in the input register at `t + 1`, waits in the slot from `t + 2` and
+//! is taken by the engine at `t +` [`TAKE_AFTER_MARKER`];
 //! its marker leaves [`line_cycles`] clocks after that (the sweep,
 //! [`sweep_cycles`], the traceback, [`traceback_cycles`], three output
 //! registers), its matches on the clocks just before, one per clock. The
@@ -49,6 +50,7 @@
 //! 1024 of a `W_MAX` line.
 
 use crate::params::*;
+use crate::record_input::RecordInput;
 use crate::record_memory::RecordMemory;
 use crate::systolic_matcher::{SystolicMatcher, CHOICE_LAG};
 use crate::traceback::{traceback_cycles, Traceback};
@@ -105,6 +107,19 @@ pub const fn line_cycles(n: usize, m: usize, stop_diag: usize, k: usize, cells: 
     sweep_cycles(n, m, cells) + traceback_cycles(n, m, stop_diag, k) + 3
 }
 
+/// Clocks from a line pair's second marker taken on the ports to the
+/// engine taking the pair, when the engine is idle: the input register,
+/// the marker's flag (`done`), the waiting slot.
+pub const TAKE_AFTER_MARKER: u64 = 3;
+
+/// Bits of `d_t,ref + d_t,other` (each [`MATCH_DT_BITS`]).
+const DT_SUM_BITS: usize = MATCH_DT_BITS + 1;
+/// Integer bits of that sum.
+const DT_SUM_INT_BITS: usize = DT_SUM_BITS - MATCH_DT_FRAC_BITS;
+/// Bits of the detector's `d_t` above those the matcher keeps: any of them
+/// set saturates it (see [`MATCH_DT_INT_BITS`]).
+const DT_SAT_BITS: usize = DT_BITS - (DT_FRAC_BITS - MATCH_DT_FRAC_BITS) - MATCH_DT_BITS;
+
 /// Bits of `sc / 2`.
 const SWEEP_HALF_BITS: usize = SWEEP_BITS - 1;
 
@@ -159,6 +174,10 @@ pub struct DeclivityMatcher<const N: usize> {
     pub m_sof: Signal<Out, Bit>,
     pub array: SystolicMatcher<N>,
     pub traceback: Traceback,
+    // The input registers of the two streams.
+    r_in: RecordInput,
+    o_in: RecordInput,
+    r_sof_in: DFF<Bit>,
     // Record memories, two banks each (bank bit on top of the index).
     r_mem: RecordMemory,
     o_mem: RecordMemory,
@@ -180,7 +199,7 @@ pub struct DeclivityMatcher<const N: usize> {
     pend_bank: DFF<Bit>,
     pend_n: DFF<Bits<COUNT_BITS>>,
     pend_m: DFF<Bits<COUNT_BITS>>,
-    pend_dt_sum: DFF<Bits<{ MATCH_DT_BITS + 1 }>>,
+    pend_dt_sum: DFF<Bits<DT_SUM_BITS>>,
     pend_wide: DFF<Bit>,
     pend_full: DFF<Bit>,
     pend_sof: DFF<Bit>,
@@ -282,7 +301,9 @@ pub struct DeclivityMatcher<const N: usize> {
     o_addr: Signal<Local, Bits<DIAG_BITS>>,
     handoff: Signal<Local, Bit>,
     take: Signal<Local, Bit>,
-    dt_sum: Signal<Local, Bits<{ MATCH_DT_BITS + 1 }>>,
+    r_dt_m: Signal<Local, Bits<MATCH_DT_BITS>>,
+    o_dt_m: Signal<Local, Bits<MATCH_DT_BITS>>,
+    dt_sum: Signal<Local, Bits<DT_SUM_BITS>>,
     sc_idx: Signal<Local, Bits<INDEX_BITS>>,
     nm: Signal<Local, Bits<SWEEP_BITS>>,
     sweep_base: Signal<Local, Bits<SWEEP_BITS>>,
@@ -314,6 +335,8 @@ pub struct DeclivityMatcher<const N: usize> {
     bit1: Constant<Bits<8>>,
     dt_frac: Constant<Bits<8>>,
     dt_drop: Constant<Bits<8>>,
+    dt_sat: Constant<Bits<8>>,
+    dt_max: Constant<Bits<MATCH_DT_BITS>>,
 }
 
 impl<const N: usize> DeclivityMatcher<N> {
@@ -365,6 +388,9 @@ impl<const N: usize> DeclivityMatcher<N> {
             m_sof: Default::default(),
             array: Default::default(),
             traceback: Default::default(),
+            r_in: Default::default(),
+            o_in: Default::default(),
+            r_sof_in: Default::default(),
             r_mem: Default::default(),
             o_mem: Default::default(),
             lbank: Default::default(),
@@ -478,6 +504,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_addr: Default::default(),
             handoff: Default::default(),
             take: Default::default(),
+            r_dt_m: Default::default(),
+            o_dt_m: Default::default(),
             dt_sum: Default::default(),
             sc_idx: Default::default(),
             nm: Default::default(),
@@ -509,6 +537,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             bit1: Constant::new(1u64.into()),
             dt_frac: Constant::new((MATCH_DT_FRAC_BITS as u64).into()),
             dt_drop: Constant::new(((DT_FRAC_BITS - MATCH_DT_FRAC_BITS) as u64).into()),
+            dt_sat: Constant::new(((DT_BITS - DT_SAT_BITS) as u64).into()),
+            dt_max: Constant::new(((1u64 << MATCH_DT_BITS) - 1).into()),
         }
     }
 }
@@ -529,7 +559,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.r_mem.relative.next = self.relative.val();
         self.o_mem.relative.next = self.relative.val();
         dff_setup!(
-            self, clock, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
+            self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
@@ -538,11 +568,46 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         );
 
         // ---- Loader: a side takes records until its marker, while no
-        // complete pair waits.
-        self.r_ready.next = !self.r_done.q.val() & !self.pend.q.val();
-        self.o_ready.next = !self.o_done.q.val() & !self.pend.q.val();
-        self.r_take.next = self.r_valid.val() & !self.r_last.val() & !self.r_done.q.val() & !self.pend.q.val();
-        self.o_take.next = self.o_valid.val() & !self.o_last.val() & !self.o_done.q.val() & !self.pend.q.val();
+        // complete pair waits, and not on the clock after its marker (which
+        // is then in the input register). A beat in the input register was
+        // taken with neither its side's marker in nor a pair waiting, and
+        // neither can have arrived since: it is written as it is.
+        self.r_ready.next = !self.r_done.q.val() & !self.pend.q.val() & !(self.r_in.q_valid.val() & self.r_in.q_last.val());
+        self.o_ready.next = !self.o_done.q.val() & !self.pend.q.val() & !(self.o_in.q_valid.val() & self.o_in.q_last.val());
+        self.r_in.clock.next = self.clock.val();
+        self.r_in.ready.next = self.r_ready.val();
+        self.r_in.valid.next = self.r_valid.val();
+        self.r_in.last.next = self.r_last.val();
+        self.r_in.pos.next = self.r_pos.val();
+        self.r_in.amp.next = self.r_amp.val();
+        self.r_in.left0.next = self.r_left0.val();
+        self.r_in.left1.next = self.r_left1.val();
+        self.r_in.left2.next = self.r_left2.val();
+        self.r_in.right0.next = self.r_right0.val();
+        self.r_in.right1.next = self.r_right1.val();
+        self.r_in.right2.next = self.r_right2.val();
+        self.r_in.dt.next = self.r_dt.val();
+        self.r_in.wide.next = self.r_wide.val();
+        self.r_in.full.next = self.r_full.val();
+        self.r_sof_in.d.next = self.r_sof.val();
+
+        self.o_in.clock.next = self.clock.val();
+        self.o_in.ready.next = self.o_ready.val();
+        self.o_in.valid.next = self.o_valid.val();
+        self.o_in.last.next = self.o_last.val();
+        self.o_in.pos.next = self.o_pos.val();
+        self.o_in.amp.next = self.o_amp.val();
+        self.o_in.left0.next = self.o_left0.val();
+        self.o_in.left1.next = self.o_left1.val();
+        self.o_in.left2.next = self.o_left2.val();
+        self.o_in.right0.next = self.o_right0.val();
+        self.o_in.right1.next = self.o_right1.val();
+        self.o_in.right2.next = self.o_right2.val();
+        self.o_in.dt.next = self.o_dt.val();
+        self.o_in.wide.next = self.o_wide.val();
+        self.o_in.full.next = self.o_full.val();
+        self.r_take.next = self.r_in.q_valid.val() & !self.r_in.q_last.val();
+        self.o_take.next = self.o_in.q_valid.val() & !self.o_in.q_last.val();
         self.r_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.r_count.q.val());
         if self.lbank.q.val() {
             self.r_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.r_count.q.val()) + self.bank_size.val();
@@ -554,24 +619,24 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // Records beyond N are dropped (the line is then full).
         self.r_mem.w_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
         self.r_mem.w_addr.next = self.r_addr.val();
-        self.r_mem.w_pos.next = self.r_pos.val();
-        self.r_mem.w_amp.next = self.r_amp.val();
-        self.r_mem.w_left0.next = self.r_left0.val();
-        self.r_mem.w_left1.next = self.r_left1.val();
-        self.r_mem.w_left2.next = self.r_left2.val();
-        self.r_mem.w_right0.next = self.r_right0.val();
-        self.r_mem.w_right1.next = self.r_right1.val();
-        self.r_mem.w_right2.next = self.r_right2.val();
+        self.r_mem.w_pos.next = self.r_in.q_pos.val();
+        self.r_mem.w_amp.next = self.r_in.q_amp.val();
+        self.r_mem.w_left0.next = self.r_in.q_left0.val();
+        self.r_mem.w_left1.next = self.r_in.q_left1.val();
+        self.r_mem.w_left2.next = self.r_in.q_left2.val();
+        self.r_mem.w_right0.next = self.r_in.q_right0.val();
+        self.r_mem.w_right1.next = self.r_in.q_right1.val();
+        self.r_mem.w_right2.next = self.r_in.q_right2.val();
         self.o_mem.w_enable.next = self.o_take.val() & (self.o_count.q.val() < self.n_max.val());
         self.o_mem.w_addr.next = self.o_addr.val();
-        self.o_mem.w_pos.next = self.o_pos.val();
-        self.o_mem.w_amp.next = self.o_amp.val();
-        self.o_mem.w_left0.next = self.o_left0.val();
-        self.o_mem.w_left1.next = self.o_left1.val();
-        self.o_mem.w_left2.next = self.o_left2.val();
-        self.o_mem.w_right0.next = self.o_right0.val();
-        self.o_mem.w_right1.next = self.o_right1.val();
-        self.o_mem.w_right2.next = self.o_right2.val();
+        self.o_mem.w_pos.next = self.o_in.q_pos.val();
+        self.o_mem.w_amp.next = self.o_in.q_amp.val();
+        self.o_mem.w_left0.next = self.o_in.q_left0.val();
+        self.o_mem.w_left1.next = self.o_in.q_left1.val();
+        self.o_mem.w_left2.next = self.o_in.q_left2.val();
+        self.o_mem.w_right0.next = self.o_in.q_right0.val();
+        self.o_mem.w_right1.next = self.o_in.q_right1.val();
+        self.o_mem.w_right2.next = self.o_in.q_right2.val();
         if self.r_take.val() {
             if self.r_count.q.val() < self.n_max.val() {
                 self.r_count.d.next = self.r_count.q.val() + 1;
@@ -586,27 +651,33 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
                 self.o_flags_full.d.next = true;
             }
         }
-        if self.r_valid.val() & self.r_last.val() & !self.r_done.q.val() & !self.pend.q.val() {
+        if self.r_in.q_valid.val() & self.r_in.q_last.val() {
             self.r_done.d.next = true;
-            self.r_dt_reg.d.next = self.r_dt.val();
-            self.r_flags_wide.d.next = self.r_wide.val();
-            self.r_flags_full.d.next = self.r_flags_full.q.val() | self.r_full.val();
-            self.r_sof_reg.d.next = self.r_sof.val();
+            self.r_dt_reg.d.next = self.r_in.q_dt.val();
+            self.r_flags_wide.d.next = self.r_in.q_wide.val();
+            self.r_flags_full.d.next = self.r_flags_full.q.val() | self.r_in.q_full.val();
+            self.r_sof_reg.d.next = self.r_sof_in.q.val();
         }
-        if self.o_valid.val() & self.o_last.val() & !self.o_done.q.val() & !self.pend.q.val() {
+        if self.o_in.q_valid.val() & self.o_in.q_last.val() {
             self.o_done.d.next = true;
-            self.o_dt_reg.d.next = self.o_dt.val();
-            self.o_flags_wide.d.next = self.o_wide.val();
-            self.o_flags_full.d.next = self.o_flags_full.q.val() | self.o_full.val();
+            self.o_dt_reg.d.next = self.o_in.q_dt.val();
+            self.o_flags_wide.d.next = self.o_in.q_wide.val();
+            self.o_flags_full.d.next = self.o_flags_full.q.val() | self.o_in.q_full.val();
         }
         // Both markers in and the slot free: the pair waits for the engine.
         self.handoff.next = self.r_done.q.val() & self.o_done.q.val() & !self.pend.q.val();
-        // d_t,ref + d_t,other, each rounded down to MATCH_DT_FRAC_BITS.
-        self.dt_sum.next = bit_cast::<{ MATCH_DT_BITS + 1 }, MATCH_DT_BITS>(
-            self.r_dt_reg.q.val().get_bits::<MATCH_DT_BITS>(self.dt_drop.val().index()),
-        ) + bit_cast::<{ MATCH_DT_BITS + 1 }, MATCH_DT_BITS>(
-            self.o_dt_reg.q.val().get_bits::<MATCH_DT_BITS>(self.dt_drop.val().index()),
-        );
+        // d_t,ref + d_t,other, each rounded down to MATCH_DT_FRAC_BITS and
+        // saturated at MATCH_DT_BITS.
+        self.r_dt_m.next = self.r_dt_reg.q.val().get_bits::<MATCH_DT_BITS>(self.dt_drop.val().index());
+        if self.r_dt_reg.q.val().get_bits::<DT_SAT_BITS>(self.dt_sat.val().index()).any() {
+            self.r_dt_m.next = self.dt_max.val();
+        }
+        self.o_dt_m.next = self.o_dt_reg.q.val().get_bits::<MATCH_DT_BITS>(self.dt_drop.val().index());
+        if self.o_dt_reg.q.val().get_bits::<DT_SAT_BITS>(self.dt_sat.val().index()).any() {
+            self.o_dt_m.next = self.dt_max.val();
+        }
+        self.dt_sum.next = bit_cast::<DT_SUM_BITS, MATCH_DT_BITS>(self.r_dt_m.val())
+            + bit_cast::<DT_SUM_BITS, MATCH_DT_BITS>(self.o_dt_m.val());
         if self.handoff.val() {
             self.pend.d.next = true;
             self.pend_bank.d.next = self.lbank.q.val();
@@ -648,19 +719,18 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
                 self.sweep_end.d.next = self.sweep_base.val() + 1;
             }
             self.e_fold.d.next = self.pend_fold.val();
-            self.below2_reg.d.next = self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index());
-            // (Saturating at the all-ones value: no doubled distance reaches
-            // it, so every distance is then below gmax either way.)
-            if self.pend_dt_sum.q.val().get_bits::<MATCH_DT_FRAC_BITS>(0).any()
-                & !self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index()).all()
-            {
-                self.below2_reg.d.next =
-                    self.pend_dt_sum.q.val().get_bits::<DIST_BITS>(self.dt_frac.val().index()) + 1;
+            self.below2_reg.d.next = bit_cast::<DIST_BITS, DT_SUM_INT_BITS>(
+                self.pend_dt_sum.q.val().get_bits::<DT_SUM_INT_BITS>(self.dt_frac.val().index()),
+            );
+            if self.pend_dt_sum.q.val().get_bits::<MATCH_DT_FRAC_BITS>(0).any() {
+                self.below2_reg.d.next = bit_cast::<DIST_BITS, DT_SUM_INT_BITS>(
+                    self.pend_dt_sum.q.val().get_bits::<DT_SUM_INT_BITS>(self.dt_frac.val().index()),
+                ) + 1;
             }
-            self.f1_reg.d.next = bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val());
-            self.f3_reg.d.next = bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val())
-                + bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val())
-                + bit_cast::<GAIN_BITS, { MATCH_DT_BITS + 1 }>(self.pend_dt_sum.q.val());
+            self.f1_reg.d.next = bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.pend_dt_sum.q.val());
+            self.f3_reg.d.next = bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.pend_dt_sum.q.val())
+                + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.pend_dt_sum.q.val())
+                + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.pend_dt_sum.q.val());
             self.e_wide.d.next = self.pend_wide.q.val();
             self.e_full.d.next = self.pend_full.q.val();
             self.e_sof.d.next = self.pend_sof.q.val();

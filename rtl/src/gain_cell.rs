@@ -122,6 +122,7 @@ pub struct GainCell {
     level_sign: Constant<Bits<8>>,
     sign_fill: Constant<Bits<SCORE_BITS>>,
     score_msb: Constant<Bits<8>>,
+    path_sign: Constant<Bits<8>>,
     choice_start: Constant<Bits<2>>,
     choice_node: Constant<Bits<2>>,
     choice_up: Constant<Bits<2>>,
@@ -230,6 +231,8 @@ pub struct GainCell {
     g_ext: Signal<Local, Bits<SCORE_BITS>>,
     up: Signal<Local, Bits<PATH_BITS>>,
     take_node: Signal<Local, Bit>,
+    up_diff: Signal<Local, Bits<{ PATH_BITS + 1 }>>,
+    left_diff: Signal<Local, Bits<{ PATH_BITS + 1 }>>,
     up_wins: Signal<Local, Bit>,
     left_wins: Signal<Local, Bit>,
     best: Signal<Local, Bits<PATH_BITS>>,
@@ -284,6 +287,7 @@ impl GainCell {
             level_sign: Constant::new((LEVEL_BITS as u64).into()),
             sign_fill: Constant::new((((1u64 << SCORE_BITS) - 1) ^ ((1u64 << GAIN_BITS) - 1)).into()),
             score_msb: Constant::new(((SCORE_BITS - 1) as u64).into()),
+            path_sign: Constant::new((PATH_BITS as u64).into()),
             choice_start: Constant::new(CHOICE_START.into()),
             choice_node: Constant::new(CHOICE_NODE.into()),
             choice_up: Constant::new(CHOICE_UP.into()),
@@ -379,6 +383,8 @@ impl GainCell {
             g_ext: Default::default(),
             up: Default::default(),
             take_node: Default::default(),
+            up_diff: Default::default(),
+            left_diff: Default::default(),
             up_wins: Default::default(),
             left_wins: Default::default(),
             best: Default::default(),
@@ -607,7 +613,11 @@ impl Logic for GainCell {
 
         // ---- G: P(i-1, j) only when strictly greater. (The same `up` as
         // stage E's: the node in G is two clocks ahead, in the same row.)
-        self.up_wins.next = self.up.val() > self.f_best.q.val();
+        // (`a > b` as the borrow of `b - a`: one carry chain, where Yosys
+        // maps `>` on these widths to a chain and as many LUTs again.)
+        self.up_diff.next = bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.f_best.q.val())
+            - bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.up.val());
+        self.up_wins.next = self.up_diff.val().get_bit(self.path_sign.val().index());
         self.g_valid.d.next = self.f_valid.q.val();
         if self.f_valid.q.val() {
             self.g_best.d.next = self.f_best.q.val();
@@ -622,7 +632,9 @@ impl Logic for GainCell {
         }
 
         // ---- H: P(i, j-1), out two clocks ago, only when strictly greater.
-        self.left_wins.next = self.p_d1.q.val() > self.g_best.q.val();
+        self.left_diff.next = bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.g_best.q.val())
+            - bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.p_d1.q.val());
+        self.left_wins.next = self.left_diff.val().get_bit(self.path_sign.val().index());
         self.best.next = self.g_best.q.val();
         self.best_choice.next = self.g_choice.q.val();
         if self.left_wins.val() {

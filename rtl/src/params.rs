@@ -107,24 +107,42 @@ pub const DIST_SUM_BITS: usize = DIST_BITS + 1;
 /// rounds the same way. Four fraction bits fewer narrow every gain and path
 /// register of the array by four bits.)
 pub const MATCH_DT_FRAC_BITS: usize = 1;
+/// Integer bits of that `d_t`: it saturates at `2^PIXEL_BITS - 1/2` grey
+/// levels. A line whose `d_t` is 255 or more has no declivity (eq. 1:
+/// `|a_i| > d_t`, and an amplitude of 8-bit pixels is at most 255), so no
+/// node of its pair exists and the saturation changes no match; it bounds
+/// `gmax`, and with it every gain and path register of the array.
+pub const MATCH_DT_INT_BITS: usize = PIXEL_BITS;
 /// Bits of that `d_t`.
-pub const MATCH_DT_BITS: usize = DT_INT_BITS + MATCH_DT_FRAC_BITS;
+pub const MATCH_DT_BITS: usize = MATCH_DT_INT_BITS + MATCH_DT_FRAC_BITS;
 /// Fraction bits of a gain: the unit is `2^-(MATCH_DT_FRAC_BITS + 1)` grey
 /// levels, so `2·gmax = d_t,ref + d_t,other` (eq. 8) is exact and every
 /// local gain of eq. 7 is an integer in this unit.
 pub const GAIN_FRAC_BITS: usize = MATCH_DT_FRAC_BITS + 1;
-/// Bits of a local gain (two's complement): `3·gmax < 3·2^DT_INT_BITS` grey
-/// levels above, `-(2·lpd + 2·rpd)/2 > -2^DIST_BITS` below.
-pub const GAIN_BITS: usize = DT_INT_BITS + GAIN_FRAC_BITS + 3;
+/// Bits of the largest local gain, `3·gmax < 3·2^MATCH_DT_INT_BITS` grey
+/// levels (unsigned).
+pub const GAIN_MAX_BITS: usize = MATCH_DT_INT_BITS + 2 + GAIN_FRAC_BITS;
+/// Bits of a local gain (two's complement): below `2^GAIN_MAX_BITS` above,
+/// `-(2·lpd + 2·rpd)/2 > -2^DIST_BITS` grey levels below.
+pub const GAIN_BITS: usize = max_usize(GAIN_MAX_BITS, DIST_BITS + GAIN_FRAC_BITS) + 1;
 /// Bits of a path gain `P(i, j) ≥ 0`: at most `N_MAX` nodes of the largest
 /// gain.
-pub const PATH_BITS: usize = GAIN_BITS - 1 + INDEX_BITS;
+pub const PATH_BITS: usize = GAIN_MAX_BITS + INDEX_BITS;
 /// Bits of `G(i, j) = g + P(i-1, j-1)` (two's complement).
 pub const SCORE_BITS: usize = PATH_BITS + 1;
 /// Bits of the search bound `dispmax` of eq. 6, in the position format
 /// ([`POS_FRAC_BITS`] fraction bits); larger bounds are clamped to the
 /// largest, which no disparity inside a line reaches.
 pub const DISPMAX_BITS: usize = POS_BITS;
+
+/// The larger of two widths (for constants).
+const fn max_usize(a: usize, b: usize) -> usize {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -156,6 +174,9 @@ mod tests {
         // f(gmax) at most 3·gmax = 3·(d_t,ref + d_t,other)/2 in gain units,
         // each d_t at most the largest of MATCH_DT_BITS.
         let gain_max = 3 * 2 * ((1u64 << MATCH_DT_BITS) - 1);
+        // The saturated d_t is at least 255 grey levels: no amplitude of
+        // 8-bit pixels exceeds it, so a line at it has no declivity.
+        assert!((1u64 << MATCH_DT_BITS) - 1 >= 255 << MATCH_DT_FRAC_BITS);
         assert_eq!(GAIN_FRAC_BITS, MATCH_DT_FRAC_BITS + 1);
         assert!(MATCH_DT_FRAC_BITS <= DT_FRAC_BITS);
         let gain_min = (1u64 << GAIN_FRAC_BITS) / 2 * 2 * 3 * 2 * 510;

@@ -14,11 +14,14 @@
 //!   0–2) and `rising`.
 //!
 //! ## Timing
-//! One write and one read per clock (block RAM with a registered read). The
-//! matcher never reads an address on the clock it writes it (the loader
-//! writes one bank while the engine reads the other), and its Verilog tells
-//! the synthesis so (`no_rw_check`): what such a read returns is left
-//! undefined.
+//! One write and one read per clock (block RAM with a registered read). A
+//! write reaches the RAM one clock after it is on the ports: the record
+//! goes into registers in the RAM's format first (the level conversion's
+//! adders and the route to the block RAM's data inputs do not fit in one
+//! clock on a full ECP5-85K). The matcher never reads an address on the
+//! clock it writes it (the loader writes one bank while the engine reads
+//! the other), and its Verilog tells the synthesis so (`no_rw_check`):
+//! what such a read returns is left undefined.
 
 use crate::params::*;
 use rust_hdl::prelude::*;
@@ -55,6 +58,16 @@ pub struct RecordMemory {
     lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
     lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
     lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    // The write, in the RAMs' format.
+    wq_enable: DFF<Bit>,
+    wq_addr: DFF<Bits<DIAG_BITS>>,
+    wq_pos: DFF<Bits<{ POS_BITS + 1 }>>,
+    wq_lev0: DFF<Bits<LEVEL_BITS>>,
+    wq_lev1: DFF<Bits<LEVEL_BITS>>,
+    wq_lev2: DFF<Bits<LEVEL_BITS>>,
+    wq_lev3: DFF<Bits<LEVEL_BITS>>,
+    wq_lev4: DFF<Bits<LEVEL_BITS>>,
+    wq_lev5: DFF<Bits<LEVEL_BITS>>,
     ends: Signal<Local, Bits<LEVEL_BITS>>,
     level_offset: Constant<Bits<LEVEL_BITS>>,
     amp_msb: Constant<Bits<8>>,
@@ -93,6 +106,15 @@ impl Default for RecordMemory {
             lev3_mem: Default::default(),
             lev4_mem: Default::default(),
             lev5_mem: Default::default(),
+            wq_enable: Default::default(),
+            wq_addr: Default::default(),
+            wq_pos: Default::default(),
+            wq_lev0: Default::default(),
+            wq_lev1: Default::default(),
+            wq_lev2: Default::default(),
+            wq_lev3: Default::default(),
+            wq_lev4: Default::default(),
+            wq_lev5: Default::default(),
             ends: Default::default(),
             level_offset: Constant::new(LEVEL_OFFSET.into()),
             amp_msb: Constant::new(((AMP_BITS - 1) as u64).into()),
@@ -119,53 +141,63 @@ impl Logic for RecordMemory {
         self.lev4_mem.write_clock.next = self.clock.val();
         self.lev5_mem.read_clock.next = self.clock.val();
         self.lev5_mem.write_clock.next = self.clock.val();
+        dff_setup!(self, clock, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
 
         self.ends.next = 0.into();
         if self.relative.val() {
             self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
                 + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val());
         }
-        self.pos_mem.write_data.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.w_pos.val())
+        self.wq_pos.d.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.w_pos.val())
             .replace_bit(self.rise_bit.val().index(), !self.w_amp.val().get_bit(self.amp_msb.val().index()));
-        self.lev0_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
+        self.wq_lev0.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.lev1_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left1.val())
+        self.wq_lev1.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left1.val())
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left1.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.lev2_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left2.val())
+        self.wq_lev2.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left2.val())
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left2.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.lev3_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val())
+        self.wq_lev3.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val())
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.lev4_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right1.val())
+        self.wq_lev4.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right1.val())
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right1.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.lev5_mem.write_data.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
+        self.wq_lev5.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
             + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
             + self.level_offset.val()
             - self.ends.val();
 
-        self.pos_mem.write_address.next = self.w_addr.val();
-        self.lev0_mem.write_address.next = self.w_addr.val();
-        self.lev1_mem.write_address.next = self.w_addr.val();
-        self.lev2_mem.write_address.next = self.w_addr.val();
-        self.lev3_mem.write_address.next = self.w_addr.val();
-        self.lev4_mem.write_address.next = self.w_addr.val();
-        self.lev5_mem.write_address.next = self.w_addr.val();
-        self.pos_mem.write_enable.next = self.w_enable.val();
-        self.lev0_mem.write_enable.next = self.w_enable.val();
-        self.lev1_mem.write_enable.next = self.w_enable.val();
-        self.lev2_mem.write_enable.next = self.w_enable.val();
-        self.lev3_mem.write_enable.next = self.w_enable.val();
-        self.lev4_mem.write_enable.next = self.w_enable.val();
-        self.lev5_mem.write_enable.next = self.w_enable.val();
+        self.wq_enable.d.next = self.w_enable.val();
+        self.wq_addr.d.next = self.w_addr.val();
+        self.pos_mem.write_data.next = self.wq_pos.q.val();
+        self.pos_mem.write_address.next = self.wq_addr.q.val();
+        self.lev0_mem.write_data.next = self.wq_lev0.q.val();
+        self.lev0_mem.write_address.next = self.wq_addr.q.val();
+        self.lev1_mem.write_data.next = self.wq_lev1.q.val();
+        self.lev1_mem.write_address.next = self.wq_addr.q.val();
+        self.lev2_mem.write_data.next = self.wq_lev2.q.val();
+        self.lev2_mem.write_address.next = self.wq_addr.q.val();
+        self.lev3_mem.write_data.next = self.wq_lev3.q.val();
+        self.lev3_mem.write_address.next = self.wq_addr.q.val();
+        self.lev4_mem.write_data.next = self.wq_lev4.q.val();
+        self.lev4_mem.write_address.next = self.wq_addr.q.val();
+        self.lev5_mem.write_data.next = self.wq_lev5.q.val();
+        self.lev5_mem.write_address.next = self.wq_addr.q.val();
+        self.pos_mem.write_enable.next = self.wq_enable.q.val();
+        self.lev0_mem.write_enable.next = self.wq_enable.q.val();
+        self.lev1_mem.write_enable.next = self.wq_enable.q.val();
+        self.lev2_mem.write_enable.next = self.wq_enable.q.val();
+        self.lev3_mem.write_enable.next = self.wq_enable.q.val();
+        self.lev4_mem.write_enable.next = self.wq_enable.q.val();
+        self.lev5_mem.write_enable.next = self.wq_enable.q.val();
         self.pos_mem.read_address.next = self.r_addr.val();
         self.lev0_mem.read_address.next = self.r_addr.val();
         self.lev1_mem.read_address.next = self.r_addr.val();

@@ -17,8 +17,8 @@ use golden::dp::{prefix_max_dp, Choice, GainTable};
 use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
-use rtl::declivity_matcher::{DeclivityMatcher, GainRule};
-use rtl::params::{DT_FRAC_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
+use rtl::declivity_matcher::{DeclivityMatcher, GainRule, TAKE_AFTER_MARKER};
+use rtl::params::{DT_FRAC_BITS, MATCH_DT_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
 use rust_hdl::prelude::*;
 use serde::Serialize;
 
@@ -316,7 +316,9 @@ pub fn quantize_line(f: &LineFeatures) -> MatchLine {
 
 /// The declivities of a [`MatchLine`] as golden's, with their fixed-point
 /// positions, and its `d_t` in grey levels as the matcher uses it: rounded
-/// down to `MATCH_DT_FRAC_BITS` fraction bits.
+/// down to `MATCH_DT_FRAC_BITS` fraction bits and saturated at
+/// `MATCH_DT_BITS` (255.5: a line whose `d_t` reaches 255 has no
+/// declivity, so real lines never meet the saturation).
 pub fn dequantize(line: &MatchLine) -> (Vec<Declivity>, f64) {
     let decls = line
         .records
@@ -330,7 +332,7 @@ pub fn dequantize(line: &MatchLine) -> (Vec<Declivity>, f64) {
             right: r.right,
         })
         .collect();
-    let dt = line.dt >> (DT_FRAC_BITS - MATCH_DT_FRAC_BITS);
+    let dt = (line.dt >> (DT_FRAC_BITS - MATCH_DT_FRAC_BITS)).min((1 << MATCH_DT_BITS) - 1);
     (decls, dt as f64 / (1u32 << MATCH_DT_FRAC_BITS) as f64)
 }
 
@@ -542,10 +544,11 @@ pub fn match_lines<const N: usize>(
             Agreement::Mismatch => report.mismatch_lines += 1,
         }
         report.malformed_lines += check_line(r, o, &rtl, &golden).is_err() as usize;
-        // The engine takes a pair two clocks after its second marker, or
-        // the clock after the previous pair's traceback ends (its marker
-        // leaves three clocks later).
-        let take = prev_marker.map_or(rtl.input_done_cycle + 2, |p| (rtl.input_done_cycle + 2).max(p - 2));
+        // The engine takes a pair TAKE_AFTER_MARKER clocks after its second
+        // marker, or the clock after the previous pair's traceback ends (its
+        // marker leaves three clocks later).
+        let ready = rtl.input_done_cycle + TAKE_AFTER_MARKER;
+        let take = prev_marker.map_or(ready, |p| ready.max(p - 2));
         let engine_cycles = rtl.marker_cycle - take;
         if engine_cycles > report.max_cycles_per_line {
             report.max_cycles_per_line = engine_cycles;
