@@ -222,30 +222,13 @@ pub struct DeclivityMatcher<const N: usize> {
     ld_index_d: DFF<Bits<INDEX_BITS>>,
     c_valid_d: DFF<Bit>,
     c_hi_d: DFF<Bit>,
-    // The record memories' outputs registered twice before the broadcast
-    // and the array: first into a register of their own, next to the RAM (a
-    // block RAM's clock-to-out leaves time for little else), then into the
-    // register that drives the wires; the control bits alongside.
+    // The record memories' outputs (already registered inside the block
+    // RAMs) registered again into the registers that drive the broadcast
+    // and the array; the control bits alongside.
     c_valid_e: DFF<Bit>,
     ld_first: DFF<Bit>,
     ld_first_hi: DFF<Bit>,
     c_hi_e: DFF<Bit>,
-    ld_pos_r: DFF<Bits<POS_BITS>>,
-    ld_lev0_r: DFF<Bits<LEVEL_BITS>>,
-    ld_lev1_r: DFF<Bits<LEVEL_BITS>>,
-    ld_lev2_r: DFF<Bits<LEVEL_BITS>>,
-    ld_lev3_r: DFF<Bits<LEVEL_BITS>>,
-    ld_lev4_r: DFF<Bits<LEVEL_BITS>>,
-    ld_lev5_r: DFF<Bits<LEVEL_BITS>>,
-    ld_rising_r: DFF<Bit>,
-    c_pos_r: DFF<Bits<POS_BITS>>,
-    c_lev0_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev1_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev2_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev3_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev4_r: DFF<Bits<LEVEL_BITS>>,
-    c_lev5_r: DFF<Bits<LEVEL_BITS>>,
-    c_rising_r: DFF<Bit>,
     ld_pos_q: DFF<Bits<POS_BITS>>,
     ld_lev0_q: DFF<Bits<LEVEL_BITS>>,
     ld_lev1_q: DFF<Bits<LEVEL_BITS>>,
@@ -275,8 +258,6 @@ pub struct DeclivityMatcher<const N: usize> {
     w_i: DFF<Bits<INDEX_BITS>>,
     w_j: DFF<Bits<INDEX_BITS>>,
     w_count: DFF<Bits<COUNT_BITS>>,
-    w_xr: DFF<Bits<POS_BITS>>,
-    w_xo: DFF<Bits<POS_BITS>>,
     w_n: DFF<Bits<COUNT_BITS>>,
     w_m: DFF<Bits<COUNT_BITS>>,
     w_wide: DFF<Bit>,
@@ -435,22 +416,6 @@ impl<const N: usize> DeclivityMatcher<N> {
             ld_first: Default::default(),
             ld_first_hi: Default::default(),
             c_hi_e: Default::default(),
-            ld_pos_r: Default::default(),
-            ld_lev0_r: Default::default(),
-            ld_lev1_r: Default::default(),
-            ld_lev2_r: Default::default(),
-            ld_lev3_r: Default::default(),
-            ld_lev4_r: Default::default(),
-            ld_lev5_r: Default::default(),
-            ld_rising_r: Default::default(),
-            c_pos_r: Default::default(),
-            c_lev0_r: Default::default(),
-            c_lev1_r: Default::default(),
-            c_lev2_r: Default::default(),
-            c_lev3_r: Default::default(),
-            c_lev4_r: Default::default(),
-            c_lev5_r: Default::default(),
-            c_rising_r: Default::default(),
             ld_pos_q: Default::default(),
             ld_lev0_q: Default::default(),
             ld_lev1_q: Default::default(),
@@ -479,8 +444,6 @@ impl<const N: usize> DeclivityMatcher<N> {
             w_i: Default::default(),
             w_j: Default::default(),
             w_count: Default::default(),
-            w_xr: Default::default(),
-            w_xo: Default::default(),
             w_n: Default::default(),
             w_m: Default::default(),
             w_wide: Default::default(),
@@ -562,7 +525,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_r, ld_lev0_r, ld_lev1_r, ld_lev2_r, ld_lev3_r, ld_lev4_r, ld_lev5_r, ld_rising_r, c_pos_r, c_lev0_r, c_lev1_r, c_lev2_r, c_lev3_r, c_lev4_r, c_lev5_r, c_rising_r, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_xr, w_xo, w_n, w_m, w_wide, w_full, w_sof, out_valid,
+            e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -797,42 +760,26 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // broadcast (the array moves them on to the cells).
         self.ld_first.d.next = self.ld_valid_d.q.val() & !self.ld_index_d.q.val().any();
         self.ld_first_hi.d.next = self.ld_valid_d.q.val() & (self.ld_index_d.q.val() == self.cells_i.val());
-        self.ld_pos_r.d.next = self.r_mem.pos.val();
-        self.ld_pos_q.d.next = self.ld_pos_r.q.val();
-        self.ld_lev0_r.d.next = self.r_mem.lev0.val();
-        self.ld_lev0_q.d.next = self.ld_lev0_r.q.val();
-        self.ld_lev1_r.d.next = self.r_mem.lev1.val();
-        self.ld_lev1_q.d.next = self.ld_lev1_r.q.val();
-        self.ld_lev2_r.d.next = self.r_mem.lev2.val();
-        self.ld_lev2_q.d.next = self.ld_lev2_r.q.val();
-        self.ld_lev3_r.d.next = self.r_mem.lev3.val();
-        self.ld_lev3_q.d.next = self.ld_lev3_r.q.val();
-        self.ld_lev4_r.d.next = self.r_mem.lev4.val();
-        self.ld_lev4_q.d.next = self.ld_lev4_r.q.val();
-        self.ld_lev5_r.d.next = self.r_mem.lev5.val();
-        self.ld_lev5_q.d.next = self.ld_lev5_r.q.val();
-        self.ld_rising_r.d.next = self.r_mem.rising.val();
-        self.ld_rising_q.d.next = self.ld_rising_r.q.val();
+        self.ld_pos_q.d.next = self.r_mem.pos.val();
+        self.ld_lev0_q.d.next = self.r_mem.lev0.val();
+        self.ld_lev1_q.d.next = self.r_mem.lev1.val();
+        self.ld_lev2_q.d.next = self.r_mem.lev2.val();
+        self.ld_lev3_q.d.next = self.r_mem.lev3.val();
+        self.ld_lev4_q.d.next = self.r_mem.lev4.val();
+        self.ld_lev5_q.d.next = self.r_mem.lev5.val();
+        self.ld_rising_q.d.next = self.r_mem.rising.val();
         self.c_valid_e.d.next = self.c_valid_d.q.val();
         self.c_hi_e.d.next = self.c_hi_d.q.val();
         self.c_valid_q.d.next = self.c_valid_e.q.val();
         self.c_hi_q.d.next = self.c_hi_e.q.val();
-        self.c_pos_r.d.next = self.o_mem.pos.val();
-        self.c_pos_q.d.next = self.c_pos_r.q.val();
-        self.c_lev0_r.d.next = self.o_mem.lev0.val();
-        self.c_lev0_q.d.next = self.c_lev0_r.q.val();
-        self.c_lev1_r.d.next = self.o_mem.lev1.val();
-        self.c_lev1_q.d.next = self.c_lev1_r.q.val();
-        self.c_lev2_r.d.next = self.o_mem.lev2.val();
-        self.c_lev2_q.d.next = self.c_lev2_r.q.val();
-        self.c_lev3_r.d.next = self.o_mem.lev3.val();
-        self.c_lev3_q.d.next = self.c_lev3_r.q.val();
-        self.c_lev4_r.d.next = self.o_mem.lev4.val();
-        self.c_lev4_q.d.next = self.c_lev4_r.q.val();
-        self.c_lev5_r.d.next = self.o_mem.lev5.val();
-        self.c_lev5_q.d.next = self.c_lev5_r.q.val();
-        self.c_rising_r.d.next = self.o_mem.rising.val();
-        self.c_rising_q.d.next = self.c_rising_r.q.val();
+        self.c_pos_q.d.next = self.o_mem.pos.val();
+        self.c_lev0_q.d.next = self.o_mem.lev0.val();
+        self.c_lev1_q.d.next = self.o_mem.lev1.val();
+        self.c_lev2_q.d.next = self.o_mem.lev2.val();
+        self.c_lev3_q.d.next = self.o_mem.lev3.val();
+        self.c_lev4_q.d.next = self.o_mem.lev4.val();
+        self.c_lev5_q.d.next = self.o_mem.lev5.val();
+        self.c_rising_q.d.next = self.o_mem.rising.val();
         self.array.ld_first.next = self.ld_first.q.val();
         self.array.ld_first_hi.next = self.ld_first_hi.q.val();
         self.array.ld_pos.next = self.ld_pos_q.q.val();
@@ -887,10 +834,6 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.w_i.d.next = self.q_i.q.val();
             self.w_j.d.next = self.q_j.q.val();
         }
-        // Block RAM outputs straight into registers: a block RAM's
-        // clock-to-out leaves no time for logic.
-        self.w_xr.d.next = self.r_mem.pos.val();
-        self.w_xo.d.next = self.o_mem.pos.val();
         if self.q_last.q.val() {
             self.w_count.d.next = self.q_count.q.val();
             self.w_n.d.next = self.en.q.val();
@@ -904,8 +847,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         if self.w_valid.q.val() {
             self.out_ref.d.next = self.w_i.q.val();
             self.out_other.d.next = self.w_j.q.val();
-            self.out_x_ref.d.next = self.w_xr.q.val();
-            self.out_disp.d.next = self.w_xr.q.val() - self.w_xo.q.val();
+            self.out_x_ref.d.next = self.r_mem.pos.val();
+            self.out_disp.d.next = self.r_mem.pos.val() - self.o_mem.pos.val();
         }
         if self.w_last.q.val() {
             self.out_count.d.next = self.w_count.q.val();

@@ -23,6 +23,7 @@ pub mod gain_cell;
 pub mod systolic_matcher;
 pub mod choice_select;
 pub mod traceback;
+pub mod block_ram;
 pub mod record_input;
 pub mod record_memory;
 pub mod declivity_matcher;

@@ -10,11 +10,12 @@
 //! - Write: `w_enable`, `w_addr`, and the record as the detector sends it:
 //!   `w_pos`, `w_amp` (only its sign is kept: the polarity), `w_left0..2`,
 //!   `w_right0..2`.
-//! - Read: `r_addr`; one clock later `pos`, `lev0..5` (left 0–2, then right
-//!   0–2) and `rising`.
+//! - Read: `r_addr`; two clocks later `pos`, `lev0..5` (left 0–2, then
+//!   right 0–2) and `rising`.
 //!
 //! ## Timing
-//! One write and one read per clock (block RAM with a registered read). A
+//! One write and one read per clock (block RAMs with their output
+//! registers, [`BlockRam`]: a read takes two clocks). A
 //! write reaches the RAM one clock after it is on the ports: the record
 //! goes into registers in the RAM's format first (the level conversion's
 //! adders and the route to the block RAM's data inputs do not fit in one
@@ -23,6 +24,7 @@
 //! the other), and its Verilog tells the synthesis so (`no_rw_check`):
 //! what such a read returns is left undefined.
 
+use crate::block_ram::BlockRam;
 use crate::params::*;
 use rust_hdl::prelude::*;
 
@@ -51,13 +53,13 @@ pub struct RecordMemory {
     pub rising: Signal<Out, Bit>,
     // The position with the polarity above it (one block RAM, not a
     // 1-bit LUT RAM whose read would sit on the address path).
-    pos_mem: RAM<Bits<{ POS_BITS + 1 }>, DIAG_BITS>,
-    lev0_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    lev1_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    lev2_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    lev3_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    lev4_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
-    lev5_mem: RAM<Bits<LEVEL_BITS>, DIAG_BITS>,
+    pos_mem: BlockRam<{ POS_BITS + 1 }, DIAG_BITS>,
+    lev0_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
+    lev1_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
+    lev2_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
+    lev3_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
+    lev4_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
+    lev5_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
     // The write, in the RAMs' format.
     wq_enable: DFF<Bit>,
     wq_addr: DFF<Bits<DIAG_BITS>>,
@@ -127,20 +129,13 @@ impl Default for RecordMemory {
 impl Logic for RecordMemory {
     #[hdl_gen]
     fn update(&mut self) {
-        self.pos_mem.read_clock.next = self.clock.val();
-        self.pos_mem.write_clock.next = self.clock.val();
-        self.lev0_mem.read_clock.next = self.clock.val();
-        self.lev0_mem.write_clock.next = self.clock.val();
-        self.lev1_mem.read_clock.next = self.clock.val();
-        self.lev1_mem.write_clock.next = self.clock.val();
-        self.lev2_mem.read_clock.next = self.clock.val();
-        self.lev2_mem.write_clock.next = self.clock.val();
-        self.lev3_mem.read_clock.next = self.clock.val();
-        self.lev3_mem.write_clock.next = self.clock.val();
-        self.lev4_mem.read_clock.next = self.clock.val();
-        self.lev4_mem.write_clock.next = self.clock.val();
-        self.lev5_mem.read_clock.next = self.clock.val();
-        self.lev5_mem.write_clock.next = self.clock.val();
+        self.pos_mem.clock.next = self.clock.val();
+        self.lev0_mem.clock.next = self.clock.val();
+        self.lev1_mem.clock.next = self.clock.val();
+        self.lev2_mem.clock.next = self.clock.val();
+        self.lev3_mem.clock.next = self.clock.val();
+        self.lev4_mem.clock.next = self.clock.val();
+        self.lev5_mem.clock.next = self.clock.val();
         dff_setup!(self, clock, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
 
         self.ends.next = 0.into();

@@ -34,8 +34,9 @@
 //!   entered at clock `t` are in the word registers at `t +` [`CHOICE_LAG`].
 //! - `tb_diag`, `tb_row`, `tb_row_up` in; `tb_choice`, `tb_choice_up` out:
 //!   the choices of rows `tb_row` and `tb_row_up` (now) on anti-diagonal
-//!   `tb_diag` (three clocks ago: memory read, its output register next to
-//!   the block RAM, then the register that feeds the selection).
+//!   `tb_diag` (three clocks ago: memory read, its output register inside
+//!   the block RAM ([`BlockRam`]), then the register that feeds the
+//!   selection).
 //!
 //! ## Timing
 //! Column `j` offered on `c_*` at clock `t - 1` sits in cell `c`'s slot b
@@ -44,6 +45,7 @@
 //! [`CELL_DEPTH`], in the word registers one clock later. The high rows' `P(N-1, ·)` comes from the last cell through one
 //! register; the low rows' `P(-1, ·)` is the border, 0.
 
+use crate::block_ram::BlockRam;
 use crate::choice_select::ChoiceSelect;
 use crate::gain_cell::{GainCell, CELL_DEPTH};
 use crate::params::*;
@@ -124,10 +126,8 @@ pub struct SystolicMatcher<const N: usize> {
     tok_hi: [DFF<Bit>; N],
     wrap: DFF<Bits<PATH_BITS>>,
     word_q: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
-    lo_ram: [RAM<Bits<CHOICE_WORD_BITS>, DIAG_BITS>; CHOICE_WORDS],
-    hi_ram: [RAM<Bits<CHOICE_WORD_BITS>, DIAG_BITS>; CHOICE_WORDS],
-    rd_lo: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
-    rd_hi: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    lo_ram: [BlockRam<CHOICE_WORD_BITS, DIAG_BITS>; CHOICE_WORDS],
+    hi_ram: [BlockRam<CHOICE_WORD_BITS, DIAG_BITS>; CHOICE_WORDS],
     rd2_lo: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     rd2_hi: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     last_p: Signal<Local, Bits<PATH_BITS>>,
@@ -208,8 +208,6 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             word_q: core::array::from_fn(|_| Default::default()),
             lo_ram: core::array::from_fn(|_| Default::default()),
             hi_ram: core::array::from_fn(|_| Default::default()),
-            rd_lo: core::array::from_fn(|_| Default::default()),
-            rd_hi: core::array::from_fn(|_| Default::default()),
             rd2_lo: core::array::from_fn(|_| Default::default()),
             rd2_hi: core::array::from_fn(|_| Default::default()),
             last_p: Default::default(),
@@ -400,10 +398,8 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         for k in 0..CHOICE_WORDS {
             self.word_q[k].clock.next = self.clock.val();
             self.word_q[k].d.next = self.wacc[k].val();
-            self.lo_ram[k].write_clock.next = self.clock.val();
-            self.hi_ram[k].write_clock.next = self.clock.val();
-            self.lo_ram[k].read_clock.next = self.clock.val();
-            self.hi_ram[k].read_clock.next = self.clock.val();
+            self.lo_ram[k].clock.next = self.clock.val();
+            self.hi_ram[k].clock.next = self.clock.val();
             self.lo_ram[k].write_address.next = self.cw_diag.val();
             self.hi_ram[k].write_address.next = self.cw_diag.val();
             self.lo_ram[k].write_data.next = self.word_q[k].q.val();
@@ -412,14 +408,10 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.hi_ram[k].write_enable.next = self.cw_en.val() & self.cw_hi.val();
             self.lo_ram[k].read_address.next = self.tb_diag.val();
             self.hi_ram[k].read_address.next = self.tb_diag.val();
-            self.rd_lo[k].clock.next = self.clock.val();
-            self.rd_hi[k].clock.next = self.clock.val();
-            self.rd_lo[k].d.next = self.lo_ram[k].read_data.val();
-            self.rd_hi[k].d.next = self.hi_ram[k].read_data.val();
             self.rd2_lo[k].clock.next = self.clock.val();
             self.rd2_hi[k].clock.next = self.clock.val();
-            self.rd2_lo[k].d.next = self.rd_lo[k].q.val();
-            self.rd2_hi[k].d.next = self.rd_hi[k].q.val();
+            self.rd2_lo[k].d.next = self.lo_ram[k].read_data.val();
+            self.rd2_hi[k].d.next = self.hi_ram[k].read_data.val();
         }
 
         // ---- Traceback reads: the choices of rows tb_row and tb_row_up.

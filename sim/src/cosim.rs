@@ -78,6 +78,7 @@
 //! variable written only by `$fscanf`; the testbench therefore scans into
 //! temporaries and assigns the ports from them with blocking assignments.
 
+use crate::primitives::{models_for, MODELS_FILE};
 use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 use std::fmt::Write as _;
@@ -1452,6 +1453,7 @@ fn run_in(
     dir: &WorkDir,
 ) -> Result<Run, CosimError> {
     dir.write("top.v", design)?;
+    dir.write(MODELS_FILE, &models_for(design))?;
     dir.write("tb.v", &testbench(&trace.inputs, &trace.outputs))?;
     dir.write(TB_INPUT_FILE, &tb_input_text(trace))?;
     let t0 = Instant::now();
@@ -1460,7 +1462,7 @@ fn run_in(
             run_tool(
                 &opts.iverilog,
                 Command::new(&opts.iverilog)
-                    .args(["-g2012", "-s", "tb", "-o", "tb.vvp", "tb.v", "top.v"]),
+                    .args(["-g2012", "-s", "tb", "-o", "tb.vvp", "tb.v", "top.v", MODELS_FILE]),
                 dir,
             )?;
             let compile = t0.elapsed();
@@ -1532,7 +1534,7 @@ fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), CosimError> {
             .args(["--cc", "--exe", "--main", "--timing"])
             .args(["-Wno-fatal", "-Wno-lint", "-Wno-style"])
             .args(["--top-module", "tb", "-Mdir", "obj", "-o", "Vtb"])
-            .args(["tb.v", "top.v"]),
+            .args(["tb.v", "top.v", MODELS_FILE]),
         dir,
     )?;
     let obj = dir.path.join("obj");
@@ -1751,11 +1753,12 @@ pub fn lint_verilator(design: &str) -> Result<Vec<LintWarning>, CosimError> {
 pub fn lint_verilator_with(design: &str, opts: &Options) -> Result<Vec<LintWarning>, CosimError> {
     let mut dir = WorkDir::new(opts.work_root.as_deref(), "lint")?;
     dir.write("top.v", design)?;
+    dir.write(MODELS_FILE, &models_for(design))?;
     let out = spawn(
         &opts.verilator,
         Command::new(&opts.verilator)
             .args(["--lint-only", "-Wall", "-Wno-fatal", "-Wno-DECLFILENAME"])
-            .args(["--top-module", TOP_MODULE, "top.v"])
+            .args(["--top-module", TOP_MODULE, "top.v", MODELS_FILE])
             .current_dir(&dir.path),
     )?;
     let log = log_of(&out);

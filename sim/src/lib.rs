@@ -18,6 +18,7 @@ pub mod io;
 pub mod matcher;
 pub mod matcher_cosim;
 pub mod pictures;
+pub mod primitives;
 pub mod synth;
 pub mod verilog;
 pub mod workdir;

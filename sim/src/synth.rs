@@ -45,6 +45,7 @@
 //! cells (`$dlatch`, `$adlatch`, `$dlatchsr`, `$_DLATCH_*`) that `proc` infers
 //! from incomplete combinational assignments, and the word-level cell count.
 
+use crate::primitives::{models_for, MODELS_FILE};
 use serde::Serialize;
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -570,10 +571,12 @@ pub fn yosys_latch_check(verilog: &str, top: &str) -> Result<YosysCheck, SynthEr
     })?;
     let work = WorkDir::new("latch")?;
     std::fs::write(work.path.join("top.v"), verilog)?;
+    // Vendor primitives the design instantiates: read as black boxes.
+    std::fs::write(work.path.join(MODELS_FILE), models_for(verilog))?;
     std::fs::write(
         work.path.join("check.ys"),
         format!(
-            "read_verilog top.v\nhierarchy -check -top {top}\nproc\nflatten\nopt_clean\n\
+            "read_verilog -lib {MODELS_FILE}\nread_verilog top.v\nhierarchy -check -top {top}\nproc\nflatten\nopt_clean\n\
              write_json proc.json\n"
         ),
     )?;

@@ -1,0 +1,34 @@
+//! # primitives — simulation models of the vendor primitives in generated Verilog
+//!
+//! Some blocks instantiate an ECP5 primitive by name (`rtl::block_ram`: the
+//! `DP16KD` block RAM with its output register, which Yosys never infers).
+//! Yosys's `synth_ecp5` maps them itself; the co-simulation (Icarus,
+//! Verilator), the lint and the latch check read the behavioural models here
+//! beside the design, as `models.v`.
+
+/// Behavioural model of `DP16KD` as `rtl::block_ram::BlockRam` uses it.
+pub const DP16KD_MODEL: &str = include_str!("../verilog/ecp5_dp16kd_sim.v");
+
+/// The file the models are written to beside `top.v`.
+pub const MODELS_FILE: &str = "models.v";
+
+/// The models of the primitives `design` instantiates, as one Verilog text
+/// (empty when it instantiates none).
+pub fn models_for(design: &str) -> String {
+    let mut text = String::new();
+    if design.contains("DP16KD #(") {
+        text.push_str(DP16KD_MODEL);
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_design_gets_the_model_of_the_primitive_it_instantiates_and_no_other() {
+        assert!(models_for("DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();").contains("module DP16KD("));
+        assert_eq!(models_for("module top(clock); endmodule"), "");
+    }
+}

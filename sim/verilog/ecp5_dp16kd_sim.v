@@ -1,0 +1,72 @@
+// Behavioural model of the Lattice ECP5 `DP16KD` block RAM, for simulation
+// and lint of the Verilog that `rtl::block_ram::BlockRam` generates
+// (co-simulation under Icarus and Verilator, Verilator lint, Yosys latch
+// check). Synthesis never reads it: Yosys's `synth_ecp5` maps the primitive
+// itself.
+//
+// It models what `BlockRam` uses: 18-bit data on both ports (1024 words,
+// AD[13:4] the word address, AD[1:0] the byte enables of a write), writes on
+// port A (`WRITEMODE_A = "NORMAL"`), registered reads on port B with the
+// output register when `REGMODE_B = "OUTREG"`, clock enables, chip selects
+// and resets tied off. Anything else stops the simulation with an error.
+// The words and registers start at zero, as the rust-hdl model's do.
+/* verilator lint_off UNUSEDSIGNAL */
+/* verilator lint_off UNUSEDPARAM */
+/* verilator lint_off UNDRIVEN */
+/* verilator lint_off WIDTH */
+module DP16KD(
+  input DIA17, DIA16, DIA15, DIA14, DIA13, DIA12, DIA11, DIA10, DIA9, DIA8, DIA7, DIA6, DIA5, DIA4, DIA3, DIA2, DIA1, DIA0,
+  input ADA13, ADA12, ADA11, ADA10, ADA9, ADA8, ADA7, ADA6, ADA5, ADA4, ADA3, ADA2, ADA1, ADA0,
+  input CEA, OCEA, CLKA, WEA, RSTA,
+  input CSA2, CSA1, CSA0,
+  output DOA17, DOA16, DOA15, DOA14, DOA13, DOA12, DOA11, DOA10, DOA9, DOA8, DOA7, DOA6, DOA5, DOA4, DOA3, DOA2, DOA1, DOA0,
+  input DIB17, DIB16, DIB15, DIB14, DIB13, DIB12, DIB11, DIB10, DIB9, DIB8, DIB7, DIB6, DIB5, DIB4, DIB3, DIB2, DIB1, DIB0,
+  input ADB13, ADB12, ADB11, ADB10, ADB9, ADB8, ADB7, ADB6, ADB5, ADB4, ADB3, ADB2, ADB1, ADB0,
+  input CEB, OCEB, CLKB, WEB, RSTB,
+  input CSB2, CSB1, CSB0,
+  output DOB17, DOB16, DOB15, DOB14, DOB13, DOB12, DOB11, DOB10, DOB9, DOB8, DOB7, DOB6, DOB5, DOB4, DOB3, DOB2, DOB1, DOB0
+);
+  parameter DATA_WIDTH_A = 18;
+  parameter DATA_WIDTH_B = 18;
+  parameter REGMODE_A = "NOREG";
+  parameter REGMODE_B = "NOREG";
+  parameter RESETMODE = "SYNC";
+  parameter ASYNC_RESET_RELEASE = "SYNC";
+  parameter CSDECODE_A = "0b000";
+  parameter CSDECODE_B = "0b000";
+  parameter WRITEMODE_A = "NORMAL";
+  parameter WRITEMODE_B = "NORMAL";
+  parameter GSR = "ENABLED";
+
+  wire [17:0] dia = {DIA17, DIA16, DIA15, DIA14, DIA13, DIA12, DIA11, DIA10, DIA9, DIA8, DIA7, DIA6, DIA5, DIA4, DIA3, DIA2, DIA1, DIA0};
+  wire [9:0] wa = {ADA13, ADA12, ADA11, ADA10, ADA9, ADA8, ADA7, ADA6, ADA5, ADA4};
+  wire [9:0] ra = {ADB13, ADB12, ADB11, ADB10, ADB9, ADB8, ADB7, ADB6, ADB5, ADB4};
+  reg [17:0] mem [0:1023];
+  reg [17:0] ram_q;
+  reg [17:0] out_q;
+  wire [17:0] dob = (REGMODE_B == "OUTREG") ? out_q : ram_q;
+  assign {DOB17, DOB16, DOB15, DOB14, DOB13, DOB12, DOB11, DOB10, DOB9, DOB8, DOB7, DOB6, DOB5, DOB4, DOB3, DOB2, DOB1, DOB0} = dob;
+  assign {DOA17, DOA16, DOA15, DOA14, DOA13, DOA12, DOA11, DOA10, DOA9, DOA8, DOA7, DOA6, DOA5, DOA4, DOA3, DOA2, DOA1, DOA0} = 18'b0;
+  integer k;
+  initial begin
+    if (DATA_WIDTH_A != 18 || DATA_WIDTH_B != 18 || REGMODE_A != "NOREG" || WRITEMODE_A != "NORMAL") begin
+      $display("DP16KD model: only the 18-bit simple dual-port use of rtl::block_ram is modelled");
+      $finish;
+    end
+    for (k = 0; k < 1024; k = k + 1) mem[k] = 18'b0;
+    ram_q = 18'b0;
+    out_q = 18'b0;
+  end
+  always @(posedge CLKA) begin
+    if (CEA && WEA && ADA0) mem[wa][8:0] <= dia[8:0];
+    if (CEA && WEA && ADA1) mem[wa][17:9] <= dia[17:9];
+  end
+  always @(posedge CLKB) begin
+    if (CEB) ram_q <= mem[ra];
+    if (OCEB) out_q <= ram_q;
+  end
+endmodule
+/* verilator lint_on WIDTH */
+/* verilator lint_on UNDRIVEN */
+/* verilator lint_on UNUSEDPARAM */
+/* verilator lint_on UNUSEDSIGNAL */
