@@ -209,7 +209,8 @@ pub struct DeclivityMatcher<const N: usize> {
     en: DFF<Bits<COUNT_BITS>>,
     em: DFF<Bits<COUNT_BITS>>,
     sc: DFF<Bits<SWEEP_BITS>>,
-    sweep_end: DFF<Bits<SWEEP_BITS>>,
+    sweep_end_m1: DFF<Bits<SWEEP_BITS>>,
+    sweep_done: DFF<Bit>,
     below2_reg: DFF<Bits<DIST_BITS>>,
     dm1_reg: DFF<Bits<{ POS_BITS + 1 }>>,
     f1_reg: DFF<Bits<GAIN_BITS>>,
@@ -399,7 +400,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             en: Default::default(),
             em: Default::default(),
             sc: Default::default(),
-            sweep_end: Default::default(),
+            sweep_end_m1: Default::default(),
+            sweep_done: Default::default(),
             below2_reg: Default::default(),
             dm1_reg: Default::default(),
             f1_reg: Default::default(),
@@ -491,7 +493,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng_idle: Constant::new(((ENG_IDLE) as u64).into()),
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
-            sweep_tail: Constant::new(((ENGINE_LAG - 4) as u64).into()),
+            sweep_tail: Constant::new(((ENGINE_LAG - 5) as u64).into()),
             cells_h: Constant::new((N as u64).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             cells_c: Constant::new((N as u64).into()),
@@ -524,7 +526,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -676,10 +678,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.en.d.next = self.pend_n.q.val();
             self.em.d.next = self.pend_m.q.val();
             self.sc.d.next = 0.into();
-            // 2·(n + m) + [n > N] + the tail: see `sweep_cycles`.
-            self.sweep_end.d.next = self.sweep_base.val();
+            // The sweep's last clock less one: 2·(n + m) + [n > N] + the
+            // tail; see `sweep_cycles`.
+            self.sweep_end_m1.d.next = self.sweep_base.val();
             if self.pend_fold.val() {
-                self.sweep_end.d.next = self.sweep_base.val() + 1;
+                self.sweep_end_m1.d.next = self.sweep_base.val() + 1;
             }
             self.e_fold.d.next = self.pend_fold.val();
             self.below2_reg.d.next = bit_cast::<DIST_BITS, DT_SUM_INT_BITS>(
@@ -733,13 +736,16 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.cw_en.next = (self.eng.q.val() == self.eng_sweep.val()) & (self.sc.q.val() >= self.engine_lag.val());
         self.array.cw_diag.next = self.tw.val().get_bits::<DIAG_BITS>(self.bit1.val().index());
         self.array.cw_hi.next = self.tw.val().get_bit(self.bit0.val().index());
-        self.traceback.start.next = false;
+        // The sweep's last clock is known a clock ahead (a register: the
+        // traceback's start goes to its walk registers, far from the engine).
+        self.traceback.start.next = self.sweep_done.q.val();
+        self.sweep_done.d.next = false;
         if self.eng.q.val() == self.eng_sweep.val() {
             self.sc.d.next = self.sc.q.val() + 1;
             self.ld_valid_d.d.next = self.sc.q.val() < bit_cast::<SWEEP_BITS, COUNT_BITS>(self.en.q.val());
             self.c_valid_d.d.next = self.col_first.val() | self.col_second.val();
-            if self.sc.q.val() == self.sweep_end.q.val() {
-                self.traceback.start.next = true;
+            self.sweep_done.d.next = self.sc.q.val() == self.sweep_end_m1.q.val();
+            if self.sweep_done.q.val() {
                 self.eng.d.next = self.eng_trace.val();
             }
         }

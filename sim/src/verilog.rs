@@ -58,14 +58,16 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
 /// The matcher's Verilog, built on a thread with room for the block (see
 /// [`crate::matcher::build_matcher`]).
 ///
-/// Every memory of the matcher is marked `no_rw_check`: no read whose data
-/// is used is at an address on the clock that address is written (the
-/// memories are read on every clock, but only these reads count: the loader
-/// writes one bank of the record memories while the engine reads the other;
-/// the choice memory is written during the sweep and read during the
-/// traceback that follows it; the traceback's stack is written while walking
-/// and read while emitting), so Yosys needs no bypass logic between a block RAM's
-/// output and its register, where the RAM's clock-to-out leaves no time.
+/// Every memory rust-hdl declares in the matcher is marked `no_rw_check`:
+/// no read whose data is used is at an address on the clock that address is
+/// written (the traceback's stack is written while walking and read while
+/// emitting), so Yosys needs no bypass logic behind it. (The record and
+/// choice memories are `DP16KD` instances, `rtl::block_ram`, whose write and
+/// read never meet either: the loader writes one bank of the record
+/// memories while the engine reads the other; the choice memory is written
+/// during the sweep and read during the traceback that follows it. Their
+/// rust-hdl models' `RAM` declarations are left in the text unused, and
+/// marked too.)
 fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
     let uut: Box<DeclivityMatcher<N>> = crate::matcher::build_matcher::<N>(rule);
     let v = std::thread::Builder::new()
