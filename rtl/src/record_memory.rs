@@ -16,10 +16,11 @@
 //! ## Timing
 //! One write and one read per clock (block RAMs with their output
 //! registers, [`BlockRam`]: a read takes two clocks). A
-//! write reaches the RAM one clock after it is on the ports: the record
-//! goes into registers in the RAM's format first (the level conversion's
-//! adders and the route to the block RAM's data inputs do not fit in one
-//! clock on a full ECP5-85K). The matcher never reads an address on the
+//! write reaches the RAM two clocks after it is on the ports: the record
+//! is registered as it comes, then registered again in the RAM's format
+//! (on a full ECP5-85K neither the route from the matcher's input register
+//! through the level conversion's adders nor the route from those adders
+//! to the block RAM's data inputs fits in one clock with the other). The matcher never reads an address on the
 //! clock it writes it (the loader writes one bank while the engine reads
 //! the other), and its Verilog tells the synthesis so (`no_rw_check`):
 //! what such a read returns is left undefined.
@@ -60,6 +61,17 @@ pub struct RecordMemory {
     lev3_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
     lev4_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
     lev5_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
+    // The write as it comes.
+    wi_enable: DFF<Bit>,
+    wi_addr: DFF<Bits<DIAG_BITS>>,
+    wi_pos: DFF<Bits<POS_BITS>>,
+    wi_falling: DFF<Bit>,
+    wi_left0: DFF<Bits<PIXEL_BITS>>,
+    wi_left1: DFF<Bits<PIXEL_BITS>>,
+    wi_left2: DFF<Bits<PIXEL_BITS>>,
+    wi_right0: DFF<Bits<PIXEL_BITS>>,
+    wi_right1: DFF<Bits<PIXEL_BITS>>,
+    wi_right2: DFF<Bits<PIXEL_BITS>>,
     // The write, in the RAMs' format.
     wq_enable: DFF<Bit>,
     wq_addr: DFF<Bits<DIAG_BITS>>,
@@ -108,6 +120,16 @@ impl Default for RecordMemory {
             lev3_mem: Default::default(),
             lev4_mem: Default::default(),
             lev5_mem: Default::default(),
+            wi_enable: Default::default(),
+            wi_addr: Default::default(),
+            wi_pos: Default::default(),
+            wi_falling: Default::default(),
+            wi_left0: Default::default(),
+            wi_left1: Default::default(),
+            wi_left2: Default::default(),
+            wi_right0: Default::default(),
+            wi_right1: Default::default(),
+            wi_right2: Default::default(),
             wq_enable: Default::default(),
             wq_addr: Default::default(),
             wq_pos: Default::default(),
@@ -136,42 +158,53 @@ impl Logic for RecordMemory {
         self.lev3_mem.clock.next = self.clock.val();
         self.lev4_mem.clock.next = self.clock.val();
         self.lev5_mem.clock.next = self.clock.val();
-        dff_setup!(self, clock, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
+        dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wi_left0, wi_left1, wi_left2, wi_right0, wi_right1, wi_right2, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
+
+        self.wi_enable.d.next = self.w_enable.val();
+        self.wi_addr.d.next = self.w_addr.val();
+        self.wi_pos.d.next = self.w_pos.val();
+        self.wi_falling.d.next = self.w_amp.val().get_bit(self.amp_msb.val().index());
+        self.wi_left0.d.next = self.w_left0.val();
+        self.wi_left1.d.next = self.w_left1.val();
+        self.wi_left2.d.next = self.w_left2.val();
+        self.wi_right0.d.next = self.w_right0.val();
+        self.wi_right1.d.next = self.w_right1.val();
+        self.wi_right2.d.next = self.w_right2.val();
 
         self.ends.next = 0.into();
         if self.relative.val() {
-            self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
-                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val());
+            self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
+                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val());
         }
-        self.wq_pos.d.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.w_pos.val())
-            .replace_bit(self.rise_bit.val().index(), !self.w_amp.val().get_bit(self.amp_msb.val().index()));
-        self.wq_lev0.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left0.val())
+        self.wq_pos.d.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.wi_pos.q.val())
+            .replace_bit(self.rise_bit.val().index(), !self.wi_falling.q.val());
+        self.wq_lev0.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.wq_lev1.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left1.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left1.val())
+        self.wq_lev1.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left1.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left1.q.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.wq_lev2.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left2.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_left2.val())
+        self.wq_lev2.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left2.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left2.q.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.wq_lev3.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right0.val())
+        self.wq_lev3.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.wq_lev4.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right1.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right1.val())
+        self.wq_lev4.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right1.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right1.q.val())
             + self.level_offset.val()
             - self.ends.val();
-        self.wq_lev5.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.w_right2.val())
+        self.wq_lev5.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right2.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right2.q.val())
             + self.level_offset.val()
             - self.ends.val();
 
-        self.wq_enable.d.next = self.w_enable.val();
-        self.wq_addr.d.next = self.w_addr.val();
+        self.wq_enable.d.next = self.wi_enable.q.val();
+        self.wq_addr.d.next = self.wi_addr.q.val();
         self.pos_mem.write_data.next = self.wq_pos.q.val();
         self.pos_mem.write_address.next = self.wq_addr.q.val();
         self.lev0_mem.write_data.next = self.wq_lev0.q.val();
