@@ -1332,6 +1332,13 @@ impl WorkDir {
         let p = self.path.join(name);
         std::fs::write(&p, text).map_err(io_err(&p))
     }
+
+    /// The design as `top.v`, and beside it, as [`MODELS_FILE`], the models
+    /// of the vendor primitives it instantiates (every tool here reads both).
+    fn write_design(&self, design: &str) -> Result<(), CosimError> {
+        self.write("top.v", design)?;
+        self.write(MODELS_FILE, &models_for(design))
+    }
 }
 
 impl Drop for WorkDir {
@@ -1452,8 +1459,7 @@ fn run_in(
     opts: &Options,
     dir: &WorkDir,
 ) -> Result<Run, CosimError> {
-    dir.write("top.v", design)?;
-    dir.write(MODELS_FILE, &models_for(design))?;
+    dir.write_design(design)?;
     dir.write("tb.v", &testbench(&trace.inputs, &trace.outputs))?;
     dir.write(TB_INPUT_FILE, &tb_input_text(trace))?;
     let t0 = Instant::now();
@@ -1752,8 +1758,7 @@ pub fn lint_verilator(design: &str) -> Result<Vec<LintWarning>, CosimError> {
 /// [`lint_verilator`] with the work root and `verilator` command of `opts`.
 pub fn lint_verilator_with(design: &str, opts: &Options) -> Result<Vec<LintWarning>, CosimError> {
     let mut dir = WorkDir::new(opts.work_root.as_deref(), "lint")?;
-    dir.write("top.v", design)?;
-    dir.write(MODELS_FILE, &models_for(design))?;
+    dir.write_design(design)?;
     let out = spawn(
         &opts.verilator,
         Command::new(&opts.verilator)
