@@ -818,14 +818,13 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.same_polarity.next = self.relative.val();
         self.array.one_sided.next = self.one_sided.val();
         self.array.tb_diag.next = self.traceback.tb_diag.val();
-        self.array.tb_row.next = self.traceback.tb_row.val();
-        self.array.tb_row_up.next = self.traceback.tb_row_up.val();
+        self.array.tb_group.next = self.traceback.tb_group.val();
 
         // ---- Traceback.
         self.traceback.n.next = self.en.q.val();
         self.traceback.m.next = self.em.q.val();
-        self.traceback.tb_choice.next = self.array.tb_choice.val();
-        self.traceback.tb_choice_up.next = self.array.tb_choice_up.val();
+        self.traceback.tb_word.next = self.array.tb_word.val();
+        self.traceback.tb_word_prev.next = self.array.tb_word_prev.val();
 
         // ---- Output: positions read and registered, then X_i - X_j
         // registered.

@@ -21,7 +21,7 @@ pub mod declivity_tracker;
 pub mod position_divider;
 pub mod gain_cell;
 pub mod systolic_matcher;
-pub mod choice_select;
+pub mod choice_word;
 pub mod traceback;
 pub mod block_ram;
 pub mod record_input;

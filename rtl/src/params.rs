@@ -202,6 +202,9 @@ pub const CHOICE_WORD_BITS: usize = 32;
 pub const CELLS_PER_CHOICE_WORD: usize = CHOICE_WORD_BITS / 2;
 /// Memory words per anti-diagonal and row half for [`N_CELLS`] cells.
 pub const CHOICE_WORDS: usize = N_CELLS / CELLS_PER_CHOICE_WORD;
+/// Bits of a row's group `r / CELLS_PER_CHOICE_WORD`: the choice memory
+/// holds each group's choices of an anti-diagonal in one word.
+pub const ROW_GROUP_BITS: usize = INDEX_BITS - CELLS_PER_CHOICE_WORD.trailing_zeros() as usize;
 /// Bits of a cell index `0 .. N_CELLS`.
 pub const CELL_BITS: usize = INDEX_BITS - 1;
 /// Bits of a choice's offset `2·(c mod CELLS_PER_CHOICE_WORD)` in its word.

@@ -32,11 +32,12 @@
 //!   registers as anti-diagonal `cw_diag` of the low (`cw_hi` low) or high
 //!   rows. The engine counts them: the choices of the node whose column
 //!   entered at clock `t` are in the word registers at `t +` [`CHOICE_LAG`].
-//! - `tb_diag`, `tb_row`, `tb_row_up` in; `tb_choice`, `tb_choice_up` out:
-//!   the choices of rows `tb_row` and `tb_row_up` (now) on anti-diagonal
-//!   `tb_diag` (three clocks ago: memory read, its output register inside
-//!   the block RAM ([`BlockRam`]), then the register that feeds the
-//!   selection).
+//! - `tb_diag`, `tb_group` in; `tb_word`, `tb_word_prev` out: the words of
+//!   anti-diagonal `tb_diag` (three clocks ago: memory read, its output
+//!   register inside the block RAM ([`BlockRam`]), then the register that
+//!   feeds the selection) that hold the choices of row groups `tb_group`
+//!   and `tb_group - 1` (now; see [`ChoiceWord`]): with the two side by
+//!   side, row `r`'s choice is `2·(r - 16·tb_group + 16)` bits up.
 //!
 //! ## Timing
 //! Column `j` offered on `c_*` at clock `t - 1` sits in cell `c`'s slot b
@@ -46,7 +47,7 @@
 //! register; the low rows' `P(-1, ·)` is the border, 0.
 
 use crate::block_ram::BlockRam;
-use crate::choice_select::ChoiceSelect;
+use crate::choice_word::ChoiceWord;
 use crate::gain_cell::{GainCell, CELL_DEPTH};
 use crate::params::*;
 use rust_hdl::prelude::*;
@@ -91,13 +92,12 @@ pub struct SystolicMatcher<const N: usize> {
     pub cw_diag: Signal<In, Bits<DIAG_BITS>>,
     pub cw_hi: Signal<In, Bit>,
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
-    pub tb_row: Signal<In, Bits<INDEX_BITS>>,
-    pub tb_row_up: Signal<In, Bits<INDEX_BITS>>,
-    pub tb_choice: Signal<Out, Bits<2>>,
-    pub tb_choice_up: Signal<Out, Bits<2>>,
+    pub tb_group: Signal<In, Bits<ROW_GROUP_BITS>>,
+    pub tb_word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
+    pub tb_word_prev: Signal<Out, Bits<CHOICE_WORD_BITS>>,
     pub cells: [GainCell; N],
-    pub row_select: ChoiceSelect,
-    pub up_select: ChoiceSelect,
+    pub row_word: ChoiceWord,
+    pub prev_word: ChoiceWord,
     col_a_valid: [DFF<Bit>; N],
     col_a_hi: [DFF<Bit>; N],
     col_a_pos: [DFF<Bits<POS_BITS>>; N],
@@ -131,13 +131,14 @@ pub struct SystolicMatcher<const N: usize> {
     rd2_lo: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     rd2_hi: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     last_p: Signal<Local, Bits<PATH_BITS>>,
+    group_one: Constant<Bits<ROW_GROUP_BITS>>,
     wacc: [Signal<Local, Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
 }
 
 impl<const N: usize> Default for SystolicMatcher<N> {
     fn default() -> Self {
         assert!((1..=N_CELLS).contains(&N), "1 ..= N_CELLS cells");
-        assert_eq!(CHOICE_WORDS, 4, "the choice selection below names four words");
+        assert_eq!(CHOICE_WORDS, 4, "the choice words below are named four per half");
         assert_eq!(CELLS_PER_CHOICE_WORD, 16, "the word index below is written i / 16");
         SystolicMatcher {
             clock: Default::default(),
@@ -171,13 +172,12 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             cw_diag: Default::default(),
             cw_hi: Default::default(),
             tb_diag: Default::default(),
-            tb_row: Default::default(),
-            tb_row_up: Default::default(),
-            tb_choice: Default::default(),
-            tb_choice_up: Default::default(),
+            tb_group: Default::default(),
+            tb_word: Default::default(),
+            tb_word_prev: Default::default(),
             cells: core::array::from_fn(|i| GainCell::new(i, N)),
-            row_select: ChoiceSelect::new(N),
-            up_select: ChoiceSelect::new(N),
+            row_word: ChoiceWord::new(N),
+            prev_word: ChoiceWord::new(N),
             col_a_valid: core::array::from_fn(|_| Default::default()),
             col_a_hi: core::array::from_fn(|_| Default::default()),
             col_a_pos: core::array::from_fn(|_| Default::default()),
@@ -211,6 +211,7 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             rd2_lo: core::array::from_fn(|_| Default::default()),
             rd2_hi: core::array::from_fn(|_| Default::default()),
             last_p: Default::default(),
+            group_one: Constant::new(1u64.into()),
             wacc: core::array::from_fn(|_| Default::default()),
         }
     }
@@ -414,26 +415,26 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.rd2_hi[k].d.next = self.hi_ram[k].read_data.val();
         }
 
-        // ---- Traceback reads: the choices of rows tb_row and tb_row_up.
-        self.row_select.lo0.next = self.rd2_lo[0].q.val();
-        self.row_select.hi0.next = self.rd2_hi[0].q.val();
-        self.row_select.lo1.next = self.rd2_lo[1].q.val();
-        self.row_select.hi1.next = self.rd2_hi[1].q.val();
-        self.row_select.lo2.next = self.rd2_lo[2].q.val();
-        self.row_select.hi2.next = self.rd2_hi[2].q.val();
-        self.row_select.lo3.next = self.rd2_lo[3].q.val();
-        self.row_select.hi3.next = self.rd2_hi[3].q.val();
-        self.row_select.row.next = self.tb_row.val();
-        self.tb_choice.next = self.row_select.choice.val();
-        self.up_select.lo0.next = self.rd2_lo[0].q.val();
-        self.up_select.hi0.next = self.rd2_hi[0].q.val();
-        self.up_select.lo1.next = self.rd2_lo[1].q.val();
-        self.up_select.hi1.next = self.rd2_hi[1].q.val();
-        self.up_select.lo2.next = self.rd2_lo[2].q.val();
-        self.up_select.hi2.next = self.rd2_hi[2].q.val();
-        self.up_select.lo3.next = self.rd2_lo[3].q.val();
-        self.up_select.hi3.next = self.rd2_hi[3].q.val();
-        self.up_select.row.next = self.tb_row_up.val();
-        self.tb_choice_up.next = self.up_select.choice.val();
+        // ---- Traceback reads: the words of groups tb_group and tb_group - 1.
+        self.row_word.lo0.next = self.rd2_lo[0].q.val();
+        self.row_word.hi0.next = self.rd2_hi[0].q.val();
+        self.row_word.lo1.next = self.rd2_lo[1].q.val();
+        self.row_word.hi1.next = self.rd2_hi[1].q.val();
+        self.row_word.lo2.next = self.rd2_lo[2].q.val();
+        self.row_word.hi2.next = self.rd2_hi[2].q.val();
+        self.row_word.lo3.next = self.rd2_lo[3].q.val();
+        self.row_word.hi3.next = self.rd2_hi[3].q.val();
+        self.row_word.group.next = self.tb_group.val();
+        self.prev_word.lo0.next = self.rd2_lo[0].q.val();
+        self.prev_word.hi0.next = self.rd2_hi[0].q.val();
+        self.prev_word.lo1.next = self.rd2_lo[1].q.val();
+        self.prev_word.hi1.next = self.rd2_hi[1].q.val();
+        self.prev_word.lo2.next = self.rd2_lo[2].q.val();
+        self.prev_word.hi2.next = self.rd2_hi[2].q.val();
+        self.prev_word.lo3.next = self.rd2_lo[3].q.val();
+        self.prev_word.hi3.next = self.rd2_hi[3].q.val();
+        self.prev_word.group.next = self.tb_group.val() - self.group_one.val();
+        self.tb_word.next = self.row_word.word.val();
+        self.tb_word_prev.next = self.prev_word.word.val();
     }
 }

@@ -7,32 +7,40 @@
 //! (node). So the walk reads the anti-diagonals in falling order, one per
 //! clock, whatever the path does: the array's choice memory, one word per
 //! anti-diagonal, is read at addresses known in advance (`tb_diag`), and
-//! the walker only picks its row's choice of the anti-diagonal read three
-//! clocks before (memory, then two registers), and skips the
-//! anti-diagonal a node jumps over. The row's choice is a selection out of
-//! the whole word, so it is registered: while the walker decides on one
-//! anti-diagonal, the array already shows the next one's choices of both
-//! rows the decision can leave it on (`tb_row` = its row, `tb_row_up` = the
-//! row above), and the next decision takes the right one. The pairs come
-//! out last first; a small stack turns them round.
+//! the walker picks its row's choice of the anti-diagonal read six clocks
+//! before, and skips the anti-diagonal a node jumps over.
+//!
+//! The pick is a 128-way selection, too slow for one clock beside the
+//! decision, so it is spread over three, using that the row falls by at
+//! most one per clock. With the word read (memory, then a register in the
+//! array) the array selects the two 16-row words that hold the walker's row
+//! `r` now and the rows below it (`tb_group` = `⌊r/16⌋`, `tb_word`,
+//! `tb_word_prev`);
+//! they are registered. Next clock, the choices of rows `r .. r - 3` are
+//! picked out of the two (16-way each) and registered. Next clock the
+//! walker has moved by 0, 1 or 2 rows (`moved`, `moved2`): the choices of
+//! its row and the row above it are taken out of the four and registered,
+//! and the decision on the clock after that takes the one of the row it is
+//! then on. The pairs come out last first; a small stack turns them round.
 //!
 //! ## Ports
 //! - `start` (a pulse), `n`, `m`: the line's declivity counts; `start` is
 //!   taken in the idle state only.
-//! - To the array: `tb_diag`, `tb_row`, `tb_row_up`; from it, `tb_choice`
-//!   and `tb_choice_up` (the two rows' choices).
+//! - To the array: `tb_diag`, `tb_group`; from it, `tb_word` and
+//!   `tb_word_prev` (see `crate::systolic_matcher`).
 //! - Out: `out_valid`, `out_i`, `out_j` (a matched pair, reference order),
 //!   then `out_last` with `out_count` (pairs of the line) for one clock.
 //!
 //! ## Timing
 //! After `start` at clock `t`, the walk reads anti-diagonal `n + m - 2`
-//! at `t + 1`, has it at `t + 3`, registers its row's choice at `t + 4` and
-//! decides on it at `t + 5`, then one anti-diagonal per clock
-//! until the path starts (at most `n + m - 1` decisions); the `K` pairs
-//! then leave on consecutive clocks from two clocks after the last
-//! decision, and `out_last` one clock after the last pair: in all
-//! [`traceback_cycles`] clocks from `start` to `out_last`, at most
-//! `n + m + K + 5`.
+//! at `t + 1`, has its words at `t + 4`, the four rows' choices at `t + 5`,
+//! its row's at `t + 6`, and decides on it at `t + 7`
+//! ([`WALK_LEAD`] clocks of walk before the first decision), then one
+//! anti-diagonal per clock until the path starts (at most `n + m - 1`
+//! decisions); the `K` pairs then leave on consecutive clocks from two
+//! clocks after the last decision, and `out_last` one clock after the last
+//! pair: in all [`traceback_cycles`] clocks from `start` to `out_last`, at
+//! most `n + m + K + 7`.
 
 use crate::gain_cell::{CHOICE_LEFT, CHOICE_NODE, CHOICE_START, CHOICE_UP};
 use crate::params::*;
@@ -41,6 +49,12 @@ use rust_hdl::prelude::*;
 const TB_IDLE: u64 = 0;
 const TB_WALK: u64 = 1;
 const TB_EMIT: u64 = 2;
+
+/// Clocks of walk from the first read of the choice memory to the first
+/// decision: the memory's two, the array's register, the three of the pick.
+pub const WALK_LEAD: usize = 6;
+/// Bits of the lead's count.
+const LEAD_BITS: usize = 3;
 
 /// Clocks from `start` to `out_last` for a line of `n` reference and `m`
 /// other declivities whose walk stops on anti-diagonal `stop_diag` (the
@@ -54,7 +68,7 @@ pub const fn traceback_cycles(n: usize, m: usize, stop_diag: usize, k: usize) ->
         return 1;
     }
     let emit = if k == 0 { 1 } else { k + 2 };
-    5 + (n + m - 2 - stop_diag) + emit
+    WALK_LEAD + 1 + (n + m - 2 - stop_diag) + emit
 }
 
 #[derive(LogicBlock)]
@@ -64,10 +78,9 @@ pub struct Traceback {
     pub n: Signal<In, Bits<COUNT_BITS>>,
     pub m: Signal<In, Bits<COUNT_BITS>>,
     pub tb_diag: Signal<Out, Bits<DIAG_BITS>>,
-    pub tb_row: Signal<Out, Bits<INDEX_BITS>>,
-    pub tb_row_up: Signal<Out, Bits<INDEX_BITS>>,
-    pub tb_choice: Signal<In, Bits<2>>,
-    pub tb_choice_up: Signal<In, Bits<2>>,
+    pub tb_group: Signal<Out, Bits<ROW_GROUP_BITS>>,
+    pub tb_word: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub tb_word_prev: Signal<In, Bits<CHOICE_WORD_BITS>>,
     pub out_valid: Signal<Out, Bit>,
     pub out_i: Signal<Out, Bits<INDEX_BITS>>,
     pub out_j: Signal<Out, Bits<INDEX_BITS>>,
@@ -79,12 +92,16 @@ pub struct Traceback {
     diag: DFF<Bits<DIAG_BITS>>,
     wi: DFF<Bits<INDEX_BITS>>,
     wj: DFF<Bits<INDEX_BITS>>,
-    wi_up: DFF<Bits<INDEX_BITS>>,
-    primed: DFF<Bit>,
-    primed2: DFF<Bit>,
-    primed3: DFF<Bit>,
-    primed4: DFF<Bit>,
+    lead: DFF<Bits<LEAD_BITS>>,
+    win_hi: DFF<Bits<CHOICE_WORD_BITS>>,
+    win_lo: DFF<Bits<CHOICE_WORD_BITS>>,
+    win_b: DFF<Bits<4>>,
+    near0: DFF<Bits<2>>,
+    near1: DFF<Bits<2>>,
+    near2: DFF<Bits<2>>,
+    near3: DFF<Bits<2>>,
     moved: DFF<Bit>,
+    moved2: DFF<Bit>,
     here: DFF<Bits<2>>,
     above: DFF<Bits<2>>,
     skip: DFF<Bit>,
@@ -93,6 +110,10 @@ pub struct Traceback {
     k: DFF<Bits<INDEX_BITS>>,
     pend: DFF<Bit>,
     choice: Signal<Local, Bits<2>>,
+    pair: Signal<Local, Bits<PAIR_BITS>>,
+    slice1: Signal<Local, Bits<CHOICE_WORD_BITS>>,
+    slice2: Signal<Local, Bits<CHOICE_WORD_BITS>>,
+    slice3: Signal<Local, Bits<CHOICE_WORD_BITS>>,
     push: Signal<Local, Bit>,
     stop: Signal<Local, Bit>,
     issue: Signal<Local, Bit>,
@@ -103,21 +124,30 @@ pub struct Traceback {
     c_node: Constant<Bits<2>>,
     c_up: Constant<Bits<2>>,
     c_left: Constant<Bits<2>>,
+    walk_lead: Constant<Bits<LEAD_BITS>>,
+    bit0: Constant<Bits<8>>,
+    group_shift: Constant<Bits<8>>,
+    up1: Constant<Bits<8>>,
+    up2: Constant<Bits<8>>,
+    up3: Constant<Bits<8>>,
+    down1: Constant<Bits<8>>,
+    down2: Constant<Bits<8>>,
+    down3: Constant<Bits<8>>,
 }
 
 impl Default for Traceback {
     fn default() -> Self {
         let c2 = |v: u64| Constant::new(v.into());
+        let c8 = |v: u64| Constant::new(v.into());
         Traceback {
             clock: Default::default(),
             start: Default::default(),
             n: Default::default(),
             m: Default::default(),
             tb_diag: Default::default(),
-            tb_row: Default::default(),
-            tb_row_up: Default::default(),
-            tb_choice: Default::default(),
-            tb_choice_up: Default::default(),
+            tb_group: Default::default(),
+            tb_word: Default::default(),
+            tb_word_prev: Default::default(),
             out_valid: Default::default(),
             out_i: Default::default(),
             out_j: Default::default(),
@@ -129,12 +159,16 @@ impl Default for Traceback {
             diag: Default::default(),
             wi: Default::default(),
             wj: Default::default(),
-            wi_up: Default::default(),
-            primed: Default::default(),
-            primed2: Default::default(),
-            primed3: Default::default(),
-            primed4: Default::default(),
+            lead: Default::default(),
+            win_hi: Default::default(),
+            win_lo: Default::default(),
+            win_b: Default::default(),
+            near0: Default::default(),
+            near1: Default::default(),
+            near2: Default::default(),
+            near3: Default::default(),
             moved: Default::default(),
+            moved2: Default::default(),
             here: Default::default(),
             above: Default::default(),
             skip: Default::default(),
@@ -143,6 +177,10 @@ impl Default for Traceback {
             k: Default::default(),
             pend: Default::default(),
             choice: Default::default(),
+            pair: Default::default(),
+            slice1: Default::default(),
+            slice2: Default::default(),
+            slice3: Default::default(),
             push: Default::default(),
             stop: Default::default(),
             issue: Default::default(),
@@ -153,6 +191,15 @@ impl Default for Traceback {
             c_node: c2(CHOICE_NODE),
             c_up: c2(CHOICE_UP),
             c_left: c2(CHOICE_LEFT),
+            walk_lead: Constant::new((WALK_LEAD as u64).into()),
+            bit0: c8(0),
+            group_shift: c8(CELLS_PER_CHOICE_WORD.trailing_zeros() as u64),
+            up1: c8(2),
+            up2: c8(4),
+            up3: c8(6),
+            down1: c8(CHOICE_WORD_BITS as u64 - 2),
+            down2: c8(CHOICE_WORD_BITS as u64 - 4),
+            down3: c8(CHOICE_WORD_BITS as u64 - 6),
         }
     }
 }
@@ -164,15 +211,39 @@ impl Logic for Traceback {
         self.stack_i.write_clock.next = self.clock.val();
         self.stack_j.read_clock.next = self.clock.val();
         self.stack_j.write_clock.next = self.clock.val();
-        dff_setup!(self, clock, state, diag, wi, wj, wi_up, primed, primed2, primed3, primed4, moved, here, above, skip, count, left, k, pend);
+        dff_setup!(self, clock, state, diag, wi, wj, lead, win_hi, win_lo, win_b, near0, near1, near2, near3, moved, moved2, here, above, skip, count, left, k, pend);
 
         self.tb_diag.next = self.diag.q.val();
-        self.tb_row.next = self.wi.q.val();
-        self.tb_row_up.next = self.wi_up.q.val();
-        // The array's choices of rows wi and wi - 1, registered: the
-        // decision on the next clock takes the one of the row it is then on.
-        self.here.d.next = self.tb_choice.val();
-        self.above.d.next = self.tb_choice_up.val();
+        self.tb_group.next = self.wi.q.val().get_bits::<ROW_GROUP_BITS>(self.group_shift.val().index());
+        // The pick of the walker's choice, over three clocks. First the
+        // words of its row `r` and the 16 rows below, and `r mod 16`.
+        self.win_hi.d.next = self.tb_word.val();
+        self.win_lo.d.next = self.tb_word_prev.val();
+        self.win_b.d.next = self.wi.q.val().get_bits::<4>(self.bit0.val().index());
+        // Then the choices of rows r, r - 1, r - 2, r - 3: row r - k is at
+        // `r mod 16` in the words shifted up by k rows.
+        self.pair.next = bit_cast::<PAIR_BITS, 4>(self.win_b.q.val()) + bit_cast::<PAIR_BITS, 4>(self.win_b.q.val());
+        self.slice1.next = (self.win_hi.q.val() << self.up1.val()) | (self.win_lo.q.val() >> self.down1.val());
+        self.slice2.next = (self.win_hi.q.val() << self.up2.val()) | (self.win_lo.q.val() >> self.down2.val());
+        self.slice3.next = (self.win_hi.q.val() << self.up3.val()) | (self.win_lo.q.val() >> self.down3.val());
+        self.near0.d.next = self.win_hi.q.val().get_bits::<2>(self.pair.val().index());
+        self.near1.d.next = self.slice1.val().get_bits::<2>(self.pair.val().index());
+        self.near2.d.next = self.slice2.val().get_bits::<2>(self.pair.val().index());
+        self.near3.d.next = self.slice3.val().get_bits::<2>(self.pair.val().index());
+        // Then those of the row the walker is on now and the row above,
+        // it having moved by `moved + moved2` rows since.
+        self.moved2.d.next = self.moved.q.val();
+        self.here.d.next = self.near0.q.val();
+        self.above.d.next = self.near1.q.val();
+        if self.moved.q.val() ^ self.moved2.q.val() {
+            self.here.d.next = self.near1.q.val();
+            self.above.d.next = self.near2.q.val();
+        }
+        if self.moved.q.val() & self.moved2.q.val() {
+            self.here.d.next = self.near2.q.val();
+            self.above.d.next = self.near3.q.val();
+        }
+        // The decision takes the one of the row it is on.
         self.choice.next = self.here.q.val();
         if self.moved.q.val() {
             self.choice.next = self.above.q.val();
@@ -194,13 +265,9 @@ impl Logic for Traceback {
         if self.state.q.val() == self.st_idle.val() {
             if self.start.val() {
                 self.count.d.next = 0.into();
-                self.primed.d.next = false;
-                self.primed2.d.next = false;
-                self.primed3.d.next = false;
-                self.primed4.d.next = false;
+                self.lead.d.next = self.walk_lead.val();
                 self.skip.d.next = false;
                 self.wi.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 1);
-                self.wi_up.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 2);
                 self.wj.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.m.val() - 1);
                 self.diag.d.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.n.val() - 1)
                     + bit_cast::<DIAG_BITS, COUNT_BITS>(self.m.val() - 1);
@@ -214,11 +281,9 @@ impl Logic for Traceback {
         if self.state.q.val() == self.st_walk.val() {
             // The anti-diagonal read this clock is decided on the next.
             self.diag.d.next = self.diag.q.val() - 1;
-            self.primed.d.next = true;
-            self.primed2.d.next = self.primed.q.val();
-            self.primed3.d.next = self.primed2.q.val();
-            self.primed4.d.next = self.primed3.q.val();
-            if self.primed4.q.val() {
+            if self.lead.q.val().any() {
+                self.lead.d.next = self.lead.q.val() - 1;
+            } else {
                 if self.skip.q.val() {
                     self.skip.d.next = false;
                 } else {
@@ -230,14 +295,12 @@ impl Logic for Traceback {
                         self.skip.d.next = true;
                         self.moved.d.next = true;
                         self.wi.d.next = self.wi.q.val() - 1;
-                        self.wi_up.d.next = self.wi_up.q.val() - 1;
                         self.wj.d.next = self.wj.q.val() - 1;
                         self.stop.next = !self.wi.q.val().any() | !self.wj.q.val().any();
                     }
                     if self.choice.val() == self.c_up.val() {
                         self.moved.d.next = true;
                         self.wi.d.next = self.wi.q.val() - 1;
-                        self.wi_up.d.next = self.wi_up.q.val() - 1;
                         self.stop.next = !self.wi.q.val().any();
                     }
                     if self.choice.val() == self.c_left.val() {

@@ -1,22 +1,26 @@
-//! One row's choice out of a word of the systolic matcher's choice memory
-//! (the traceback's read, `crate::systolic_matcher`): row `r` is the low row
-//! of cell `r` or, from `N` on, the high row of cell `r - N`; cell `c`'s
-//! choice is bits `2·(c mod 16)` and up of word `c / 16` of its half.
+//! The word of the systolic matcher's choice memory that holds a row's
+//! choice (the traceback's read, `crate::systolic_matcher`): row `r` is the
+//! low row of cell `r` or, from `N` on, the high row of cell `r - N`; cell
+//! `c`'s choice is bits `2·(c mod 16)` and up of word `c / 16` of its half.
+//! With `N` a multiple of 16, each word holds 16 consecutive rows, so row
+//! `r`'s choice is at `2·(r mod 16)` in it. An array of at most 8 cells has
+//! all its rows in the first words of its halves; they are put side by
+//! side (`lo0` then `hi0`), so row `r`'s choice is at `2·r` there too.
 //!
 //! ## Ports
 //! - `lo0..3`, `hi0..3`: one anti-diagonal's words of the low and high
 //!   rows, [`CELLS_PER_CHOICE_WORD`] cells each.
-//! - `row`: the row; out `choice`, its 2-bit choice.
+//! - `group`: the row's group `⌊r / 16⌋`; out `word`, the word holding the
+//!   choices of the group's rows.
 //!
 //! ## Timing
-//! Combinational (multiplexers over the eight words, then over the word's
-//! 16 choices).
+//! Combinational (one eight-way multiplexer of words).
 
 use crate::params::*;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
-pub struct ChoiceSelect {
+pub struct ChoiceWord {
     pub lo0: Signal<In, Bits<CHOICE_WORD_BITS>>,
     pub lo1: Signal<In, Bits<CHOICE_WORD_BITS>>,
     pub lo2: Signal<In, Bits<CHOICE_WORD_BITS>>,
@@ -25,26 +29,25 @@ pub struct ChoiceSelect {
     pub hi1: Signal<In, Bits<CHOICE_WORD_BITS>>,
     pub hi2: Signal<In, Bits<CHOICE_WORD_BITS>>,
     pub hi3: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub row: Signal<In, Bits<INDEX_BITS>>,
-    pub choice: Signal<Out, Bits<2>>,
+    pub group: Signal<In, Bits<ROW_GROUP_BITS>>,
+    pub word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
     hi: Signal<Local, Bit>,
-    cell_index: Signal<Local, Bits<CELL_BITS>>,
-    widx: Signal<Local, Bits<2>>,
-    pair: Signal<Local, Bits<PAIR_BITS>>,
-    word: Signal<Local, Bits<CHOICE_WORD_BITS>>,
-    cells_c: Constant<Bits<INDEX_BITS>>,
-    word_shift: Constant<Bits<8>>,
-    bit0: Constant<Bits<8>>,
-    w1: Constant<Bits<2>>,
-    w2: Constant<Bits<2>>,
-    w3: Constant<Bits<2>>,
+    widx: Signal<Local, Bits<ROW_GROUP_BITS>>,
+    half_groups: Constant<Bits<ROW_GROUP_BITS>>,
+    one_word: Constant<Bit>,
+    one_word_shift: Constant<Bits<8>>,
+    w1: Constant<Bits<ROW_GROUP_BITS>>,
+    w2: Constant<Bits<ROW_GROUP_BITS>>,
+    w3: Constant<Bits<ROW_GROUP_BITS>>,
 }
 
-impl ChoiceSelect {
+impl ChoiceWord {
     /// The selection for an array of `cells` cells.
     pub fn new(cells: usize) -> Self {
         assert!(cells <= N_CELLS && CHOICE_WORDS == 4, "four words per half");
-        ChoiceSelect {
+        let one_word = 2 * cells <= CELLS_PER_CHOICE_WORD;
+        assert!(one_word || cells % CELLS_PER_CHOICE_WORD == 0, "whole words per half, or one word for both");
+        ChoiceWord {
             lo0: Default::default(),
             lo1: Default::default(),
             lo2: Default::default(),
@@ -53,16 +56,13 @@ impl ChoiceSelect {
             hi1: Default::default(),
             hi2: Default::default(),
             hi3: Default::default(),
-            row: Default::default(),
-            choice: Default::default(),
-            hi: Default::default(),
-            cell_index: Default::default(),
-            widx: Default::default(),
-            pair: Default::default(),
+            group: Default::default(),
             word: Default::default(),
-            cells_c: Constant::new((cells as u64).into()),
-            word_shift: Constant::new((CELLS_PER_CHOICE_WORD.trailing_zeros() as u64).into()),
-            bit0: Constant::new(0u64.into()),
+            hi: Default::default(),
+            widx: Default::default(),
+            half_groups: Constant::new(((cells / CELLS_PER_CHOICE_WORD) as u64).into()),
+            one_word: Constant::new(one_word),
+            one_word_shift: Constant::new((2 * cells as u64).into()),
             w1: Constant::new(1u64.into()),
             w2: Constant::new(2u64.into()),
             w3: Constant::new(3u64.into()),
@@ -70,23 +70,21 @@ impl ChoiceSelect {
     }
 }
 
-impl Default for ChoiceSelect {
+impl Default for ChoiceWord {
     fn default() -> Self {
-        ChoiceSelect::new(N_CELLS)
+        ChoiceWord::new(N_CELLS)
     }
 }
 
-impl Logic for ChoiceSelect {
+impl Logic for ChoiceWord {
     #[hdl_gen]
     fn update(&mut self) {
-        self.hi.next = self.row.val() >= self.cells_c.val();
-        self.cell_index.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.row.val());
+        // Groups 0 .. N/16 are the low rows' words, the next the high rows'.
+        self.hi.next = self.group.val() >= self.half_groups.val();
+        self.widx.next = self.group.val();
         if self.hi.val() {
-            self.cell_index.next = bit_cast::<CELL_BITS, INDEX_BITS>(self.row.val() - self.cells_c.val());
+            self.widx.next = self.group.val() - self.half_groups.val();
         }
-        self.widx.next = self.cell_index.val().get_bits::<2>(self.word_shift.val().index());
-        self.pair.next = bit_cast::<PAIR_BITS, 4>(self.cell_index.val().get_bits::<4>(self.bit0.val().index()))
-            + bit_cast::<PAIR_BITS, 4>(self.cell_index.val().get_bits::<4>(self.bit0.val().index()));
         self.word.next = self.lo0.val();
         if self.hi.val() {
             self.word.next = self.hi0.val();
@@ -109,6 +107,8 @@ impl Logic for ChoiceSelect {
                 self.word.next = self.hi3.val();
             }
         }
-        self.choice.next = self.word.val().get_bits::<2>(self.pair.val().index());
+        if self.one_word.val() {
+            self.word.next = self.lo0.val() | (self.hi0.val() << self.one_word_shift.val());
+        }
     }
 }
