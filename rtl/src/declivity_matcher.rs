@@ -46,7 +46,7 @@
 //! engine takes the next pair the clock after the traceback ends. Loading
 //! the next pair overlaps the engine's work on this one; the worst line,
 //! `n = m = N_MAX`, costs at most
-//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 917 clocks, inside the
+//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 919 clocks, inside the
 //! 1024 of a `W_MAX` line.
 
 use crate::params::*;
