@@ -16,11 +16,12 @@
 //! ## Timing
 //! One write and one read per clock (block RAMs with their output
 //! registers, [`BlockRam`]: a read takes two clocks). A
-//! write reaches the RAM two clocks after it is on the ports: the record
-//! is registered as it comes, then registered again in the RAM's format
-//! (on a full ECP5-85K neither the route from the matcher's input register
-//! through the level conversion's adders nor the route from those adders
-//! to the block RAM's data inputs fits in one clock with the other). The matcher never reads an address on the
+//! write reaches the RAM three clocks after it is on the ports: the record
+//! is registered as it comes, then with `LEVEL_OFFSET - e`, then in the
+//! RAM's format (on a full ECP5-85K the route from the matcher's input
+//! register through the level conversion's adders, the conversion's two
+//! adders in series, and the route from them to the block RAM's data
+//! inputs each took most of a clock). The matcher never reads an address on the
 //! clock it writes it (the loader writes one bank while the engine reads
 //! the other), and its Verilog tells the synthesis so (`no_rw_check`):
 //! what such a read returns is left undefined.
@@ -73,6 +74,16 @@ pub struct RecordMemory {
     wi_right1: DFF<Bits<PIXEL_BITS>>,
     wi_right2: DFF<Bits<PIXEL_BITS>>,
     // The write, in the RAMs' format.
+    wb_enable: DFF<Bit>,
+    wb_addr: DFF<Bits<DIAG_BITS>>,
+    wb_pos: DFF<Bits<{ POS_BITS + 1 }>>,
+    wb_base: DFF<Bits<LEVEL_BITS>>,
+    wb_left0: DFF<Bits<PIXEL_BITS>>,
+    wb_left1: DFF<Bits<PIXEL_BITS>>,
+    wb_left2: DFF<Bits<PIXEL_BITS>>,
+    wb_right0: DFF<Bits<PIXEL_BITS>>,
+    wb_right1: DFF<Bits<PIXEL_BITS>>,
+    wb_right2: DFF<Bits<PIXEL_BITS>>,
     wq_enable: DFF<Bit>,
     wq_addr: DFF<Bits<DIAG_BITS>>,
     wq_pos: DFF<Bits<{ POS_BITS + 1 }>>,
@@ -130,6 +141,16 @@ impl Default for RecordMemory {
             wi_right0: Default::default(),
             wi_right1: Default::default(),
             wi_right2: Default::default(),
+            wb_enable: Default::default(),
+            wb_addr: Default::default(),
+            wb_pos: Default::default(),
+            wb_base: Default::default(),
+            wb_left0: Default::default(),
+            wb_left1: Default::default(),
+            wb_left2: Default::default(),
+            wb_right0: Default::default(),
+            wb_right1: Default::default(),
+            wb_right2: Default::default(),
             wq_enable: Default::default(),
             wq_addr: Default::default(),
             wq_pos: Default::default(),
@@ -158,7 +179,7 @@ impl Logic for RecordMemory {
         self.lev3_mem.clock.next = self.clock.val();
         self.lev4_mem.clock.next = self.clock.val();
         self.lev5_mem.clock.next = self.clock.val();
-        dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wi_left0, wi_left1, wi_left2, wi_right0, wi_right1, wi_right2, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
+        dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wi_left0, wi_left1, wi_left2, wi_right0, wi_right1, wi_right2, wb_enable, wb_addr, wb_pos, wb_base, wb_left0, wb_left1, wb_left2, wb_right0, wb_right1, wb_right2, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
 
         self.wi_enable.d.next = self.w_enable.val();
         self.wi_addr.d.next = self.w_addr.val();
@@ -171,40 +192,48 @@ impl Logic for RecordMemory {
         self.wi_right1.d.next = self.w_right1.val();
         self.wi_right2.d.next = self.w_right2.val();
 
+        // Second stage: the end-level sum's part of the conversion,
+        // `LEVEL_OFFSET - e`, registered with the record.
         self.ends.next = 0.into();
         if self.relative.val() {
             self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
                 + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val());
         }
-        self.wq_pos.d.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.wi_pos.q.val())
+        self.wb_base.d.next = self.level_offset.val() - self.ends.val();
+        self.wb_pos.d.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.wi_pos.q.val())
             .replace_bit(self.rise_bit.val().index(), !self.wi_falling.q.val());
-        self.wq_lev0.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
-            + self.level_offset.val()
-            - self.ends.val();
-        self.wq_lev1.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left1.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left1.q.val())
-            + self.level_offset.val()
-            - self.ends.val();
-        self.wq_lev2.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left2.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left2.q.val())
-            + self.level_offset.val()
-            - self.ends.val();
-        self.wq_lev3.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val())
-            + self.level_offset.val()
-            - self.ends.val();
-        self.wq_lev4.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right1.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right1.q.val())
-            + self.level_offset.val()
-            - self.ends.val();
-        self.wq_lev5.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right2.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right2.q.val())
-            + self.level_offset.val()
-            - self.ends.val();
+        self.wb_left0.d.next = self.wi_left0.q.val();
+        self.wb_left1.d.next = self.wi_left1.q.val();
+        self.wb_left2.d.next = self.wi_left2.q.val();
+        self.wb_right0.d.next = self.wi_right0.q.val();
+        self.wb_right1.d.next = self.wi_right1.q.val();
+        self.wb_right2.d.next = self.wi_right2.q.val();
+        self.wb_enable.d.next = self.wi_enable.q.val();
+        self.wb_addr.d.next = self.wi_addr.q.val();
+        // Third stage: each level `2·I + (LEVEL_OFFSET - e)`, in the RAMs'
+        // format.
+        self.wq_pos.d.next = self.wb_pos.q.val();
+        self.wq_lev0.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left0.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left0.q.val())
+            + self.wb_base.q.val();
+        self.wq_lev1.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left1.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left1.q.val())
+            + self.wb_base.q.val();
+        self.wq_lev2.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left2.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left2.q.val())
+            + self.wb_base.q.val();
+        self.wq_lev3.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right0.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right0.q.val())
+            + self.wb_base.q.val();
+        self.wq_lev4.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right1.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right1.q.val())
+            + self.wb_base.q.val();
+        self.wq_lev5.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right2.q.val())
+            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right2.q.val())
+            + self.wb_base.q.val();
 
-        self.wq_enable.d.next = self.wi_enable.q.val();
-        self.wq_addr.d.next = self.wi_addr.q.val();
+        self.wq_enable.d.next = self.wb_enable.q.val();
+        self.wq_addr.d.next = self.wb_addr.q.val();
         self.pos_mem.write_data.next = self.wq_pos.q.val();
         self.pos_mem.write_address.next = self.wq_addr.q.val();
         self.lev0_mem.write_data.next = self.wq_lev0.q.val();
