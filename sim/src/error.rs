@@ -42,4 +42,7 @@ pub enum SimError {
     /// A picture could not be written.
     #[error(transparent)]
     Picture(#[from] crate::pictures::PictureError),
+    /// A latency budget was asked for sizes the hardware does not take.
+    #[error(transparent)]
+    Budget(#[from] crate::budget::BudgetError),
 }

@@ -8,6 +8,7 @@
 //! ECP5 synthesis reports ([`synth`]), and the `declivity` command-line tool
 //! built on them.
 
+pub mod budget;
 pub mod bundled;
 pub mod cosim;
 pub mod depth;

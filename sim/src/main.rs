@@ -75,6 +75,62 @@ with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both fr
 (TRELLIS_COMB), flip-flops, block RAMs (DP16KD), DSPs (MULT18X18D), Fmax of `clock` and the \
 critical path, or one JSON object with --json. Takes a few minutes for the detector.")]
     Synth(SynthArgs),
+    /// Latency budget of the hardware: clocks per line per stage, line period, latency, frame rate, resources.
+    #[command(long_about = "Latency budget of the hardware line processor (DESIGN.md section 3), from \
+the rtl blocks' own cycle formulas (rtl::declivity_detector::marker_latency and line_starts, \
+rtl::declivity_matcher::line_cycles, sweep_cycles, rtl::traceback::traceback_cycles), which the tests \
+check against clocks measured in simulation.
+
+Per stage that exists in rtl today (the two declivity detectors, one per camera, and the matcher; the \
+interpolator/depth stage is not yet included): its clocks per line for the worst line, as a formula \
+with its values. The detector takes W clocks per line (one pixel per clock) from W >= MIN_LINE_PERIOD \
+= 283 on; the matcher's worst line has n = m = N declivities and a path of k = N pairs stopping on \
+anti-diagonal 0, which maximises line_cycles (every term grows with n, m, k and falls with the stop \
+diagonal). Then: the line period, max(W + hblank, slowest stage), and if a stage is slower than the \
+input, the clocks per line the input stalls and the least hblank that avoids it; the latency of a \
+scanline, from its first pixel accepted to its last match out, stage by stage; the frame time, H x line \
+period / clock, and frames per second; the resources as the rtl blocks declare them (line buffers, \
+|dI| histogram banks, gain cells (PEs) and rows per cell, record, choice and traceback memories, in \
+bits; generation-time sizes for W_MAX = 1024, N_MAX = 128). --json prints the same as one JSON object \
+(line_period_cycles, stall_cycles_per_line, min_hblank_cycles, latency_cycles, latency_us, \
+frame_time_ms, fps, stages[] with cycles_per_line, formula, latency_cycles, latency_formula, \
+resources, notes).")]
+    Budget(BudgetArgs),
+}
+
+/// `declivity budget`: the sizes and clock to budget for.
+#[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
+struct BudgetArgs {
+    /// Pixels per line W on each camera's input. Lines wider than W_MAX = 1024 are processed on
+    /// their first 1024 pixels and flagged wide (the budget says so); the input still takes W clocks.
+    #[arg(long)]
+    width: usize,
+    /// Lines per frame H.
+    #[arg(long)]
+    height: usize,
+    /// Characteristic declivities per line N to budget the matcher for, on both views: 1 to N_MAX
+    /// = 128 (the detector keeps at most 128; at most 2 per gain cell).
+    #[arg(long)]
+    n_max: usize,
+    /// Search bound of eq. 6 in px (greater than 1, at most W_MAX = 1024, a multiple of 1/16).
+    /// Changes no clock count: it only removes nodes of the table the matcher sweeps.
+    #[arg(long)]
+    dispmax: f64,
+    /// Clock frequency in MHz (> 0), for the latency in µs, the frame time and frames per second.
+    #[arg(long)]
+    clock_mhz: f64,
+    /// Horizontal blanking: idle clocks after each line on the inputs. A stage slower than
+    /// W + hblank stalls the input.
+    #[arg(long, default_value_t = 0)]
+    hblank: usize,
+    /// Gain cells of the matcher's systolic array K (2, 4, 8, 16, 32 or 64 = N_CELLS, the
+    /// sensor's; each holds two reference declivities, so N <= 2 K).
+    #[arg(long, default_value_t = rtl::params::N_CELLS)]
+    cells: usize,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -380,6 +436,7 @@ fn main() -> ExitCode {
         Some(Command::Rtl(RtlCommand::Match(a))) => rtl_match(a),
         Some(Command::Verilog(a)) => verilog_cmd(a),
         Some(Command::Synth(a)) => synth_cmd(a),
+        Some(Command::Budget(a)) => budget_cmd(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -761,6 +818,25 @@ fn synth_cmd(a: SynthArgs) -> Result<(), SimError> {
         println!("{}", serde_json::to_string(&report).expect("the report serializes"));
     } else {
         println!("{}", sim::synth::report_table(&report));
+    }
+    Ok(())
+}
+
+fn budget_cmd(a: BudgetArgs) -> Result<(), SimError> {
+    let request = sim::budget::BudgetRequest {
+        width: a.width,
+        height: a.height,
+        n_max: a.n_max,
+        dispmax: a.dispmax,
+        clock_mhz: a.clock_mhz,
+        hblank: a.hblank,
+        cells: a.cells,
+    };
+    let budget = sim::budget::budget(&request)?;
+    if a.json {
+        println!("{}", serde_json::to_string(&budget).expect("the budget serializes"));
+    } else {
+        print!("{}", sim::budget::report_text(&budget));
     }
     Ok(())
 }
