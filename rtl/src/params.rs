@@ -185,6 +185,32 @@ mod tests {
     }
 }
 
+/// Bits of a line width `1 ..= W_MAX` or of a pixel boundary `0 ..= W_MAX`
+/// (the first pixel centre at or after a position).
+pub const WIDTH_BITS: usize = W_MAX_BITS + 1;
+/// The edge jump of golden's default mode (`golden::params::EDGE_JUMP`,
+/// 6 px) in [`POS_FRAC_BITS`] fixed point: the interpolator does not bridge
+/// two matches whose disparities differ by more.
+pub const EDGE_JUMP_LSB: u64 = 6 << POS_FRAC_BITS;
+/// Fraction bits of the interpolator's weight `t = (x - X_a) / (X_b - X_a)`
+/// between two matches.
+pub const WEIGHT_FRAC_BITS: usize = 16;
+/// Index bits of the interpolator's reciprocal table: `1 / (X_b - X_a)` from
+/// the distance's [`RECIP_INDEX_BITS`] bits after its leading one (relative
+/// error below `2^-(RECIP_INDEX_BITS + 1) + 2^-15`).
+pub const RECIP_INDEX_BITS: usize = 9;
+/// Bits of a reciprocal table entry.
+pub const RECIP_BITS: usize = 16;
+/// A table entry is `2^RECIP_SHIFT / m` for a distance `m` normalised to
+/// `[2^(POS_BITS-1), 2^POS_BITS)`: between `2^(RECIP_BITS-1)` and
+/// `2^RECIP_BITS`.
+pub const RECIP_SHIFT: usize = POS_BITS - 1 + RECIP_BITS;
+/// Address bits of the interpolator's segment memory (`2^SEG_ADDR_BITS`
+/// entries: lines of at most `N_MAX - 1` segments, three of them and more).
+pub const SEG_ADDR_BITS: usize = INDEX_BITS + 2;
+/// Address bits of the interpolator's line queue.
+pub const LINE_QUEUE_BITS: usize = 2;
+
 /// Reference declivities per gain cell: cell `c` of `N` holds rows `c` and
 /// `c + N` of the matching table (the column stream passes the array
 /// twice, interleaved), so one datapath serves two rows and each row's

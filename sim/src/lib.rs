@@ -3,7 +3,9 @@
 //! Reading images and pair folders ([`io`]), evaluation against ground truth
 //! ([`eval`]), the pictures of the paper's figures ([`pictures`]), the
 //! cycle-accurate direct drive of the rtl declivity detector and its
-//! comparison with golden ([`detector`]), the Verilog of the blocks
+//! comparison with golden ([`detector`]), the same for the matcher
+//! ([`matcher`]) and the interpolator ([`interpolator`]), the latency budget
+//! ([`budget`]), the Verilog of the blocks
 //! ([`verilog`]), co-simulation under Icarus and Verilator ([`cosim`]),
 //! ECP5 synthesis reports ([`synth`]), and the `declivity` command-line tool
 //! built on them.
@@ -15,6 +17,7 @@ pub mod depth;
 pub mod detector;
 pub mod error;
 pub mod eval;
+pub mod interpolator;
 pub mod io;
 pub mod matcher;
 pub mod matcher_cosim;

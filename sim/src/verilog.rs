@@ -13,6 +13,9 @@ pub enum Top {
     /// reference declivities unless --cells says otherwise, the default gain
     /// rule (robust).
     Matcher,
+    /// The interpolator (`rtl::interpolator`): a line's matches in, one
+    /// disparity per pixel per clock out, the default mode's edge jump.
+    Interpolator,
 }
 
 impl Top {
@@ -21,6 +24,7 @@ impl Top {
         match self {
             Top::Detector => "detector",
             Top::Matcher => "matcher",
+            Top::Interpolator => "interpolator",
         }
     }
 }
@@ -42,6 +46,11 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
             let mut uut = rtl::declivity_detector::DeclivityDetector::default();
             uut.connect_all();
             Some(generate_verilog(&uut))
+        }
+        Top::Interpolator => {
+            let mut uut = rtl::interpolator::Interpolator::default();
+            uut.connect_all();
+            Some(mark_memories_no_rw_check(&generate_verilog(&uut)))
         }
         Top::Matcher => match cells {
             2 => Some(matcher_verilog::<2>(rule)),

@@ -1,0 +1,803 @@
+//! The interpolator (`DESIGN.md` §2.2 and §3, paper §IV's last step,
+//! `golden::disparity::interpolate_into`): a line's matches in, one
+//! disparity per reference pixel per clock out.
+//!
+//! Between consecutive matches `a`, `b` (positions `X_a < X_b`, disparities
+//! `d_a`, `d_b`) the pixel centres `x` with `⌈X_a⌉ ≤ x < ⌈X_b⌉` take
+//! `d_a + t·(d_b - d_a)`, `t = (x - X_a) / (X_b - X_a)`; before the first
+//! match the first disparity is held, from the last match's `⌈X⌉` on the
+//! last one (golden's `EndRule::Hold`, its default); a line without a match
+//! is empty (0, "no disparity"). With an edge jump `J` (golden's `edge_jump`),
+//! two matches whose disparities differ by more than `J` are not bridged:
+//! their pixels take the smaller disparity.
+//!
+//! Two engines, a segment memory and a line queue between them:
+//! - **Segments**: as matches arrive, each one that starts a new pixel
+//!   (`⌈X_b⌉ > ⌈X_a⌉`) closes the segment from the previous match. Its
+//!   `1 / (X_b - X_a)` comes from a table: the distance is shifted left until
+//!   its top bit is set (`lz` places), and the next [`RECIP_INDEX_BITS`]
+//!   bits address a block-RAM table of `2^RECIP_SHIFT / m` at the middle of
+//!   the bucket. The segment (its last pixel, `X_a`, its base `d_a` (across
+//!   a jump the smaller disparity), `|d_b - d_a|` and its sign, the jump
+//!   flag, `lz` and the reciprocal) goes into the segment
+//!   memory; at the line's end marker the line's description (its last pixel, the
+//!   held values and where their pixels start, start of frame) goes into
+//!   the line queue, and is shown to the pixel engine once the line's last
+//!   segment is in the memory. The segments of a line cover the pixels from
+//!   the first match's `⌈X⌉` to the last one's without gaps, so the pixel
+//!   engine needs no count of them.
+//! - **Pixels**: while the queue holds a line, its pixels leave one per
+//!   clock, lines back to back: the head, then each segment's pixels, then
+//!   the tail. A segment's pixel is `d_a ± ⌊(t·|Δd| + ½)⌋` with
+//!   `t = ((x - X_a) << lz) · recip >> (POS_BITS - 1)`, two 16×16 products,
+//!   [`WEIGHT_FRAC_BITS`] fraction bits; `t` is clamped below 1.
+//!
+//! Accuracy against golden on the same (fixed-point) matches: the pixels
+//! that take a held or jump value are exact; a ramp pixel is within
+//! `½ + |Δd|·2^-RECIP_INDEX_BITS` LSB (the reciprocal's relative error is
+//! below `2^-(RECIP_INDEX_BITS+1) + 2^-15`, `t`'s truncation adds at most
+//! `|Δd|·2^-16`).
+//!
+//! ## Ports
+//! - In, the match stream (as the matcher emits it, reference order):
+//!   `a_valid` with `a_last` low is a match, `a_x` (`X`) and `a_d` (its
+//!   disparity), both [`POS_FRAC_BITS`] fraction bits, strictly increasing
+//!   `a_x` within a line; `a_valid` with `a_last` high ends the line:
+//!   `a_width` (its pixels, `1 ..= W_MAX`), `a_sof` (it starts a frame).
+//! - Out, no back-pressure: `p_valid`, `p_d` (disparity, [`POS_FRAC_BITS`]
+//!   fraction bits, 0 = none), `p_last` (the line's last pixel), `p_sof`
+//!   (the frame's first pixel), `p_empty` (the line had no match).
+//! - `overflow`: high for a clock (with the dropped line's marker) when a
+//!   line is dropped because the line queue or the segment memory had no
+//!   room for it when it started (see Timing).
+//!
+//! ## Timing
+//! A line's description is in the queue [`SEGMENT_LAG`] clocks after its
+//! marker; its first pixel leaves [`PIXEL_LAG`] clocks after the pixel
+//! engine starts it, which is on the clock after the description is in if
+//! the engine is idle, or right after the previous line's last pixel.
+//! Lines leave back to back at one pixel per clock: a line of `W` pixels
+//! takes `W` clocks. The queue holds [`LINE_QUEUE`] lines and the memory
+//! `2^SEG_ADDR_BITS` segments; a line is admitted on its first match (or
+//! its marker) if the queue has a free place and the memory room for a
+//! whole line ([`SEG_RESERVE`]), else it is dropped whole (its marker
+//! raises `overflow`, its pixels never leave). Lines that arrive at most
+//! one per `W` clocks, as a sensor's do, are never dropped. `a_valid` low
+//! between matches only delays them.
+
+use crate::params::*;
+use rust_hdl::prelude::*;
+
+/// Clocks from a line's marker on `a_*` to its description in the line
+/// queue being shown to the pixel engine: the marker's write, then three
+/// clocks, as long as a segment takes from its match to the memory (the
+/// segment register, the normalisation, the table's address register and
+/// the table).
+pub const SEGMENT_LAG: usize = 4;
+/// Clocks from the pixel engine's clock of a pixel to the pixel on `p_*`:
+/// the selection, the shift, the two products, the sum.
+pub const PIXEL_LAG: usize = 5;
+/// Lines the line queue holds.
+pub const LINE_QUEUE: usize = 1 << LINE_QUEUE_BITS;
+/// Free segment places a line needs to be admitted: its at most
+/// `N_MAX - 1` segments and the three of the previous line still on
+/// their way to the memory.
+pub const SEG_RESERVE: usize = N_MAX - 1 + 3;
+
+/// The reciprocal table: entry `i` is `⌊2^RECIP_SHIFT / m⌋` for the middle
+/// `m` of the bucket of normalised distances whose bits after the leading
+/// one are `i`.
+pub fn recip_table() -> Vec<u64> {
+    let low = POS_BITS - 1 - RECIP_INDEX_BITS;
+    (0..1u64 << RECIP_INDEX_BITS)
+        .map(|i| {
+            let m = ((i + (1 << RECIP_INDEX_BITS)) << low) + (1 << (low - 1));
+            (1u64 << RECIP_SHIFT) / m
+        })
+        .collect()
+}
+
+/// Bits of a segment's shape: `lz` (the distance's normalising shift,
+/// 0 ..= POS_BITS - 1), the sign of `d_b - d_a` ([`NEG_BIT`]) and the jump
+/// flag ([`JUMP_BIT`]).
+const SHAPE_BITS: usize = 6;
+/// Bits of the shift `lz` in a shape.
+const LZ_BITS: usize = 4;
+/// The shape bit of `d_b < d_a`.
+const NEG_BIT: usize = 4;
+/// The shape bit of a jump (the pixels take the smaller disparity).
+const JUMP_BIT: usize = 5;
+/// Bits of a segment-memory pointer (one above the address).
+const SEG_PTR_BITS: usize = SEG_ADDR_BITS + 1;
+/// Bits of a line-queue pointer (one above the address).
+const QUEUE_PTR_BITS: usize = LINE_QUEUE_BITS + 1;
+
+#[derive(LogicBlock)]
+pub struct Interpolator {
+    pub clock: Signal<In, Clock>,
+    pub a_valid: Signal<In, Bit>,
+    pub a_last: Signal<In, Bit>,
+    pub a_x: Signal<In, Bits<POS_BITS>>,
+    pub a_d: Signal<In, Bits<POS_BITS>>,
+    pub a_width: Signal<In, Bits<WIDTH_BITS>>,
+    pub a_sof: Signal<In, Bit>,
+    pub p_valid: Signal<Out, Bit>,
+    pub p_d: Signal<Out, Bits<POS_BITS>>,
+    pub p_last: Signal<Out, Bit>,
+    pub p_sof: Signal<Out, Bit>,
+    pub p_empty: Signal<Out, Bit>,
+    pub overflow: Signal<Out, Bit>,
+    // ---- Segments: the line being received (admission, the previous match).
+    in_line: DFF<Bit>,
+    dropping: DFF<Bit>,
+    has_prev: DFF<Bit>,
+    prev_x: DFF<Bits<POS_BITS>>,
+    prev_d: DFF<Bits<POS_BITS>>,
+    prev_c: DFF<Bits<WIDTH_BITS>>,
+    first_d: DFF<Bits<POS_BITS>>,
+    first_c: DFF<Bits<WIDTH_BITS>>,
+    // Stage 1: a segment; stage 2: its distance normalised; stage 3: the
+    // table's address; then the table's output beside stage 3.
+    s1_seg: DFF<Bit>,
+    s1_last: DFF<Bits<WIDTH_BITS>>,
+    s1_ax: DFF<Bits<POS_BITS>>,
+    s1_ad: DFF<Bits<POS_BITS>>,
+    s1_dx: DFF<Bits<POS_BITS>>,
+    s1_dd: DFF<Bits<POS_BITS>>,
+    s1_neg: DFF<Bit>,
+    s1_min: DFF<Bits<POS_BITS>>,
+    s2_seg: DFF<Bit>,
+    s2_last: DFF<Bits<WIDTH_BITS>>,
+    s2_ax: DFF<Bits<POS_BITS>>,
+    s2_ad: DFF<Bits<POS_BITS>>,
+    s2_dd: DFF<Bits<POS_BITS>>,
+    s2_m: DFF<Bits<POS_BITS>>,
+    s2_shape: DFF<Bits<SHAPE_BITS>>,
+    s3_seg: DFF<Bit>,
+    s3_last: DFF<Bits<WIDTH_BITS>>,
+    s3_ax: DFF<Bits<POS_BITS>>,
+    s3_ad: DFF<Bits<POS_BITS>>,
+    s3_dd: DFF<Bits<POS_BITS>>,
+    s3_shape: DFF<Bits<SHAPE_BITS>>,
+    recip: SyncROM<Bits<RECIP_BITS>, RECIP_INDEX_BITS>,
+    // ---- The segment memory, one RAM per field, and its pointers (one bit
+    // above the address, so that full and empty differ).
+    seg_last: RAM<Bits<WIDTH_BITS>, SEG_ADDR_BITS>,
+    seg_ax: RAM<Bits<POS_BITS>, SEG_ADDR_BITS>,
+    seg_ad: RAM<Bits<POS_BITS>, SEG_ADDR_BITS>,
+    seg_dd: RAM<Bits<POS_BITS>, SEG_ADDR_BITS>,
+    seg_shape: RAM<Bits<SHAPE_BITS>, SEG_ADDR_BITS>,
+    seg_recip: RAM<Bits<RECIP_BITS>, SEG_ADDR_BITS>,
+    seg_wp: DFF<Bits<SEG_PTR_BITS>>,
+    seg_rp: DFF<Bits<SEG_PTR_BITS>>,
+    seg_rp1: DFFWithInit<Bits<SEG_PTR_BITS>>,
+    // ---- The line queue: written at the marker, shown three clocks later.
+    q_last_x: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
+    q_first_d: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
+    q_first_c: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
+    q_last_d: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
+    q_last_c: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
+    q_flags: RAM<Bits<2>, LINE_QUEUE_BITS>,
+    q_wp: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_wp1: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_wp2: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_shown: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_rp: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_rp1: DFFWithInit<Bits<QUEUE_PTR_BITS>>,
+    overflow_q: DFF<Bit>,
+    // ---- Pixels: the line being sent, then the pixel pipeline.
+    x: DFF<Bits<WIDTH_BITS>>,
+    p0_valid: DFF<Bit>,
+    p0_last: DFF<Bit>,
+    p0_sof: DFF<Bit>,
+    p0_empty: DFF<Bit>,
+    p0_ramp: DFF<Bit>,
+    p0_neg: DFF<Bit>,
+    p0_base: DFF<Bits<POS_BITS>>,
+    p0_u: DFF<Bits<POS_BITS>>,
+    p0_lz: DFF<Bits<LZ_BITS>>,
+    p0_recip: DFF<Bits<RECIP_BITS>>,
+    p0_dd: DFF<Bits<POS_BITS>>,
+    p1_valid: DFF<Bit>,
+    p1_last: DFF<Bit>,
+    p1_sof: DFF<Bit>,
+    p1_empty: DFF<Bit>,
+    p1_ramp: DFF<Bit>,
+    p1_neg: DFF<Bit>,
+    p1_base: DFF<Bits<POS_BITS>>,
+    p1_v: DFF<Bits<16>>,
+    p1_recip: DFF<Bits<RECIP_BITS>>,
+    p1_dd: DFF<Bits<POS_BITS>>,
+    p2_valid: DFF<Bit>,
+    p2_last: DFF<Bit>,
+    p2_sof: DFF<Bit>,
+    p2_empty: DFF<Bit>,
+    p2_ramp: DFF<Bit>,
+    p2_neg: DFF<Bit>,
+    p2_base: DFF<Bits<POS_BITS>>,
+    p2_t: DFF<Bits<16>>,
+    p2_dd: DFF<Bits<POS_BITS>>,
+    p3_valid: DFF<Bit>,
+    p3_last: DFF<Bit>,
+    p3_sof: DFF<Bit>,
+    p3_empty: DFF<Bit>,
+    p3_ramp: DFF<Bit>,
+    p3_neg: DFF<Bit>,
+    p3_base: DFF<Bits<POS_BITS>>,
+    p3_delta: DFF<Bits<POS_BITS>>,
+    o_valid: DFF<Bit>,
+    o_last: DFF<Bit>,
+    o_sof: DFF<Bit>,
+    o_empty: DFF<Bit>,
+    o_d: DFF<Bits<POS_BITS>>,
+    // ---- Locals.
+    b_c: Signal<Local, Bits<WIDTH_BITS>>,
+    x_up: Signal<Local, Bits<{ POS_BITS + 1 }>>,
+    first_event: Signal<Local, Bit>,
+    sof_flag: Signal<Local, Bits<2>>,
+    line_write: Signal<Local, Bit>,
+    fits: Signal<Local, Bit>,
+    drop_now: Signal<Local, Bit>,
+    n1: Signal<Local, Bits<POS_BITS>>,
+    n2: Signal<Local, Bits<POS_BITS>>,
+    n3: Signal<Local, Bits<POS_BITS>>,
+    n4: Signal<Local, Bits<POS_BITS>>,
+    l1: Signal<Local, Bits<SHAPE_BITS>>,
+    l2: Signal<Local, Bits<SHAPE_BITS>>,
+    l3: Signal<Local, Bits<SHAPE_BITS>>,
+    l4: Signal<Local, Bits<SHAPE_BITS>>,
+    line_ready: Signal<Local, Bit>,
+    empty_line: Signal<Local, Bit>,
+    in_head: Signal<Local, Bit>,
+    in_seg: Signal<Local, Bit>,
+    seg_done: Signal<Local, Bit>,
+    line_done: Signal<Local, Bit>,
+    seg_rp_next: Signal<Local, Bits<SEG_PTR_BITS>>,
+    q_rp_next: Signal<Local, Bits<QUEUE_PTR_BITS>>,
+    x16: Signal<Local, Bits<POS_BITS>>,
+    wide_dd: Signal<Local, Bits<16>>,
+    prod_v: Signal<Local, Bits<32>>,
+    prod_t: Signal<Local, Bits<32>>,
+    rounded: Signal<Local, Bits<32>>,
+    // ---- Constants.
+    frac_round: Constant<Bits<{ POS_BITS + 1 }>>,
+    frac_bits: Constant<Bits<8>>,
+    below8: Constant<Bits<POS_BITS>>,
+    below4: Constant<Bits<POS_BITS>>,
+    below2: Constant<Bits<POS_BITS>>,
+    below1: Constant<Bits<POS_BITS>>,
+    sh8: Constant<Bits<8>>,
+    sh4: Constant<Bits<8>>,
+    sh2: Constant<Bits<8>>,
+    sh1: Constant<Bits<8>>,
+    lz8: Constant<Bits<SHAPE_BITS>>,
+    lz4: Constant<Bits<SHAPE_BITS>>,
+    lz2: Constant<Bits<SHAPE_BITS>>,
+    lz1: Constant<Bits<SHAPE_BITS>>,
+    neg_flag: Constant<Bits<SHAPE_BITS>>,
+    jump_flag: Constant<Bits<SHAPE_BITS>>,
+    neg_bit: Constant<Bits<8>>,
+    jump_bit: Constant<Bits<8>>,
+    bit0: Constant<Bits<8>>,
+    index_low: Constant<Bits<8>>,
+    jump_on: Constant<Bit>,
+    jump_lsb: Constant<Bits<POS_BITS>>,
+    seg_limit: Constant<Bits<SEG_PTR_BITS>>,
+    queue_size: Constant<Bits<QUEUE_PTR_BITS>>,
+    flag_sof: Constant<Bits<2>>,
+    flag_empty: Constant<Bits<2>>,
+    t_shift: Constant<Bits<8>>,
+    t_over: Constant<Bits<8>>,
+    t_max: Constant<Bits<16>>,
+    half: Constant<Bits<32>>,
+    w_shift: Constant<Bits<8>>,
+}
+
+/// A memory whose Verilog starts all zeros, as its Rust model does (an
+/// uninitialised Verilog memory reads `x` in Icarus until written).
+fn zeroed<const D: usize, const A: usize>() -> RAM<Bits<D>, A> {
+    RAM::from(std::iter::repeat_n(Bits::<D>::default(), 1 << A))
+}
+
+impl Interpolator {
+    /// An interpolator with edge jump `jump` (in [`POS_FRAC_BITS`] fixed
+    /// point; `None`: every pair of consecutive matches is bridged).
+    pub fn new(jump: Option<u64>) -> Self {
+        let cp = |v: u64| Constant::<Bits<POS_BITS>>::new(v.into());
+        let c8 = |v: u64| Constant::<Bits<8>>::new(v.into());
+        let cs = |v: u64| Constant::<Bits<SHAPE_BITS>>::new(v.into());
+        Interpolator {
+            clock: Default::default(),
+            a_valid: Default::default(),
+            a_last: Default::default(),
+            a_x: Default::default(),
+            a_d: Default::default(),
+            a_width: Default::default(),
+            a_sof: Default::default(),
+            p_valid: Default::default(),
+            p_d: Default::default(),
+            p_last: Default::default(),
+            p_sof: Default::default(),
+            p_empty: Default::default(),
+            overflow: Default::default(),
+            in_line: Default::default(),
+            dropping: Default::default(),
+            has_prev: Default::default(),
+            prev_x: Default::default(),
+            prev_d: Default::default(),
+            prev_c: Default::default(),
+            first_d: Default::default(),
+            first_c: Default::default(),
+            s1_seg: Default::default(),
+            s1_last: Default::default(),
+            s1_ax: Default::default(),
+            s1_ad: Default::default(),
+            s1_dx: Default::default(),
+            s1_dd: Default::default(),
+            s1_neg: Default::default(),
+            s1_min: Default::default(),
+            s2_seg: Default::default(),
+            s2_last: Default::default(),
+            s2_ax: Default::default(),
+            s2_ad: Default::default(),
+            s2_dd: Default::default(),
+            s2_m: Default::default(),
+            s2_shape: Default::default(),
+            s3_seg: Default::default(),
+            s3_last: Default::default(),
+            s3_ax: Default::default(),
+            s3_ad: Default::default(),
+            s3_dd: Default::default(),
+            s3_shape: Default::default(),
+            recip: recip_table().into_iter().map(Bits::<RECIP_BITS>::from).into(),
+            seg_last: zeroed(),
+            seg_ax: zeroed(),
+            seg_ad: zeroed(),
+            seg_dd: zeroed(),
+            seg_shape: zeroed(),
+            seg_recip: zeroed(),
+            seg_wp: Default::default(),
+            seg_rp: Default::default(),
+            seg_rp1: DFFWithInit::new(1u64.into()),
+            q_last_x: zeroed(),
+            q_first_d: zeroed(),
+            q_first_c: zeroed(),
+            q_last_d: zeroed(),
+            q_last_c: zeroed(),
+            q_flags: zeroed(),
+            q_wp: Default::default(),
+            q_wp1: Default::default(),
+            q_wp2: Default::default(),
+            q_shown: Default::default(),
+            q_rp: Default::default(),
+            q_rp1: DFFWithInit::new(1u64.into()),
+            overflow_q: Default::default(),
+            x: Default::default(),
+            p0_valid: Default::default(),
+            p0_last: Default::default(),
+            p0_sof: Default::default(),
+            p0_empty: Default::default(),
+            p0_ramp: Default::default(),
+            p0_neg: Default::default(),
+            p0_base: Default::default(),
+            p0_u: Default::default(),
+            p0_lz: Default::default(),
+            p0_recip: Default::default(),
+            p0_dd: Default::default(),
+            p1_valid: Default::default(),
+            p1_last: Default::default(),
+            p1_sof: Default::default(),
+            p1_empty: Default::default(),
+            p1_ramp: Default::default(),
+            p1_neg: Default::default(),
+            p1_base: Default::default(),
+            p1_v: Default::default(),
+            p1_recip: Default::default(),
+            p1_dd: Default::default(),
+            p2_valid: Default::default(),
+            p2_last: Default::default(),
+            p2_sof: Default::default(),
+            p2_empty: Default::default(),
+            p2_ramp: Default::default(),
+            p2_neg: Default::default(),
+            p2_base: Default::default(),
+            p2_t: Default::default(),
+            p2_dd: Default::default(),
+            p3_valid: Default::default(),
+            p3_last: Default::default(),
+            p3_sof: Default::default(),
+            p3_empty: Default::default(),
+            p3_ramp: Default::default(),
+            p3_neg: Default::default(),
+            p3_base: Default::default(),
+            p3_delta: Default::default(),
+            o_valid: Default::default(),
+            o_last: Default::default(),
+            o_sof: Default::default(),
+            o_empty: Default::default(),
+            o_d: Default::default(),
+            b_c: Default::default(),
+            x_up: Default::default(),
+            first_event: Default::default(),
+            sof_flag: Default::default(),
+            line_write: Default::default(),
+            fits: Default::default(),
+            drop_now: Default::default(),
+            n1: Default::default(),
+            n2: Default::default(),
+            n3: Default::default(),
+            n4: Default::default(),
+            l1: Default::default(),
+            l2: Default::default(),
+            l3: Default::default(),
+            l4: Default::default(),
+            line_ready: Default::default(),
+            empty_line: Default::default(),
+            in_head: Default::default(),
+            in_seg: Default::default(),
+            seg_done: Default::default(),
+            line_done: Default::default(),
+            seg_rp_next: Default::default(),
+            q_rp_next: Default::default(),
+            x16: Default::default(),
+            wide_dd: Default::default(),
+            prod_v: Default::default(),
+            prod_t: Default::default(),
+            rounded: Default::default(),
+            frac_round: Constant::new(((1u64 << POS_FRAC_BITS) - 1).into()),
+            frac_bits: c8(POS_FRAC_BITS as u64),
+            below8: cp(1 << (POS_BITS - 8)),
+            below4: cp(1 << (POS_BITS - 4)),
+            below2: cp(1 << (POS_BITS - 2)),
+            below1: cp(1 << (POS_BITS - 1)),
+            sh8: c8(8),
+            sh4: c8(4),
+            sh2: c8(2),
+            sh1: c8(1),
+            lz8: cs(8),
+            lz4: cs(4),
+            lz2: cs(2),
+            lz1: cs(1),
+            neg_flag: cs(1 << NEG_BIT),
+            jump_flag: cs(1 << JUMP_BIT),
+            neg_bit: c8(NEG_BIT as u64),
+            jump_bit: c8(JUMP_BIT as u64),
+            bit0: c8(0),
+            index_low: c8((POS_BITS - 1 - RECIP_INDEX_BITS) as u64),
+            jump_on: Constant::new(jump.is_some()),
+            jump_lsb: cp(jump.unwrap_or(0)),
+            seg_limit: Constant::new((((1usize << SEG_ADDR_BITS) - SEG_RESERVE) as u64).into()),
+            queue_size: Constant::new((LINE_QUEUE as u64).into()),
+            flag_sof: Constant::new(1u64.into()),
+            flag_empty: Constant::new(2u64.into()),
+            t_shift: c8((POS_BITS - 1) as u64),
+            t_over: c8((POS_BITS - 1 + WEIGHT_FRAC_BITS) as u64),
+            t_max: Constant::new(((1u64 << WEIGHT_FRAC_BITS) - 1).into()),
+            half: Constant::new((1u64 << (WEIGHT_FRAC_BITS - 1)).into()),
+            w_shift: c8(WEIGHT_FRAC_BITS as u64),
+        }
+    }
+}
+
+impl Default for Interpolator {
+    /// The default mode's edge jump, [`EDGE_JUMP_LSB`].
+    fn default() -> Self {
+        Interpolator::new(Some(EDGE_JUMP_LSB))
+    }
+}
+
+impl Logic for Interpolator {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, seg_rp, seg_rp1, q_wp, q_wp1, q_wp2, q_shown, q_rp, q_rp1, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_v, p1_recip, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_t, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p3_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        self.recip.clock.next = self.clock.val();
+        self.seg_last.read_clock.next = self.clock.val();
+        self.seg_last.write_clock.next = self.clock.val();
+        self.seg_ax.read_clock.next = self.clock.val();
+        self.seg_ax.write_clock.next = self.clock.val();
+        self.seg_ad.read_clock.next = self.clock.val();
+        self.seg_ad.write_clock.next = self.clock.val();
+        self.seg_dd.read_clock.next = self.clock.val();
+        self.seg_dd.write_clock.next = self.clock.val();
+        self.seg_shape.read_clock.next = self.clock.val();
+        self.seg_shape.write_clock.next = self.clock.val();
+        self.seg_recip.read_clock.next = self.clock.val();
+        self.seg_recip.write_clock.next = self.clock.val();
+        self.q_last_x.read_clock.next = self.clock.val();
+        self.q_last_x.write_clock.next = self.clock.val();
+        self.q_first_d.read_clock.next = self.clock.val();
+        self.q_first_d.write_clock.next = self.clock.val();
+        self.q_first_c.read_clock.next = self.clock.val();
+        self.q_first_c.write_clock.next = self.clock.val();
+        self.q_last_d.read_clock.next = self.clock.val();
+        self.q_last_d.write_clock.next = self.clock.val();
+        self.q_last_c.read_clock.next = self.clock.val();
+        self.q_last_c.write_clock.next = self.clock.val();
+        self.q_flags.read_clock.next = self.clock.val();
+        self.q_flags.write_clock.next = self.clock.val();
+
+        // ================= Segments =================
+        // The first pixel centre at or after the match: ⌈X⌉.
+        self.x_up.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.a_x.val()) + self.frac_round.val();
+        self.b_c.next = bit_cast::<WIDTH_BITS, { POS_BITS + 1 }>(self.x_up.val() >> self.frac_bits.val());
+        // Admission, on a line's first match or its marker: a free place in
+        // the queue and room in the memory for a whole line.
+        self.first_event.next = self.a_valid.val() & !self.in_line.q.val();
+        self.fits.next = ((self.seg_wp.q.val() - self.seg_rp.q.val()) <= self.seg_limit.val())
+            & ((self.q_wp.q.val() - self.q_rp.q.val()) < self.queue_size.val());
+        self.drop_now.next = self.dropping.q.val();
+        if self.first_event.val() {
+            self.drop_now.next = !self.fits.val();
+            self.dropping.d.next = !self.fits.val();
+        }
+        // Stage 1: a match that starts a new pixel closes the segment from
+        // the previous match.
+        self.s1_seg.d.next = false;
+        self.s1_last.d.next = self.b_c.val() - 1;
+        self.s1_ax.d.next = self.prev_x.q.val();
+        self.s1_ad.d.next = self.prev_d.q.val();
+        self.s1_dx.d.next = self.a_x.val() - self.prev_x.q.val();
+        self.s1_neg.d.next = self.a_d.val() < self.prev_d.q.val();
+        self.s1_min.d.next = self.prev_d.q.val();
+        self.s1_dd.d.next = self.a_d.val() - self.prev_d.q.val();
+        if self.a_d.val() < self.prev_d.q.val() {
+            self.s1_dd.d.next = self.prev_d.q.val() - self.a_d.val();
+            self.s1_min.d.next = self.a_d.val();
+        }
+        if self.a_valid.val() & !self.a_last.val() {
+            self.in_line.d.next = true;
+            self.s1_seg.d.next = self.has_prev.q.val() & (self.b_c.val() > self.prev_c.q.val()) & !self.drop_now.val();
+            if !self.has_prev.q.val() {
+                self.first_d.d.next = self.a_d.val();
+                self.first_c.d.next = self.b_c.val();
+            }
+            self.has_prev.d.next = true;
+            self.prev_x.d.next = self.a_x.val();
+            self.prev_d.d.next = self.a_d.val();
+            self.prev_c.d.next = self.b_c.val();
+        }
+        // The marker: the line's description into the queue (shown once its
+        // last segment is in the memory).
+        self.q_last_x.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_first_d.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_first_c.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_last_d.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_last_c.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_flags.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_last_x.write_data.next = self.a_width.val() - 1;
+        self.q_first_d.write_data.next = self.first_d.q.val();
+        self.q_first_c.write_data.next = self.first_c.q.val();
+        self.q_last_d.write_data.next = self.prev_d.q.val();
+        self.q_last_c.write_data.next = self.prev_c.q.val();
+        self.sof_flag.next = 0.into();
+        if self.a_sof.val() {
+            self.sof_flag.next = self.flag_sof.val();
+        }
+        self.q_flags.write_data.next = self.sof_flag.val();
+        if !self.has_prev.q.val() {
+            self.q_flags.write_data.next = self.sof_flag.val() | self.flag_empty.val();
+        }
+        self.line_write.next = false;
+        self.overflow_q.d.next = false;
+        if self.a_valid.val() & self.a_last.val() {
+            self.in_line.d.next = false;
+            self.has_prev.d.next = false;
+            self.line_write.next = !self.drop_now.val();
+            self.overflow_q.d.next = self.drop_now.val();
+        }
+        self.q_last_x.write_enable.next = self.line_write.val();
+        self.q_first_d.write_enable.next = self.line_write.val();
+        self.q_first_c.write_enable.next = self.line_write.val();
+        self.q_last_d.write_enable.next = self.line_write.val();
+        self.q_last_c.write_enable.next = self.line_write.val();
+        self.q_flags.write_enable.next = self.line_write.val();
+        if self.line_write.val() {
+            self.q_wp.d.next = self.q_wp.q.val() + 1;
+        }
+        self.q_wp1.d.next = self.q_wp.q.val();
+        self.q_wp2.d.next = self.q_wp1.q.val();
+        self.q_shown.d.next = self.q_wp2.q.val();
+        self.overflow.next = self.overflow_q.q.val();
+
+        // Stage 2: the distance shifted left until its top bit is set, the
+        // shift counted; the jump flag.
+        self.n1.next = self.s1_dx.q.val();
+        self.l1.next = 0.into();
+        if self.s1_dx.q.val() < self.below8.val() {
+            self.n1.next = self.s1_dx.q.val() << self.sh8.val();
+            self.l1.next = self.lz8.val();
+        }
+        self.n2.next = self.n1.val();
+        self.l2.next = self.l1.val();
+        if self.n1.val() < self.below4.val() {
+            self.n2.next = self.n1.val() << self.sh4.val();
+            self.l2.next = self.l1.val() + self.lz4.val();
+        }
+        self.n3.next = self.n2.val();
+        self.l3.next = self.l2.val();
+        if self.n2.val() < self.below2.val() {
+            self.n3.next = self.n2.val() << self.sh2.val();
+            self.l3.next = self.l2.val() + self.lz2.val();
+        }
+        self.n4.next = self.n3.val();
+        self.l4.next = self.l3.val();
+        if self.n3.val() < self.below1.val() {
+            self.n4.next = self.n3.val() << self.sh1.val();
+            self.l4.next = self.l3.val() + self.lz1.val();
+        }
+        self.s2_shape.d.next = self.l4.val();
+        if self.s1_neg.q.val() {
+            self.s2_shape.d.next = self.l4.val() | self.neg_flag.val();
+        }
+        if self.jump_on.val() & (self.s1_dd.q.val() > self.jump_lsb.val()) {
+            self.s2_shape.d.next = self.l4.val() | self.jump_flag.val();
+            if self.s1_neg.q.val() {
+                self.s2_shape.d.next = self.l4.val() | self.neg_flag.val() | self.jump_flag.val();
+            }
+        }
+        self.s2_seg.d.next = self.s1_seg.q.val();
+        self.s2_m.d.next = self.n4.val();
+        self.s2_last.d.next = self.s1_last.q.val();
+        self.s2_ax.d.next = self.s1_ax.q.val();
+        // A jump's pixels take the smaller disparity: it is stored as the
+        // segment's base instead of d_a.
+        self.s2_ad.d.next = self.s1_ad.q.val();
+        if self.jump_on.val() & (self.s1_dd.q.val() > self.jump_lsb.val()) {
+            self.s2_ad.d.next = self.s1_min.q.val();
+        }
+        self.s2_dd.d.next = self.s1_dd.q.val();
+        // Stage 3: the table's address (the bits after the leading one); the
+        // reciprocal is out a clock later, beside stage 3's registers.
+        self.recip.address.next = self.s2_m.q.val().get_bits::<RECIP_INDEX_BITS>(self.index_low.val().index());
+        self.s3_seg.d.next = self.s2_seg.q.val();
+        self.s3_last.d.next = self.s2_last.q.val();
+        self.s3_ax.d.next = self.s2_ax.q.val();
+        self.s3_ad.d.next = self.s2_ad.q.val();
+        self.s3_dd.d.next = self.s2_dd.q.val();
+        self.s3_shape.d.next = self.s2_shape.q.val();
+        // The segment into the memory.
+        self.seg_last.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
+        self.seg_ax.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
+        self.seg_ad.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
+        self.seg_dd.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
+        self.seg_shape.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
+        self.seg_recip.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
+        self.seg_last.write_data.next = self.s3_last.q.val();
+        self.seg_ax.write_data.next = self.s3_ax.q.val();
+        self.seg_ad.write_data.next = self.s3_ad.q.val();
+        self.seg_dd.write_data.next = self.s3_dd.q.val();
+        self.seg_shape.write_data.next = self.s3_shape.q.val();
+        self.seg_recip.write_data.next = self.recip.data.val();
+        self.seg_last.write_enable.next = self.s3_seg.q.val();
+        self.seg_ax.write_enable.next = self.s3_seg.q.val();
+        self.seg_ad.write_enable.next = self.s3_seg.q.val();
+        self.seg_dd.write_enable.next = self.s3_seg.q.val();
+        self.seg_shape.write_enable.next = self.s3_seg.q.val();
+        self.seg_recip.write_enable.next = self.s3_seg.q.val();
+        if self.s3_seg.q.val() {
+            self.seg_wp.d.next = self.seg_wp.q.val() + 1;
+        }
+
+        // ================= Pixels =================
+        // The queue's and the memory's outputs show the entries at the read
+        // pointers (read at the pointers' next values, a clock ahead).
+        self.line_ready.next = self.q_shown.q.val() != self.q_rp.q.val();
+        // (No line: as an empty one. The memories' output registers start
+        // undefined in Verilog; nothing reads them before a line is shown.)
+        self.empty_line.next = !self.line_ready.val() | self.q_flags.read_data.val().get_bit(1);
+        self.in_head.next = !self.empty_line.val() & (self.x.q.val() < self.q_first_c.read_data.val());
+        self.in_seg.next = !self.empty_line.val() & !self.in_head.val() & (self.x.q.val() < self.q_last_c.read_data.val());
+        self.line_done.next = self.line_ready.val() & (self.x.q.val() == self.q_last_x.read_data.val());
+        self.seg_done.next = self.line_ready.val() & self.in_seg.val() & (self.x.q.val() == self.seg_last.read_data.val());
+        if self.line_ready.val() {
+            self.x.d.next = self.x.q.val() + 1;
+        }
+        if self.line_done.val() {
+            self.x.d.next = 0.into();
+        }
+        // (The pointers' successors are registers of their own: no adder
+        // between the pixel's comparisons and the memories' addresses.)
+        self.q_rp_next.next = self.q_rp.q.val();
+        if self.line_done.val() {
+            self.q_rp_next.next = self.q_rp1.q.val();
+        }
+        self.q_rp.d.next = self.q_rp_next.val();
+        self.q_rp1.d.next = self.q_rp_next.val() + 1;
+        self.seg_rp_next.next = self.seg_rp.q.val();
+        if self.seg_done.val() {
+            self.seg_rp_next.next = self.seg_rp1.q.val();
+        }
+        self.seg_rp.d.next = self.seg_rp_next.val();
+        self.seg_rp1.d.next = self.seg_rp_next.val() + 1;
+        self.q_last_x.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
+        self.q_first_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
+        self.q_first_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
+        self.q_last_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
+        self.q_last_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
+        self.q_flags.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
+        self.seg_last.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
+        self.seg_ax.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
+        self.seg_ad.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
+        self.seg_dd.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
+        self.seg_shape.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
+        self.seg_recip.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
+
+        // P0: the pixel's base value (held, the segment's start, or the
+        // smaller end of a jump) and, on a ramp, its distance from X_a.
+        self.p0_valid.d.next = self.line_ready.val();
+        self.p0_last.d.next = self.line_done.val();
+        self.p0_sof.d.next = self.line_ready.val() & self.q_flags.read_data.val().get_bit(0) & !self.x.q.val().any();
+        self.p0_empty.d.next = self.line_ready.val() & self.empty_line.val();
+        self.p0_base.d.next = 0.into();
+        if !self.empty_line.val() {
+            self.p0_base.d.next = self.q_last_d.read_data.val();
+        }
+        if self.in_head.val() {
+            self.p0_base.d.next = self.q_first_d.read_data.val();
+        }
+        if self.in_seg.val() {
+            self.p0_base.d.next = self.seg_ad.read_data.val();
+        }
+        self.p0_ramp.d.next = self.in_seg.val() & !self.seg_shape.read_data.val().get_bit(self.jump_bit.val().index());
+        self.p0_neg.d.next = self.seg_shape.read_data.val().get_bit(self.neg_bit.val().index());
+        self.x16.next = bit_cast::<POS_BITS, WIDTH_BITS>(self.x.q.val()) << self.frac_bits.val();
+        self.p0_u.d.next = self.x16.val() - self.seg_ax.read_data.val();
+        self.p0_lz.d.next = self.seg_shape.read_data.val().get_bits::<LZ_BITS>(self.bit0.val().index());
+        self.p0_recip.d.next = self.seg_recip.read_data.val();
+        self.p0_dd.d.next = self.seg_dd.read_data.val();
+        // P1: the distance normalised as the segment's length was.
+        self.p1_valid.d.next = self.p0_valid.q.val();
+        self.p1_last.d.next = self.p0_last.q.val();
+        self.p1_sof.d.next = self.p0_sof.q.val();
+        self.p1_empty.d.next = self.p0_empty.q.val();
+        self.p1_ramp.d.next = self.p0_ramp.q.val();
+        self.p1_neg.d.next = self.p0_neg.q.val();
+        self.p1_base.d.next = self.p0_base.q.val();
+        self.p1_v.d.next = bit_cast::<16, POS_BITS>(self.p0_u.q.val()) << self.p0_lz.q.val();
+        self.p1_recip.d.next = self.p0_recip.q.val();
+        self.p1_dd.d.next = self.p0_dd.q.val();
+        // P2: the weight t = v · recip / 2^(POS_BITS - 1), below 1.
+        self.prod_v.next = self.p1_v.q.val() * self.p1_recip.q.val();
+        self.p2_t.d.next = bit_cast::<16, 32>(self.prod_v.val() >> self.t_shift.val());
+        if (self.prod_v.val() >> self.t_over.val()).any() {
+            self.p2_t.d.next = self.t_max.val();
+        }
+        self.p2_valid.d.next = self.p1_valid.q.val();
+        self.p2_last.d.next = self.p1_last.q.val();
+        self.p2_sof.d.next = self.p1_sof.q.val();
+        self.p2_empty.d.next = self.p1_empty.q.val();
+        self.p2_ramp.d.next = self.p1_ramp.q.val();
+        self.p2_neg.d.next = self.p1_neg.q.val();
+        self.p2_base.d.next = self.p1_base.q.val();
+        self.p2_dd.d.next = self.p1_dd.q.val();
+        // P3: the step t·|Δd|, rounded.
+        self.wide_dd.next = bit_cast::<16, POS_BITS>(self.p2_dd.q.val());
+        self.prod_t.next = self.p2_t.q.val() * self.wide_dd.val();
+        self.rounded.next = self.prod_t.val() + self.half.val();
+        self.p3_delta.d.next = bit_cast::<POS_BITS, 32>(self.rounded.val() >> self.w_shift.val());
+        self.p3_valid.d.next = self.p2_valid.q.val();
+        self.p3_last.d.next = self.p2_last.q.val();
+        self.p3_sof.d.next = self.p2_sof.q.val();
+        self.p3_empty.d.next = self.p2_empty.q.val();
+        self.p3_ramp.d.next = self.p2_ramp.q.val();
+        self.p3_neg.d.next = self.p2_neg.q.val();
+        self.p3_base.d.next = self.p2_base.q.val();
+        // P4: the pixel.
+        self.o_d.d.next = self.p3_base.q.val();
+        if self.p3_ramp.q.val() {
+            self.o_d.d.next = self.p3_base.q.val() + self.p3_delta.q.val();
+            if self.p3_neg.q.val() {
+                self.o_d.d.next = self.p3_base.q.val() - self.p3_delta.q.val();
+            }
+        }
+        self.o_valid.d.next = self.p3_valid.q.val();
+        self.o_last.d.next = self.p3_last.q.val();
+        self.o_sof.d.next = self.p3_sof.q.val();
+        self.o_empty.d.next = self.p3_empty.q.val();
+        self.p_valid.next = self.o_valid.q.val();
+        self.p_d.next = self.o_d.q.val();
+        self.p_last.next = self.o_last.q.val();
+        self.p_sof.next = self.o_sof.q.val();
+        self.p_empty.next = self.o_empty.q.val();
+    }
+}

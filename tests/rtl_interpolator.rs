@@ -1,0 +1,270 @@
+//! The rtl interpolator (`rtl::interpolator`) against golden's interpolation
+//! (`golden::disparity::interpolate_into`, ends held), on generated lines
+//! and on the matches of every row of real pairs, and its timing against
+//! the constants in its doc comment.
+//!
+//! Both get the same fixed-point anchors (`sim::interpolator`): golden
+//! interpolates them as reals. The pixels that hold a value (before the
+//! first match, from the last one's pixel on, across a jump) must be equal;
+//! a pixel of a ramp between matches `a`, `b` may differ by the
+//! interpolator's arithmetic, at most `½ + |d_b - d_a|·2^-RECIP_INDEX_BITS`
+//! LSB (a reciprocal of relative error below `2^-(RECIP_INDEX_BITS+1)` plus
+//! the truncations, each below `2^-15`, and the rounding of the result).
+//!
+//! Run in release mode (`cargo test --release -p declivity-tests --test
+//! rtl_interpolator`).
+
+use proptest::prelude::*;
+use rtl::interpolator::{recip_table, LINE_QUEUE, PIXEL_LAG, SEGMENT_LAG};
+use rtl::params::{EDGE_JUMP_LSB, N_MAX, POS_BITS, POS_FRAC_BITS, RECIP_INDEX_BITS, RECIP_SHIFT, W_MAX};
+use sim::interpolator::{fixed_anchors, golden_line, AnchorLine, FixedAnchor, InterpolatorSim, PixelLine};
+
+/// One position LSB (1/16 px).
+const PX: u32 = 1 << POS_FRAC_BITS;
+
+/// The first pixel centre at or after a fixed-point position.
+fn ceil_px(x: u32) -> usize {
+    x.div_ceil(PX) as usize
+}
+
+/// The bound on a ramp pixel's difference from golden (module doc), in LSB.
+fn ramp_tolerance(dd: u32) -> f64 {
+    0.5 + dd as f64 / (1u64 << RECIP_INDEX_BITS) as f64
+}
+
+/// Checks one line pixel by pixel against golden; returns how many pixels
+/// are within a quarter pixel of golden.
+fn check_line(line: &AnchorLine, jump: Option<u64>, got: &PixelLine) -> Result<usize, String> {
+    let want = golden_line(line, jump);
+    if got.d.len() != line.width {
+        return Err(format!("{} pixels for a line of {}", got.d.len(), line.width));
+    }
+    if got.empty != line.anchors.is_empty() || got.sof != line.sof {
+        return Err(format!("flags: empty {} sof {} for {} anchors, sof {}", got.empty, got.sof, line.anchors.len(), line.sof));
+    }
+    let mut quarter = 0;
+    for (x, (&r, &g)) in got.d.iter().zip(&want).enumerate() {
+        let diff = (r as f64 - g).abs();
+        quarter += (diff <= (PX / 4) as f64) as usize;
+        // What golden does at x: held, a jump, or a ramp (its |Δd|).
+        let a = &line.anchors;
+        let kind = if a.is_empty() {
+            None
+        } else if x < ceil_px(a[0].x) || x >= ceil_px(a[a.len() - 1].x) {
+            None
+        } else {
+            let k = a.windows(2).position(|w| ceil_px(w[0].x) <= x && x < ceil_px(w[1].x)).expect("a segment holds x");
+            let dd = a[k].d.abs_diff(a[k + 1].d);
+            jump.is_none_or(|j| dd as u64 <= j).then_some(dd)
+        };
+        let ok = match kind {
+            None => diff == 0.0,
+            Some(dd) => diff <= ramp_tolerance(dd),
+        };
+        if !ok {
+            return Err(format!("pixel {x}: rtl {r}, golden {g:.3} ({kind:?}) in {line:?}"));
+        }
+    }
+    Ok(quarter)
+}
+
+/// The documented timing: each line's first pixel leaves `SEGMENT_LAG +
+/// PIXEL_LAG` clocks after its marker, or on the clock after the previous
+/// line's last pixel if that is later, and its pixels on consecutive clocks.
+fn check_timing(got: &[PixelLine], markers: &[u64]) -> Result<(), String> {
+    let mut free = 0u64;
+    for (k, (g, m)) in got.iter().zip(markers).enumerate() {
+        let want = (m + (SEGMENT_LAG + PIXEL_LAG) as u64).max(free);
+        if g.first_cycle != want || g.last_cycle + 1 - g.first_cycle != g.d.len() as u64 {
+            return Err(format!("line {k}: pixels at {}..={}, marker at {m}, expected from {want}", g.first_cycle, g.last_cycle));
+        }
+        free = g.last_cycle + 1;
+    }
+    Ok(())
+}
+
+// ===========================================================================
+// Generated lines
+// ===========================================================================
+
+/// A line: width, anchors by strictly increasing x below 16·width (steps
+/// from one LSB, several anchors in one pixel, to tens of pixels),
+/// disparities with small steps, jumps beyond the edge jump and the
+/// largest values.
+fn any_line() -> impl Strategy<Value = AnchorLine> {
+    let width = prop_oneof![1usize..=8, 8usize..=300, Just(W_MAX), 300usize..=W_MAX];
+    let steps = prop::collection::vec((prop_oneof![1u32..=3, 1u32..=PX, PX..=40 * PX], 0u32..3, 0u32..(1 << POS_BITS)), 0..=N_MAX);
+    (width, steps, any::<bool>(), 1u32..=64 * PX).prop_map(|(width, steps, sof, d0)| {
+        let mut anchors = Vec::new();
+        let (mut x, mut d) = (0u32, d0);
+        for (k, (step, how, far)) in steps.into_iter().enumerate() {
+            if k > 0 {
+                x += step;
+            }
+            if x >= width as u32 * PX {
+                break;
+            }
+            d = match how {
+                0 => d.saturating_add(far % (4 * PX)).min((1 << POS_BITS) - 1),
+                1 => d.saturating_sub(far % (4 * PX)),
+                _ => far,
+            };
+            anchors.push(FixedAnchor { x, d });
+        }
+        AnchorLine { anchors, width, sof }
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Each line's pixels are golden's interpolation of the same anchors:
+    /// held values and jumps exactly, ramps within the arithmetic's bound;
+    /// lines come out whole, in order, with their flags.
+    #[test]
+    fn prop_pixels_are_golden_interpolation_held_and_jump_values_exact_ramps_within_the_bound(
+        lines in prop::collection::vec(any_line(), 1..=3),
+        bridged in any::<bool>(),
+        period in prop_oneof![Just(0usize), 0usize..2000],
+    ) {
+        let jump = (!bridged).then_some(EDGE_JUMP_LSB);
+        let mut sim = InterpolatorSim::new(jump);
+        let (got, markers) = sim.run(&lines, period);
+        prop_assert_eq!(sim.overflows, 0);
+        prop_assert_eq!(got.len(), lines.len());
+        check_timing(&got, &markers).map_err(TestCaseError::fail)?;
+        for (l, g) in lines.iter().zip(&got) {
+            check_line(l, jump, g).map_err(TestCaseError::fail)?;
+        }
+    }
+}
+
+// ===========================================================================
+// Timing and overflow
+// ===========================================================================
+
+/// A line's first pixel leaves `SEGMENT_LAG + PIXEL_LAG` clocks after its
+/// marker when the interpolator is idle; lines waiting in the queue leave
+/// back to back, one pixel per clock.
+#[test]
+fn the_first_pixel_follows_the_marker_by_the_documented_lag_and_queued_lines_leave_back_to_back() {
+    let line = |w: usize| AnchorLine {
+        anchors: vec![FixedAnchor { x: 3 * PX + 5, d: 10 * PX }, FixedAnchor { x: 20 * PX, d: 12 * PX }],
+        width: w,
+        sof: false,
+    };
+    // Idle: lines far apart.
+    let mut sim = InterpolatorSim::robust();
+    let lines = [line(40), line(300), line(1)];
+    let (got, markers) = sim.run(&lines, 2000);
+    assert_eq!(got.len(), 3);
+    for (g, m) in got.iter().zip(&markers) {
+        assert_eq!(g.first_cycle - m, (SEGMENT_LAG + PIXEL_LAG) as u64);
+        assert_eq!(g.last_cycle - g.first_cycle + 1, g.d.len() as u64, "one pixel per clock");
+    }
+    check_timing(&got, &markers).expect("the documented timing");
+    // Queued: the markers arrive while the first line is still going out.
+    let mut sim = InterpolatorSim::robust();
+    let lines = [line(500), line(37), line(1), line(200)];
+    let (got, markers) = sim.run(&lines, 0);
+    assert_eq!(got.len(), 4);
+    assert_eq!(got[0].first_cycle - markers[0], (SEGMENT_LAG + PIXEL_LAG) as u64);
+    for w in got.windows(2) {
+        assert_eq!(w[1].first_cycle, w[0].last_cycle + 1, "back to back");
+    }
+    for (l, g) in lines.iter().zip(&got) {
+        check_line(l, Some(EDGE_JUMP_LSB), g).expect("as golden");
+    }
+}
+
+/// More lines than the queue holds arriving at once: the first ones come
+/// out, the one without room is dropped whole with `overflow`, and the
+/// next line, offered once there is room again, is intact.
+#[test]
+fn a_line_without_room_in_the_queue_is_dropped_whole_and_flagged_and_later_lines_are_intact() {
+    let line = |k: u32| AnchorLine {
+        anchors: (0..50).map(|i| FixedAnchor { x: i * 7 * PX + k, d: 5 * PX + i * 3 + k }).collect(),
+        width: W_MAX,
+        sof: k == 0,
+    };
+    let burst: Vec<AnchorLine> = (0..LINE_QUEUE as u32 + 1).map(line).collect();
+    let mut sim = InterpolatorSim::robust();
+    let (got, _) = sim.run(&burst, 0);
+    assert_eq!(sim.overflows, 1, "exactly the line beyond the queue is dropped");
+    assert_eq!(got.len(), LINE_QUEUE);
+    for (l, g) in burst.iter().zip(&got) {
+        check_line(l, Some(EDGE_JUMP_LSB), g).expect("the admitted lines are whole");
+    }
+    let later = [line(9)];
+    let (got, _) = sim.run(&later, 0);
+    assert_eq!(sim.overflows, 1);
+    check_line(&later[0], Some(EDGE_JUMP_LSB), &got[0]).expect("the next line is intact");
+}
+
+/// Every entry of the reciprocal table is within `2^-(RECIP_INDEX_BITS+1)`
+/// + `2^-15` (relative: half a bucket, then the entry's truncation) of
+/// `2^RECIP_SHIFT / m` for every normalised distance `m` of its bucket,
+/// and fits its bits.
+#[test]
+fn reciprocal_table_is_within_its_relative_bound_of_every_distance_of_its_bucket() {
+    let table = recip_table();
+    let low = POS_BITS - 1 - RECIP_INDEX_BITS;
+    assert_eq!(table.len(), 1 << RECIP_INDEX_BITS);
+    for m in (1u64 << (POS_BITS - 1))..(1u64 << POS_BITS) {
+        let r = table[((m >> low) & ((1 << RECIP_INDEX_BITS) - 1)) as usize];
+        assert!(r < 1 << 16, "entry {r} fits 16 bits");
+        let exact = (1u64 << RECIP_SHIFT) as f64 / m as f64;
+        let rel = (r as f64 - exact).abs() / exact;
+        let bound = 1.0 / (1u64 << (RECIP_INDEX_BITS + 1)) as f64 + 1.0 / (1u64 << 15) as f64;
+        assert!(rel < bound, "m {m}: {r} vs {exact}");
+    }
+}
+
+/// The rtl's edge jump is golden's default mode's.
+#[test]
+fn the_edge_jump_is_golden_default_mode_edge_jump() {
+    assert_eq!(EDGE_JUMP_LSB as f64, golden::params::EDGE_JUMP * PX as f64);
+    assert_eq!(golden::Mode::default().features().edge_jump, Some(golden::params::EDGE_JUMP));
+}
+
+// ===========================================================================
+// Real pairs
+// ===========================================================================
+
+/// golden's matches of every row of `pair` (default mode, hardware parity,
+/// after the check against neighbouring rows) through the interpolator,
+/// one line per line period of `width` clocks, as a sensor's come: every
+/// pixel as golden within the bound, nothing dropped, the pixels leaving
+/// back to back, and the share within a quarter pixel reported and
+/// required ≥ 99.5 %.
+fn real_pair(pair: &str) {
+    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
+    let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
+    params.hardware = Some(sim::detector::hardware_limits());
+    let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
+    let w = data.left.width();
+    let lines: Vec<AnchorLine> = frame.lines.iter().enumerate().map(|(y, l)| fixed_anchors(&l.matches, w, y == 0)).collect();
+    let mut sim = InterpolatorSim::robust();
+    let (got, markers) = sim.run(&lines, w);
+    assert_eq!(sim.overflows, 0);
+    assert_eq!(got.len(), lines.len());
+    let mut quarter = 0;
+    for (y, (l, g)) in lines.iter().zip(&got).enumerate() {
+        quarter += check_line(l, Some(EDGE_JUMP_LSB), g).unwrap_or_else(|e| panic!("{pair} row {y}: {e}"));
+    }
+    check_timing(&got, &markers).unwrap_or_else(|e| panic!("{pair}: {e}"));
+    let pixels = w * lines.len();
+    let share = quarter as f64 / pixels as f64;
+    eprintln!("{pair}: {pixels} pixels, {:.4} within 1/4 px of golden, {} clocks", share, sim.cycle);
+    assert!(share >= 0.995, "{pair}: {share}");
+}
+
+#[test]
+fn every_row_of_tsukuba_interpolates_as_golden() {
+    real_pair("tsukuba");
+}
+
+#[test]
+fn every_row_of_cones_interpolates_as_golden() {
+    real_pair("cones");
+}
