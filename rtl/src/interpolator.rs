@@ -26,6 +26,11 @@
 //!   segment is in the memory. The segments of a line cover the pixels from
 //!   the first match's `⌈X⌉` to the last one's without gaps, so the pixel
 //!   engine needs no count of them.
+//! - **Prefetch**: the segment memory (block RAMs with their output
+//!   registers, [`BlockRam`]: two clocks a read) is read in order into four
+//!   registers whenever they will have room; the pixel engine works on the
+//!   first, so no memory read is in its loop. Four registers sustain a
+//!   segment per clock (one-pixel segments in a row).
 //! - **Pixels**: while the queue holds a line, its pixels leave one per
 //!   clock, lines back to back: the head, then each segment's pixels, then
 //!   the tail. A segment's pixel is `d_a ± ⌊(t·|Δd| + ½)⌋` with
@@ -65,18 +70,22 @@
 //! one per `W` clocks, as a sensor's do, are never dropped. `a_valid` low
 //! between matches only delays them.
 
+use crate::block_ram::BlockRam;
 use crate::params::*;
 use rust_hdl::prelude::*;
 
 /// Clocks from a line's marker on `a_*` to its description in the line
-/// queue being shown to the pixel engine: the marker's write, then three
-/// clocks, as long as a segment takes from its match to the memory (the
-/// segment register, the normalisation, the table's address register and
-/// the table).
-pub const SEGMENT_LAG: usize = 4;
+/// queue being shown to the pixel engine: the marker's write, then five
+/// clocks, as long as a line's last segment takes from its match through
+/// the segment memory into the prefetch registers (the segment register,
+/// the normalisation, the table's address register and the table, the
+/// memory's write, its two-clock read).
+pub const SEGMENT_LAG: usize = 6;
 /// Clocks from the pixel engine's clock of a pixel to the pixel on `p_*`:
-/// the selection, the shift, the two products, the sum.
-pub const PIXEL_LAG: usize = 5;
+/// the selection, the shift, the first product, the weight, the second
+/// product, the rounding, the sum (each product registered straight out of
+/// its DSP block).
+pub const PIXEL_LAG: usize = 7;
 /// Lines the line queue holds.
 pub const LINE_QUEUE: usize = 1 << LINE_QUEUE_BITS;
 /// Free segment places a line needs to be admitted: its at most
@@ -109,6 +118,12 @@ const NEG_BIT: usize = 4;
 const JUMP_BIT: usize = 5;
 /// Bits of a segment-memory pointer (one above the address).
 const SEG_PTR_BITS: usize = SEG_ADDR_BITS + 1;
+/// Segments the prefetch registers hold.
+const PREFETCH: usize = 4;
+/// Bits of a count `0 ..= PREFETCH`.
+const FILL_BITS: usize = 3;
+/// Bits of an index of the prefetch ring.
+const SLOT_BITS: usize = 2;
 /// Bits of a line-queue pointer (one above the address).
 const QUEUE_PTR_BITS: usize = LINE_QUEUE_BITS + 1;
 
@@ -162,15 +177,50 @@ pub struct Interpolator {
     recip: SyncROM<Bits<RECIP_BITS>, RECIP_INDEX_BITS>,
     // ---- The segment memory, one RAM per field, and its pointers (one bit
     // above the address, so that full and empty differ).
-    seg_last: RAM<Bits<WIDTH_BITS>, SEG_ADDR_BITS>,
-    seg_ax: RAM<Bits<POS_BITS>, SEG_ADDR_BITS>,
-    seg_ad: RAM<Bits<POS_BITS>, SEG_ADDR_BITS>,
-    seg_dd: RAM<Bits<POS_BITS>, SEG_ADDR_BITS>,
-    seg_shape: RAM<Bits<SHAPE_BITS>, SEG_ADDR_BITS>,
-    seg_recip: RAM<Bits<RECIP_BITS>, SEG_ADDR_BITS>,
+    seg_last: BlockRam<WIDTH_BITS, SEG_ADDR_BITS>,
+    seg_ax: BlockRam<POS_BITS, SEG_ADDR_BITS>,
+    seg_ad: BlockRam<POS_BITS, SEG_ADDR_BITS>,
+    seg_dd: BlockRam<POS_BITS, SEG_ADDR_BITS>,
+    seg_shape: BlockRam<SHAPE_BITS, SEG_ADDR_BITS>,
+    seg_recip: BlockRam<RECIP_BITS, SEG_ADDR_BITS>,
     seg_wp: DFF<Bits<SEG_PTR_BITS>>,
-    seg_rp: DFF<Bits<SEG_PTR_BITS>>,
-    seg_rp1: DFFWithInit<Bits<SEG_PTR_BITS>>,
+    // The prefetch: reads in order at `rd_ptr` whenever the registers will
+    // have room, two clocks to their data (`rd1`, `rd2`), into four
+    // registers `e0..e3` used as a ring (written at `wi`, the pixel
+    // engine's segment at `ri`).
+    rd_ptr: DFF<Bits<SEG_PTR_BITS>>,
+    // Segments written and not yet read; lines in the queue.
+    seg_used: DFF<Bits<SEG_PTR_BITS>>,
+    q_used: DFF<Bits<QUEUE_PTR_BITS>>,
+    rd1: DFF<Bit>,
+    rd2: DFF<Bit>,
+    fill: DFF<Bits<FILL_BITS>>,
+    wi: DFF<Bits<SLOT_BITS>>,
+    ri: DFF<Bits<SLOT_BITS>>,
+    e0_last: DFF<Bits<WIDTH_BITS>>,
+    e0_ax: DFF<Bits<POS_BITS>>,
+    e0_ad: DFF<Bits<POS_BITS>>,
+    e0_dd: DFF<Bits<POS_BITS>>,
+    e0_shape: DFF<Bits<SHAPE_BITS>>,
+    e0_recip: DFF<Bits<RECIP_BITS>>,
+    e1_last: DFF<Bits<WIDTH_BITS>>,
+    e1_ax: DFF<Bits<POS_BITS>>,
+    e1_ad: DFF<Bits<POS_BITS>>,
+    e1_dd: DFF<Bits<POS_BITS>>,
+    e1_shape: DFF<Bits<SHAPE_BITS>>,
+    e1_recip: DFF<Bits<RECIP_BITS>>,
+    e2_last: DFF<Bits<WIDTH_BITS>>,
+    e2_ax: DFF<Bits<POS_BITS>>,
+    e2_ad: DFF<Bits<POS_BITS>>,
+    e2_dd: DFF<Bits<POS_BITS>>,
+    e2_shape: DFF<Bits<SHAPE_BITS>>,
+    e2_recip: DFF<Bits<RECIP_BITS>>,
+    e3_last: DFF<Bits<WIDTH_BITS>>,
+    e3_ax: DFF<Bits<POS_BITS>>,
+    e3_ad: DFF<Bits<POS_BITS>>,
+    e3_dd: DFF<Bits<POS_BITS>>,
+    e3_shape: DFF<Bits<SHAPE_BITS>>,
+    e3_recip: DFF<Bits<RECIP_BITS>>,
     // ---- The line queue: written at the marker, shown three clocks later.
     q_last_x: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
     q_first_d: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
@@ -181,6 +231,8 @@ pub struct Interpolator {
     q_wp: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp1: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp2: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_wp3: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_wp4: DFF<Bits<QUEUE_PTR_BITS>>,
     q_shown: DFF<Bits<QUEUE_PTR_BITS>>,
     q_rp: DFF<Bits<QUEUE_PTR_BITS>>,
     q_rp1: DFFWithInit<Bits<QUEUE_PTR_BITS>>,
@@ -215,7 +267,7 @@ pub struct Interpolator {
     p2_ramp: DFF<Bit>,
     p2_neg: DFF<Bit>,
     p2_base: DFF<Bits<POS_BITS>>,
-    p2_t: DFF<Bits<16>>,
+    p2_prod: DFF<Bits<32>>,
     p2_dd: DFF<Bits<POS_BITS>>,
     p3_valid: DFF<Bit>,
     p3_last: DFF<Bit>,
@@ -224,7 +276,24 @@ pub struct Interpolator {
     p3_ramp: DFF<Bit>,
     p3_neg: DFF<Bit>,
     p3_base: DFF<Bits<POS_BITS>>,
-    p3_delta: DFF<Bits<POS_BITS>>,
+    p3_t: DFF<Bits<16>>,
+    p3_dd: DFF<Bits<POS_BITS>>,
+    p4_valid: DFF<Bit>,
+    p4_last: DFF<Bit>,
+    p4_sof: DFF<Bit>,
+    p4_empty: DFF<Bit>,
+    p4_ramp: DFF<Bit>,
+    p4_neg: DFF<Bit>,
+    p4_base: DFF<Bits<POS_BITS>>,
+    p4_prod: DFF<Bits<32>>,
+    p5_valid: DFF<Bit>,
+    p5_last: DFF<Bit>,
+    p5_sof: DFF<Bit>,
+    p5_empty: DFF<Bit>,
+    p5_ramp: DFF<Bit>,
+    p5_neg: DFF<Bit>,
+    p5_base: DFF<Bits<POS_BITS>>,
+    p5_delta: DFF<Bits<POS_BITS>>,
     o_valid: DFF<Bit>,
     o_last: DFF<Bit>,
     o_sof: DFF<Bit>,
@@ -252,7 +321,17 @@ pub struct Interpolator {
     in_seg: Signal<Local, Bit>,
     seg_done: Signal<Local, Bit>,
     line_done: Signal<Local, Bit>,
-    seg_rp_next: Signal<Local, Bits<SEG_PTR_BITS>>,
+    issue: Signal<Local, Bit>,
+    pend1: Signal<Local, Bits<FILL_BITS>>,
+    pend2: Signal<Local, Bits<FILL_BITS>>,
+    pop: Signal<Local, Bit>,
+    kept: Signal<Local, Bits<FILL_BITS>>,
+    cur_last: Signal<Local, Bits<WIDTH_BITS>>,
+    cur_ax: Signal<Local, Bits<POS_BITS>>,
+    cur_ad: Signal<Local, Bits<POS_BITS>>,
+    cur_dd: Signal<Local, Bits<POS_BITS>>,
+    cur_shape: Signal<Local, Bits<SHAPE_BITS>>,
+    cur_recip: Signal<Local, Bits<RECIP_BITS>>,
     q_rp_next: Signal<Local, Bits<QUEUE_PTR_BITS>>,
     x16: Signal<Local, Bits<POS_BITS>>,
     wide_dd: Signal<Local, Bits<16>>,
@@ -283,6 +362,10 @@ pub struct Interpolator {
     jump_on: Constant<Bit>,
     jump_lsb: Constant<Bits<POS_BITS>>,
     seg_limit: Constant<Bits<SEG_PTR_BITS>>,
+    prefetch: Constant<Bits<FILL_BITS>>,
+    slot1: Constant<Bits<SLOT_BITS>>,
+    slot2: Constant<Bits<SLOT_BITS>>,
+    slot3: Constant<Bits<SLOT_BITS>>,
     queue_size: Constant<Bits<QUEUE_PTR_BITS>>,
     flag_sof: Constant<Bits<2>>,
     flag_empty: Constant<Bits<2>>,
@@ -350,15 +433,45 @@ impl Interpolator {
             s3_dd: Default::default(),
             s3_shape: Default::default(),
             recip: recip_table().into_iter().map(Bits::<RECIP_BITS>::from).into(),
-            seg_last: zeroed(),
-            seg_ax: zeroed(),
-            seg_ad: zeroed(),
-            seg_dd: zeroed(),
-            seg_shape: zeroed(),
-            seg_recip: zeroed(),
+            seg_last: Default::default(),
+            seg_ax: Default::default(),
+            seg_ad: Default::default(),
+            seg_dd: Default::default(),
+            seg_shape: Default::default(),
+            seg_recip: Default::default(),
             seg_wp: Default::default(),
-            seg_rp: Default::default(),
-            seg_rp1: DFFWithInit::new(1u64.into()),
+            rd_ptr: Default::default(),
+            seg_used: Default::default(),
+            q_used: Default::default(),
+            rd1: Default::default(),
+            rd2: Default::default(),
+            fill: Default::default(),
+            wi: Default::default(),
+            ri: Default::default(),
+            e0_last: Default::default(),
+            e0_ax: Default::default(),
+            e0_ad: Default::default(),
+            e0_dd: Default::default(),
+            e0_shape: Default::default(),
+            e0_recip: Default::default(),
+            e1_last: Default::default(),
+            e1_ax: Default::default(),
+            e1_ad: Default::default(),
+            e1_dd: Default::default(),
+            e1_shape: Default::default(),
+            e1_recip: Default::default(),
+            e2_last: Default::default(),
+            e2_ax: Default::default(),
+            e2_ad: Default::default(),
+            e2_dd: Default::default(),
+            e2_shape: Default::default(),
+            e2_recip: Default::default(),
+            e3_last: Default::default(),
+            e3_ax: Default::default(),
+            e3_ad: Default::default(),
+            e3_dd: Default::default(),
+            e3_shape: Default::default(),
+            e3_recip: Default::default(),
             q_last_x: zeroed(),
             q_first_d: zeroed(),
             q_first_c: zeroed(),
@@ -368,6 +481,8 @@ impl Interpolator {
             q_wp: Default::default(),
             q_wp1: Default::default(),
             q_wp2: Default::default(),
+            q_wp3: Default::default(),
+            q_wp4: Default::default(),
             q_shown: Default::default(),
             q_rp: Default::default(),
             q_rp1: DFFWithInit::new(1u64.into()),
@@ -401,7 +516,7 @@ impl Interpolator {
             p2_ramp: Default::default(),
             p2_neg: Default::default(),
             p2_base: Default::default(),
-            p2_t: Default::default(),
+            p2_prod: Default::default(),
             p2_dd: Default::default(),
             p3_valid: Default::default(),
             p3_last: Default::default(),
@@ -410,7 +525,24 @@ impl Interpolator {
             p3_ramp: Default::default(),
             p3_neg: Default::default(),
             p3_base: Default::default(),
-            p3_delta: Default::default(),
+            p3_t: Default::default(),
+            p3_dd: Default::default(),
+            p4_valid: Default::default(),
+            p4_last: Default::default(),
+            p4_sof: Default::default(),
+            p4_empty: Default::default(),
+            p4_ramp: Default::default(),
+            p4_neg: Default::default(),
+            p4_base: Default::default(),
+            p4_prod: Default::default(),
+            p5_valid: Default::default(),
+            p5_last: Default::default(),
+            p5_sof: Default::default(),
+            p5_empty: Default::default(),
+            p5_ramp: Default::default(),
+            p5_neg: Default::default(),
+            p5_base: Default::default(),
+            p5_delta: Default::default(),
             o_valid: Default::default(),
             o_last: Default::default(),
             o_sof: Default::default(),
@@ -437,7 +569,17 @@ impl Interpolator {
             in_seg: Default::default(),
             seg_done: Default::default(),
             line_done: Default::default(),
-            seg_rp_next: Default::default(),
+            issue: Default::default(),
+            pend1: Default::default(),
+            pend2: Default::default(),
+            pop: Default::default(),
+            kept: Default::default(),
+            cur_last: Default::default(),
+            cur_ax: Default::default(),
+            cur_ad: Default::default(),
+            cur_dd: Default::default(),
+            cur_shape: Default::default(),
+            cur_recip: Default::default(),
             q_rp_next: Default::default(),
             x16: Default::default(),
             wide_dd: Default::default(),
@@ -466,6 +608,10 @@ impl Interpolator {
             index_low: c8((POS_BITS - 1 - RECIP_INDEX_BITS) as u64),
             jump_on: Constant::new(jump.is_some()),
             jump_lsb: cp(jump.unwrap_or(0)),
+            prefetch: Constant::new((PREFETCH as u64).into()),
+            slot1: Constant::new(1u64.into()),
+            slot2: Constant::new(2u64.into()),
+            slot3: Constant::new(3u64.into()),
             seg_limit: Constant::new((((1usize << SEG_ADDR_BITS) - SEG_RESERVE) as u64).into()),
             queue_size: Constant::new((LINE_QUEUE as u64).into()),
             flag_sof: Constant::new(1u64.into()),
@@ -489,20 +635,14 @@ impl Default for Interpolator {
 impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, seg_rp, seg_rp1, q_wp, q_wp1, q_wp2, q_shown, q_rp, q_rp1, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_v, p1_recip, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_t, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p3_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_v, p1_recip, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p3_t, p3_dd, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
         self.recip.clock.next = self.clock.val();
-        self.seg_last.read_clock.next = self.clock.val();
-        self.seg_last.write_clock.next = self.clock.val();
-        self.seg_ax.read_clock.next = self.clock.val();
-        self.seg_ax.write_clock.next = self.clock.val();
-        self.seg_ad.read_clock.next = self.clock.val();
-        self.seg_ad.write_clock.next = self.clock.val();
-        self.seg_dd.read_clock.next = self.clock.val();
-        self.seg_dd.write_clock.next = self.clock.val();
-        self.seg_shape.read_clock.next = self.clock.val();
-        self.seg_shape.write_clock.next = self.clock.val();
-        self.seg_recip.read_clock.next = self.clock.val();
-        self.seg_recip.write_clock.next = self.clock.val();
+        self.seg_last.clock.next = self.clock.val();
+        self.seg_ax.clock.next = self.clock.val();
+        self.seg_ad.clock.next = self.clock.val();
+        self.seg_dd.clock.next = self.clock.val();
+        self.seg_shape.clock.next = self.clock.val();
+        self.seg_recip.clock.next = self.clock.val();
         self.q_last_x.read_clock.next = self.clock.val();
         self.q_last_x.write_clock.next = self.clock.val();
         self.q_first_d.read_clock.next = self.clock.val();
@@ -523,8 +663,8 @@ impl Logic for Interpolator {
         // Admission, on a line's first match or its marker: a free place in
         // the queue and room in the memory for a whole line.
         self.first_event.next = self.a_valid.val() & !self.in_line.q.val();
-        self.fits.next = ((self.seg_wp.q.val() - self.seg_rp.q.val()) <= self.seg_limit.val())
-            & ((self.q_wp.q.val() - self.q_rp.q.val()) < self.queue_size.val());
+        // (Counts kept as registers, so that no subtraction is in the path.)
+        self.fits.next = (self.seg_used.q.val() <= self.seg_limit.val()) & (self.q_used.q.val() < self.queue_size.val());
         self.drop_now.next = self.dropping.q.val();
         if self.first_event.val() {
             self.drop_now.next = !self.fits.val();
@@ -596,7 +736,9 @@ impl Logic for Interpolator {
         }
         self.q_wp1.d.next = self.q_wp.q.val();
         self.q_wp2.d.next = self.q_wp1.q.val();
-        self.q_shown.d.next = self.q_wp2.q.val();
+        self.q_wp3.d.next = self.q_wp2.q.val();
+        self.q_wp4.d.next = self.q_wp3.q.val();
+        self.q_shown.d.next = self.q_wp4.q.val();
         self.overflow.next = self.overflow_q.q.val();
 
         // Stage 2: the distance shifted left until its top bit is set, the
@@ -687,8 +829,39 @@ impl Logic for Interpolator {
         self.empty_line.next = !self.line_ready.val() | self.q_flags.read_data.val().get_bit(1);
         self.in_head.next = !self.empty_line.val() & (self.x.q.val() < self.q_first_c.read_data.val());
         self.in_seg.next = !self.empty_line.val() & !self.in_head.val() & (self.x.q.val() < self.q_last_c.read_data.val());
+        // The engine's segment, out of the ring.
+        self.cur_last.next = self.e0_last.q.val();
+        self.cur_ax.next = self.e0_ax.q.val();
+        self.cur_ad.next = self.e0_ad.q.val();
+        self.cur_dd.next = self.e0_dd.q.val();
+        self.cur_shape.next = self.e0_shape.q.val();
+        self.cur_recip.next = self.e0_recip.q.val();
+        if self.ri.q.val() == self.slot1.val() {
+            self.cur_last.next = self.e1_last.q.val();
+            self.cur_ax.next = self.e1_ax.q.val();
+            self.cur_ad.next = self.e1_ad.q.val();
+            self.cur_dd.next = self.e1_dd.q.val();
+            self.cur_shape.next = self.e1_shape.q.val();
+            self.cur_recip.next = self.e1_recip.q.val();
+        }
+        if self.ri.q.val() == self.slot2.val() {
+            self.cur_last.next = self.e2_last.q.val();
+            self.cur_ax.next = self.e2_ax.q.val();
+            self.cur_ad.next = self.e2_ad.q.val();
+            self.cur_dd.next = self.e2_dd.q.val();
+            self.cur_shape.next = self.e2_shape.q.val();
+            self.cur_recip.next = self.e2_recip.q.val();
+        }
+        if self.ri.q.val() == self.slot3.val() {
+            self.cur_last.next = self.e3_last.q.val();
+            self.cur_ax.next = self.e3_ax.q.val();
+            self.cur_ad.next = self.e3_ad.q.val();
+            self.cur_dd.next = self.e3_dd.q.val();
+            self.cur_shape.next = self.e3_shape.q.val();
+            self.cur_recip.next = self.e3_recip.q.val();
+        }
         self.line_done.next = self.line_ready.val() & (self.x.q.val() == self.q_last_x.read_data.val());
-        self.seg_done.next = self.line_ready.val() & self.in_seg.val() & (self.x.q.val() == self.seg_last.read_data.val());
+        self.seg_done.next = self.line_ready.val() & self.in_seg.val() & (self.x.q.val() == self.cur_last.val());
         if self.line_ready.val() {
             self.x.d.next = self.x.q.val() + 1;
         }
@@ -703,27 +876,94 @@ impl Logic for Interpolator {
         }
         self.q_rp.d.next = self.q_rp_next.val();
         self.q_rp1.d.next = self.q_rp_next.val() + 1;
-        self.seg_rp_next.next = self.seg_rp.q.val();
-        if self.seg_done.val() {
-            self.seg_rp_next.next = self.seg_rp1.q.val();
-        }
-        self.seg_rp.d.next = self.seg_rp_next.val();
-        self.seg_rp1.d.next = self.seg_rp_next.val() + 1;
         self.q_last_x.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
         self.q_first_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
         self.q_first_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
         self.q_last_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
         self.q_last_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
         self.q_flags.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
-        self.seg_last.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
-        self.seg_ax.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
-        self.seg_ad.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
-        self.seg_dd.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
-        self.seg_shape.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
-        self.seg_recip.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_rp_next.val());
-
-        // P0: the pixel's base value (held, the segment's start, or the
-        // smaller end of a jump) and, on a ramp, its distance from X_a.
+        // The prefetch: a read whenever the memory holds an unread segment
+        // and the registers will have room for it (counting the two reads
+        // on their way, not this clock's pop: four registers let one pop
+        // and one read per clock go on); its data are pushed behind what
+        // the registers keep after this clock's pop.
+        self.pend1.next = self.fill.q.val();
+        if self.rd1.q.val() {
+            self.pend1.next = self.fill.q.val() + 1;
+        }
+        self.pend2.next = self.pend1.val();
+        if self.rd2.q.val() {
+            self.pend2.next = self.pend1.val() + 1;
+        }
+        self.issue.next = (self.rd_ptr.q.val() != self.seg_wp.q.val()) & (self.pend2.val() < self.prefetch.val());
+        if self.issue.val() {
+            self.rd_ptr.d.next = self.rd_ptr.q.val() + 1;
+        }
+        self.rd1.d.next = self.issue.val();
+        self.rd2.d.next = self.rd1.q.val();
+        self.seg_last.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
+        self.seg_ax.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
+        self.seg_ad.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
+        self.seg_dd.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
+        self.seg_shape.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
+        self.seg_recip.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
+        if self.s3_seg.q.val() & !self.issue.val() {
+            self.seg_used.d.next = self.seg_used.q.val() + 1;
+        }
+        if !self.s3_seg.q.val() & self.issue.val() {
+            self.seg_used.d.next = self.seg_used.q.val() - 1;
+        }
+        if self.line_write.val() & !self.line_done.val() {
+            self.q_used.d.next = self.q_used.q.val() + 1;
+        }
+        if !self.line_write.val() & self.line_done.val() {
+            self.q_used.d.next = self.q_used.q.val() - 1;
+        }
+        // The ring: data pushed at `wi`, the engine's segment at `ri`
+        // (registers with enables: no multiplexer on the write side).
+        self.pop.next = self.seg_done.val();
+        self.kept.next = self.fill.q.val();
+        if self.pop.val() {
+            self.kept.next = self.fill.q.val() - 1;
+            self.ri.d.next = self.ri.q.val() + 1;
+        }
+        self.fill.d.next = self.kept.val();
+        if self.rd2.q.val() {
+            self.fill.d.next = self.kept.val() + 1;
+            self.wi.d.next = self.wi.q.val() + 1;
+            if !self.wi.q.val().any() {
+                self.e0_last.d.next = self.seg_last.read_data.val();
+                self.e0_ax.d.next = self.seg_ax.read_data.val();
+                self.e0_ad.d.next = self.seg_ad.read_data.val();
+                self.e0_dd.d.next = self.seg_dd.read_data.val();
+                self.e0_shape.d.next = self.seg_shape.read_data.val();
+                self.e0_recip.d.next = self.seg_recip.read_data.val();
+            }
+            if self.wi.q.val() == self.slot1.val() {
+                self.e1_last.d.next = self.seg_last.read_data.val();
+                self.e1_ax.d.next = self.seg_ax.read_data.val();
+                self.e1_ad.d.next = self.seg_ad.read_data.val();
+                self.e1_dd.d.next = self.seg_dd.read_data.val();
+                self.e1_shape.d.next = self.seg_shape.read_data.val();
+                self.e1_recip.d.next = self.seg_recip.read_data.val();
+            }
+            if self.wi.q.val() == self.slot2.val() {
+                self.e2_last.d.next = self.seg_last.read_data.val();
+                self.e2_ax.d.next = self.seg_ax.read_data.val();
+                self.e2_ad.d.next = self.seg_ad.read_data.val();
+                self.e2_dd.d.next = self.seg_dd.read_data.val();
+                self.e2_shape.d.next = self.seg_shape.read_data.val();
+                self.e2_recip.d.next = self.seg_recip.read_data.val();
+            }
+            if self.wi.q.val() == self.slot3.val() {
+                self.e3_last.d.next = self.seg_last.read_data.val();
+                self.e3_ax.d.next = self.seg_ax.read_data.val();
+                self.e3_ad.d.next = self.seg_ad.read_data.val();
+                self.e3_dd.d.next = self.seg_dd.read_data.val();
+                self.e3_shape.d.next = self.seg_shape.read_data.val();
+                self.e3_recip.d.next = self.seg_recip.read_data.val();
+            }
+        }
         self.p0_valid.d.next = self.line_ready.val();
         self.p0_last.d.next = self.line_done.val();
         self.p0_sof.d.next = self.line_ready.val() & self.q_flags.read_data.val().get_bit(0) & !self.x.q.val().any();
@@ -736,15 +976,15 @@ impl Logic for Interpolator {
             self.p0_base.d.next = self.q_first_d.read_data.val();
         }
         if self.in_seg.val() {
-            self.p0_base.d.next = self.seg_ad.read_data.val();
+            self.p0_base.d.next = self.cur_ad.val();
         }
-        self.p0_ramp.d.next = self.in_seg.val() & !self.seg_shape.read_data.val().get_bit(self.jump_bit.val().index());
-        self.p0_neg.d.next = self.seg_shape.read_data.val().get_bit(self.neg_bit.val().index());
+        self.p0_ramp.d.next = self.in_seg.val() & !self.cur_shape.val().get_bit(self.jump_bit.val().index());
+        self.p0_neg.d.next = self.cur_shape.val().get_bit(self.neg_bit.val().index());
         self.x16.next = bit_cast::<POS_BITS, WIDTH_BITS>(self.x.q.val()) << self.frac_bits.val();
-        self.p0_u.d.next = self.x16.val() - self.seg_ax.read_data.val();
-        self.p0_lz.d.next = self.seg_shape.read_data.val().get_bits::<LZ_BITS>(self.bit0.val().index());
-        self.p0_recip.d.next = self.seg_recip.read_data.val();
-        self.p0_dd.d.next = self.seg_dd.read_data.val();
+        self.p0_u.d.next = self.x16.val() - self.cur_ax.val();
+        self.p0_lz.d.next = self.cur_shape.val().get_bits::<LZ_BITS>(self.bit0.val().index());
+        self.p0_recip.d.next = self.cur_recip.val();
+        self.p0_dd.d.next = self.cur_dd.val();
         // P1: the distance normalised as the segment's length was.
         self.p1_valid.d.next = self.p0_valid.q.val();
         self.p1_last.d.next = self.p0_last.q.val();
@@ -756,12 +996,7 @@ impl Logic for Interpolator {
         self.p1_v.d.next = bit_cast::<16, POS_BITS>(self.p0_u.q.val()) << self.p0_lz.q.val();
         self.p1_recip.d.next = self.p0_recip.q.val();
         self.p1_dd.d.next = self.p0_dd.q.val();
-        // P2: the weight t = v · recip / 2^(POS_BITS - 1), below 1.
-        self.prod_v.next = self.p1_v.q.val() * self.p1_recip.q.val();
-        self.p2_t.d.next = bit_cast::<16, 32>(self.prod_v.val() >> self.t_shift.val());
-        if (self.prod_v.val() >> self.t_over.val()).any() {
-            self.p2_t.d.next = self.t_max.val();
-        }
+        // P2: v · recip (a DSP block; the product registered).
         self.p2_valid.d.next = self.p1_valid.q.val();
         self.p2_last.d.next = self.p1_last.q.val();
         self.p2_sof.d.next = self.p1_sof.q.val();
@@ -769,12 +1004,10 @@ impl Logic for Interpolator {
         self.p2_ramp.d.next = self.p1_ramp.q.val();
         self.p2_neg.d.next = self.p1_neg.q.val();
         self.p2_base.d.next = self.p1_base.q.val();
+        self.prod_v.next = self.p1_v.q.val() * self.p1_recip.q.val();
+        self.p2_prod.d.next = self.prod_v.val();
         self.p2_dd.d.next = self.p1_dd.q.val();
-        // P3: the step t·|Δd|, rounded.
-        self.wide_dd.next = bit_cast::<16, POS_BITS>(self.p2_dd.q.val());
-        self.prod_t.next = self.p2_t.q.val() * self.wide_dd.val();
-        self.rounded.next = self.prod_t.val() + self.half.val();
-        self.p3_delta.d.next = bit_cast::<POS_BITS, 32>(self.rounded.val() >> self.w_shift.val());
+        // P3: the weight t = v · recip / 2^(POS_BITS - 1), below 1.
         self.p3_valid.d.next = self.p2_valid.q.val();
         self.p3_last.d.next = self.p2_last.q.val();
         self.p3_sof.d.next = self.p2_sof.q.val();
@@ -782,18 +1015,44 @@ impl Logic for Interpolator {
         self.p3_ramp.d.next = self.p2_ramp.q.val();
         self.p3_neg.d.next = self.p2_neg.q.val();
         self.p3_base.d.next = self.p2_base.q.val();
-        // P4: the pixel.
-        self.o_d.d.next = self.p3_base.q.val();
-        if self.p3_ramp.q.val() {
-            self.o_d.d.next = self.p3_base.q.val() + self.p3_delta.q.val();
-            if self.p3_neg.q.val() {
-                self.o_d.d.next = self.p3_base.q.val() - self.p3_delta.q.val();
+        self.p3_t.d.next = bit_cast::<16, 32>(self.p2_prod.q.val() >> self.t_shift.val());
+        if (self.p2_prod.q.val() >> self.t_over.val()).any() {
+            self.p3_t.d.next = self.t_max.val();
+        }
+        self.p3_dd.d.next = self.p2_dd.q.val();
+        // P4: t · |Δd| (a DSP block; the product registered).
+        self.p4_valid.d.next = self.p3_valid.q.val();
+        self.p4_last.d.next = self.p3_last.q.val();
+        self.p4_sof.d.next = self.p3_sof.q.val();
+        self.p4_empty.d.next = self.p3_empty.q.val();
+        self.p4_ramp.d.next = self.p3_ramp.q.val();
+        self.p4_neg.d.next = self.p3_neg.q.val();
+        self.p4_base.d.next = self.p3_base.q.val();
+        self.wide_dd.next = bit_cast::<16, POS_BITS>(self.p3_dd.q.val());
+        self.prod_t.next = self.p3_t.q.val() * self.wide_dd.val();
+        self.p4_prod.d.next = self.prod_t.val();
+        // P5: the step, rounded.
+        self.p5_valid.d.next = self.p4_valid.q.val();
+        self.p5_last.d.next = self.p4_last.q.val();
+        self.p5_sof.d.next = self.p4_sof.q.val();
+        self.p5_empty.d.next = self.p4_empty.q.val();
+        self.p5_ramp.d.next = self.p4_ramp.q.val();
+        self.p5_neg.d.next = self.p4_neg.q.val();
+        self.p5_base.d.next = self.p4_base.q.val();
+        self.rounded.next = self.p4_prod.q.val() + self.half.val();
+        self.p5_delta.d.next = bit_cast::<POS_BITS, 32>(self.rounded.val() >> self.w_shift.val());
+        // The pixel.
+        self.o_d.d.next = self.p5_base.q.val();
+        if self.p5_ramp.q.val() {
+            self.o_d.d.next = self.p5_base.q.val() + self.p5_delta.q.val();
+            if self.p5_neg.q.val() {
+                self.o_d.d.next = self.p5_base.q.val() - self.p5_delta.q.val();
             }
         }
-        self.o_valid.d.next = self.p3_valid.q.val();
-        self.o_last.d.next = self.p3_last.q.val();
-        self.o_sof.d.next = self.p3_sof.q.val();
-        self.o_empty.d.next = self.p3_empty.q.val();
+        self.o_valid.d.next = self.p5_valid.q.val();
+        self.o_last.d.next = self.p5_last.q.val();
+        self.o_sof.d.next = self.p5_sof.q.val();
+        self.o_empty.d.next = self.p5_empty.q.val();
         self.p_valid.next = self.o_valid.q.val();
         self.p_d.next = self.o_d.q.val();
         self.p_last.next = self.o_last.q.val();
