@@ -118,6 +118,12 @@ const NEG_BIT: usize = 4;
 const JUMP_BIT: usize = 5;
 /// Bits of a segment-memory pointer (one above the address).
 const SEG_PTR_BITS: usize = SEG_ADDR_BITS + 1;
+/// Bits of a segment in the segment memory: its last pixel, `X_a`, its
+/// base, `|Δd|`, its shape and its reciprocal.
+pub const SEGMENT_BITS: usize = WIDTH_BITS + 3 * POS_BITS + SHAPE_BITS + RECIP_BITS;
+/// Bits of a line's description in the line queue: its last pixel, the
+/// held values and their pixels, the start-of-frame and empty flags.
+pub const LINE_BITS: usize = 3 * WIDTH_BITS + 2 * POS_BITS + 2;
 /// Segments the prefetch registers hold.
 const PREFETCH: usize = 4;
 /// Bits of a count `0 ..= PREFETCH`.

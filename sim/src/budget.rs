@@ -15,9 +15,9 @@
 //! The stages are a list ([`STAGES`]) in pipeline order: each gives its
 //! clocks per line (how long it is busy with one line, the throughput
 //! bound) and its latency (from the event that hands it a line to the
-//! event that hands the line on). The interpolator/depth stage of
-//! `DESIGN.md` §3 is not in rtl yet ([`NOT_YET_INCLUDED`]); it becomes one
-//! more entry of the list.
+//! event that hands the line on). The stages of `DESIGN.md` §3 not in rtl
+//! yet ([`NOT_YET_INCLUDED`]: the default mode's row check and vertical
+//! median, the depth stage) become more entries of the list.
 //!
 //! ## The matcher's worst line
 //! `line_cycles(n, m, s, k, K)` is `sweep_cycles(n, m, K)` =
@@ -39,8 +39,10 @@ use rtl::declivity_detector::{line_starts, MIN_LINE_PERIOD};
 use rtl::declivity_matcher::{line_cycles, sweep_cycles, ENGINE_LAG, TAKE_AFTER_MARKER};
 use rtl::params::{
     CELLS_PER_CHOICE_WORD, CHOICE_WORDS, CHOICE_WORD_BITS, DIAG_BITS, DISPMAX_BITS, HIST_ADDR_BITS, HIST_COUNT_BITS,
-    INDEX_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, N_CELLS, N_MAX, PIXEL_BITS, POS_BITS, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX,
+    INDEX_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, N_CELLS, N_MAX, PIXEL_BITS, POS_BITS, POS_FRAC_BITS, RECIP_BITS, RECIP_INDEX_BITS,
+    ROWS_PER_CELL, SEG_ADDR_BITS, W_MAX,
 };
+use rtl::interpolator::{LINE_BITS, LINE_QUEUE, PIXEL_LAG, SEGMENT_BITS, SEGMENT_LAG};
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
 use serde::Serialize;
 
@@ -273,13 +275,14 @@ pub struct Sizes {
 pub type Stage = fn(&Sizes) -> StageBudget;
 
 /// The stages in rtl today, in pipeline order (a line passes them one
-/// after the other; the scanline's latency is the sum of theirs). The
-/// interpolator/depth stage goes at the end when it exists.
-pub const STAGES: [Stage; 2] = [detector_stage, matcher_stage];
+/// after the other; the scanline's latency is the sum of theirs).
+pub const STAGES: [Stage; 3] = [detector_stage, matcher_stage, interpolator_stage];
 
 /// Stages of `DESIGN.md` §3 that are not in rtl yet, so not in the budget.
-pub const NOT_YET_INCLUDED: [&str; 1] =
-    ["interpolator/depth stage (one disparity per reference pixel per clock; DESIGN.md §3, issue 6): not yet included"];
+pub const NOT_YET_INCLUDED: [&str; 2] = [
+    "the default mode's check of matches against the neighbouring rows and its vertical median (line buffers; issue 6): not yet included",
+    "depth stage (Z = f·b/(D·p) per pixel; DESIGN.md §3, issue 6): not yet included",
+];
 
 /// Lines of one width run through [`line_starts`] to see the detector's
 /// steady state (it settles after two lines and alternates with period two
@@ -439,6 +442,37 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
     }
 }
 
+/// The interpolator: one disparity per reference pixel per clock
+/// (`rtl::interpolator`).
+pub fn interpolator_stage(s: &Sizes) -> StageBudget {
+    const NAME: &str = "interpolator";
+    let latency_terms = vec![
+        Term::new("1 (the matcher's marker, the clock after its last match)", 1),
+        Term::new("SEGMENT_LAG", SEGMENT_LAG),
+        Term::new("PIXEL_LAG", PIXEL_LAG),
+        Term::new("(W' − 1) (the line's pixels)", s.stored_width - 1),
+    ];
+    let (latency_cycles, latency_formula) = render(&latency_terms);
+    StageBudget {
+        name: NAME,
+        instances: 1,
+        cycles_per_line: s.stored_width as u64,
+        formula: "W' (one pixel per clock, lines back to back)".to_string(),
+        latency_cycles,
+        latency_formula,
+        latency_terms,
+        latency_span: "the matcher's last match out → the line's last disparity out",
+        spare_cycles: 0,
+        pe_count: None,
+        rows_per_pe: None,
+        memories: vec![
+            Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, "Interpolator::seg_* (one block RAM per field)"),
+            Memory::new(NAME, "reciprocal table", 1, 1, 1 << RECIP_INDEX_BITS, RECIP_BITS, "Interpolator::recip (ROM)"),
+            Memory::new(NAME, "line queue", 1, 1, LINE_QUEUE, LINE_BITS, "Interpolator::q_* (LUT RAM)"),
+        ],
+    }
+}
+
 /// Memories and processing elements of the stages, summed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Resources {
@@ -511,7 +545,7 @@ pub struct Budget {
     pub stall_cycles_per_line: u64,
     /// The least hblank with which the input never stalls.
     pub min_hblank_cycles: u64,
-    /// A scanline's first pixel accepted → its last match out: the sum of
+    /// A scanline's first pixel accepted → its last disparity out: the sum of
     /// the stages' latencies.
     pub latency_cycles: u64,
     pub latency_formula: String,
@@ -699,7 +733,7 @@ pub fn report_text(b: &Budget) -> String {
     } else {
         let _ = writeln!(o, "  no stage is slower than the input's W + hblank: the input never stalls");
     }
-    let _ = writeln!(o, "latency            {} clocks = {:.2} µs per scanline (first pixel in → last match out)", b.latency_cycles, b.latency_us);
+    let _ = writeln!(o, "latency            {} clocks = {:.2} µs per scanline (first pixel in → last disparity out)", b.latency_cycles, b.latency_us);
     for s in &b.stages {
         let _ = writeln!(o, "  {:<22} {:>6}   {}: {}", s.name, s.latency_cycles, s.latency_span, s.latency_formula);
     }

@@ -81,16 +81,16 @@ the rtl blocks' own cycle formulas (rtl::declivity_detector::marker_latency and 
 rtl::declivity_matcher::line_cycles, sweep_cycles, rtl::traceback::traceback_cycles), which the tests \
 check against clocks measured in simulation.
 
-Per stage that exists in rtl today (the two declivity detectors, one per camera, and the matcher; the \
-interpolator/depth stage is not yet included): its clocks per line for the worst line, as a formula \
+Per stage that exists in rtl today (the two declivity detectors, one per camera, the matcher and the \
+interpolator; the default mode's row check and vertical median and the depth stage are not yet included): its clocks per line for the worst line, as a formula \
 with its values. The detector takes W clocks per line (one pixel per clock) from W >= MIN_LINE_PERIOD \
 = 283 on; the matcher's worst line has n = m = N declivities and a path of k = N pairs stopping on \
 anti-diagonal 0, which maximises line_cycles (every term grows with n, m, k and falls with the stop \
 diagonal). Then: the line period, max(W + hblank, slowest stage), and if a stage is slower than the \
 input, the clocks per line the input stalls and the least hblank that avoids it; the latency of a \
-scanline, from its first pixel accepted to its last match out, stage by stage; the frame time, H x line \
+scanline, from its first pixel accepted to its last disparity out, stage by stage; the frame time, H x line \
 period / clock, and frames per second; the resources as the rtl blocks declare them (line buffers, \
-|dI| histogram banks, gain cells (PEs) and rows per cell, record, choice and traceback memories, in \
+|dI| histogram banks, gain cells (PEs) and rows per cell, record, choice and traceback memories, the interpolator's segment memory, reciprocal table and line queue, in \
 bits; generation-time sizes for W_MAX = 1024, N_MAX = 128). --json prints the same as one JSON object \
 (line_period_cycles, stall_cycles_per_line, min_hblank_cycles, latency_cycles, latency_us, \
 frame_time_ms, fps, stages[] with cycles_per_line, formula, latency_cycles, latency_formula, \

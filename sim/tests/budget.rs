@@ -249,7 +249,9 @@ fn matcher_clocks_of_random_pairs_follow_the_per_line_formula_and_stay_within_th
 
 /// The budget's latency of a scanline is the detector's measured first
 /// pixel → marker plus the matcher's measured second marker → last match
-/// (the stages wired directly, engines idle).
+/// plus the interpolator's measured marker → last pixel and the clock from
+/// the matcher's last match to its marker (the stages wired directly,
+/// engines idle).
 #[test]
 fn scanline_latency_is_the_sum_of_the_measured_stage_latencies() {
     const CELLS: usize = 8;
@@ -262,17 +264,26 @@ fn scanline_latency_is_the_sum_of_the_measured_stage_latencies() {
     let detector = run.lines[0].marker_cycle - run.first_pixel_cycle[0];
     let pair = &measure::<CELLS>(&[worst_pair(n)], WORST_DISPMAX)[0];
     let matcher = pair.last_match.expect("matches") - pair.input_done;
+    let line = sim::interpolator::AnchorLine {
+        anchors: vec![sim::interpolator::FixedAnchor { x: 100, d: 40 }, sim::interpolator::FixedAnchor { x: 5000, d: 90 }],
+        width,
+        sof: true,
+    };
+    let mut interp = sim::interpolator::InterpolatorSim::robust();
+    let (lines, markers) = interp.run(&[line], 0);
+    let interpolator = lines[0].last_cycle - markers[0];
     let b = budget(&request(width, n, CELLS)).expect("valid");
-    assert_eq!(b.latency_cycles, detector + matcher, "{}", b.latency_formula);
+    assert_eq!(b.latency_cycles, detector + matcher + 1 + interpolator, "{}", b.latency_formula);
 }
 
-/// `reg[A:0] mem[B:0];` declarations of a Verilog text: their bits.
+/// `reg[A:0] mem[B:0];` declarations of a Verilog text (RAMs; ROMs write
+/// `mem [B:0]`): their bits.
 fn verilog_memory_bits(v: &str) -> usize {
     v.lines()
         .filter_map(|l| {
             let t = l.trim().trim_start_matches("(* no_rw_check *)").trim();
             let rest = t.strip_prefix("reg[")?;
-            let (hi, rest) = rest.split_once(":0] mem[")?;
+            let (hi, rest) = rest.split_once(":0] mem[").or_else(|| rest.split_once(":0] mem ["))?;
             let (depth, _) = rest.split_once(":0];")?;
             Some((hi.parse::<usize>().ok()? + 1) * (depth.parse::<usize>().ok()? + 1))
         })
@@ -280,18 +291,21 @@ fn verilog_memory_bits(v: &str) -> usize {
 }
 
 /// The budget's memories are those of the generated Verilog: two
-/// detectors, and the sensor's matcher.
+/// detectors, the sensor's matcher and the interpolator.
 #[test]
 fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
     use sim::verilog::{generate, Top};
     let b = budget(&request(512, N_MAX, N_CELLS)).expect("valid");
     let detector = verilog_memory_bits(&generate(Top::Detector));
     let matcher = verilog_memory_bits(&generate(Top::Matcher));
-    assert!(detector > 0 && matcher > 0, "memories found");
+    let interpolator = verilog_memory_bits(&generate(Top::Interpolator));
+    assert!(detector > 0 && matcher > 0 && interpolator > 0, "memories found");
     let r = &b.resources;
+    let stage_bits = |stage: &str| r.memories.iter().filter(|m| m.stage == stage).map(|m| m.bits).sum::<usize>();
     assert_eq!(2 * detector, r.line_buffer_bits + r.histogram_bits, "two detectors");
-    assert_eq!(2 * detector + matcher, r.memory_bits, "{:#?}", r.memories);
-    assert_eq!(matcher, r.memory_bits - r.line_buffer_bits - r.histogram_bits);
+    assert_eq!(2 * detector + matcher + interpolator, r.memory_bits, "{:#?}", r.memories);
+    assert_eq!(matcher, stage_bits("matcher"));
+    assert_eq!(interpolator, stage_bits("interpolator"));
     assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell), (2, 4, 64, 2));
 }
 
@@ -421,7 +435,7 @@ fn cli_json_is_one_object_with_the_budget_keys() {
         assert!(v.get(key).is_some(), "no key {key} in {v}");
     }
     let stages = v["stages"].as_array().expect("stages");
-    assert_eq!(stages.len(), 2);
+    assert_eq!(stages.len(), 3);
     for s in stages {
         for key in ["name", "cycles_per_line", "formula", "latency_cycles", "latency_formula", "memories"] {
             assert!(s.get(key).is_some(), "no key {key} in {s}");
@@ -434,15 +448,17 @@ fn cli_json_is_one_object_with_the_budget_keys() {
     let (h, p, f) = (v["height"].as_f64().unwrap(), v["line_period_cycles"].as_f64().unwrap(), v["clock_mhz"].as_f64().unwrap());
     assert!((v["frame_time_ms"].as_f64().unwrap() - h * p / (f * 1e3)).abs() < 1e-9);
     assert_eq!(v["hblank"].as_u64(), Some(100));
-    assert!(v["not_included"][0].as_str().unwrap().contains("interpolator"));
+    let missing: Vec<&str> = v["not_included"].as_array().expect("a list").iter().filter_map(|m| m.as_str()).collect();
+    assert!(missing.iter().any(|m| m.contains("depth stage")) && missing.iter().all(|m| !m.starts_with("interpolator")), "{missing:?}");
+    assert_eq!(v["stages"][2]["name"].as_str(), Some("interpolator"));
 }
 
 #[test]
-fn cli_text_names_the_stages_the_missing_interpolator_and_a_wide_line() {
+fn cli_text_names_the_stages_the_missing_ones_and_a_wide_line() {
     let o = declivity(&with("--width", "1500").iter().map(|s| s.as_str()).collect::<Vec<_>>());
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for says in ["declivity detector", "matcher", "interpolator", "not yet included", "line period", "latency", "frames/s", "wide", "W_MAX = 1024"] {
+    for says in ["declivity detector", "matcher", "interpolator", "depth stage", "not yet included", "line period", "latency", "frames/s", "wide", "W_MAX = 1024"] {
         assert!(out.contains(says), "does not say `{says}`:\n{out}");
     }
 }
