@@ -293,8 +293,9 @@ proptest! {
 
 /// Back to back, a pair whose records are all in while the engine works on
 /// the previous one is taken the clock after the traceback ends: its marker
-/// follows the previous one by exactly `line_cycles - 1`, loading never
-/// costs the engine a clock.
+/// follows the previous one by exactly `line_cycles - 2` (the engine takes
+/// it two clocks before the previous marker leaves its three output
+/// registers), so loading never costs the engine a clock.
 #[test]
 fn loading_the_next_pair_overlaps_matching_the_current_one() {
     let mut runner = proptest::test_runner::TestRunner::deterministic();

@@ -574,7 +574,10 @@ pub fn dispmax_lsb(dispmax: f64) -> Result<u32, BudgetError> {
     }
     let lsb = dispmax * unit;
     if lsb.fract() != 0.0 {
-        return Err(err(format!("the matcher takes dispmax in 1/{unit} px; give a multiple of 1/{unit}")));
+        return Err(err(format!(
+            "the matcher takes dispmax in 1/{unit} px; give a multiple of 1/{unit}, e.g. {}",
+            (lsb.round() / unit).max(1.0 + 1.0 / unit)
+        )));
     }
     Ok((lsb as u32).min((1u32 << DISPMAX_BITS) - 1))
 }

@@ -662,30 +662,9 @@ fn rtl_detect(a: RtlDetectArgs) -> Result<(), SimError> {
 }
 
 /// `--dispmax` of `rtl match` in the matcher's unit, `1/2^POS_FRAC_BITS`
-/// px: a finite value greater than 1, at most `W_MAX`, on that grid. A
-/// bound of `W_MAX` is clamped to the largest the matcher's port holds,
-/// which no disparity inside a line reaches.
+/// px, by the one rule `budget` uses too (`sim::budget::dispmax_lsb`).
 fn matcher_dispmax(v: f64) -> Result<u32, SimError> {
-    use rtl::params::{DISPMAX_BITS, POS_FRAC_BITS, W_MAX};
-    let unit = (1u32 << POS_FRAC_BITS) as f64;
-    if !v.is_finite() || v <= 1.0 {
-        return Err(SimError::Argument(format!(
-            "--dispmax {v}: dispmax must be greater than 1 (eq. 6 searches 0 < d < dispmax)"
-        )));
-    }
-    if v > W_MAX as f64 {
-        return Err(SimError::Argument(format!(
-            "--dispmax {v}: dispmax must be at most W_MAX = {W_MAX} px (the widest line the hardware stores)"
-        )));
-    }
-    let lsb = v * unit;
-    if lsb.fract() != 0.0 {
-        return Err(SimError::Argument(format!(
-            "--dispmax {v}: the matcher takes dispmax in 1/{unit} px; give a multiple of 1/{unit}, e.g. {}",
-            (lsb.round() / unit).max(1.0 + 1.0 / unit)
-        )));
-    }
-    Ok((lsb as u32).min((1u32 << DISPMAX_BITS) - 1))
+    Ok(sim::budget::dispmax_lsb(v)?)
 }
 
 fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
