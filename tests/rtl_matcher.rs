@@ -30,7 +30,7 @@
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
-use rtl::declivity_matcher::{line_cycles, GainRule, TAKE_AFTER_MARKER};
+use rtl::declivity_matcher::{line_cycles, GainRule, OUTPUT_LAG, TAKE_AFTER_MARKER};
 use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
 use sim::matcher::{
     agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
@@ -293,9 +293,10 @@ proptest! {
 
 /// Back to back, a pair whose records are all in while the engine works on
 /// the previous one is taken the clock after the traceback ends: its marker
-/// follows the previous one by exactly `line_cycles - 2` (the engine takes
-/// it two clocks before the previous marker leaves its three output
-/// registers), so loading never costs the engine a clock.
+/// follows the previous one by exactly `line_cycles - (OUTPUT_LAG - 1)`
+/// (the engine takes it the clock after the traceback's marker, while the
+/// previous marker is still in the `OUTPUT_LAG` output registers), so
+/// loading never costs the engine a clock.
 #[test]
 fn loading_the_next_pair_overlaps_matching_the_current_one() {
     let mut runner = proptest::test_runner::TestRunner::deterministic();
@@ -306,10 +307,10 @@ fn loading_the_next_pair_overlaps_matching_the_current_one() {
         let got = run(&cases, 20 * PX, GainRule::Robust, false).expect("runs");
         for k in 1..cases.len() {
             let (prev, cur) = (&got[k - 1], &got[k]);
-            if cur.input_done_cycle + TAKE_AFTER_MARKER <= prev.marker_cycle - 2 {
+            if cur.input_done_cycle + TAKE_AFTER_MARKER <= prev.marker_cycle - (OUTPUT_LAG as u64 - 1) {
                 let want = golden_match(&cases[k].reference, &cases[k].other, 20 * PX, GainRule::Robust);
                 let lc = line_cycles(cases[k].reference.records.len(), cases[k].other.records.len(), want.stop_diag, want.nodes.len(), CELLS);
-                assert_eq!(cur.marker_cycle - prev.marker_cycle, lc as u64 - 2, "pair {k} of {:?}", cases.iter().map(|c| c.kind).collect::<Vec<_>>());
+                assert_eq!(cur.marker_cycle - prev.marker_cycle, (lc - (OUTPUT_LAG - 1)) as u64, "pair {k} of {:?}", cases.iter().map(|c| c.kind).collect::<Vec<_>>());
                 overlapped += 1;
             }
         }

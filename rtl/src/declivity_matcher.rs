@@ -41,12 +41,12 @@
 //! is in the input register at `t + 1`, waits in the slot from `t + 2` and
 //! is taken by the engine at `t +` [`TAKE_AFTER_MARKER`];
 //! its marker leaves [`line_cycles`] clocks after that (the sweep,
-//! [`sweep_cycles`], the traceback, [`traceback_cycles`], three output
+//! [`sweep_cycles`], the traceback, [`traceback_cycles`], [`OUTPUT_LAG`] output
 //! registers), its matches on the clocks just before, one per clock. The
 //! engine takes the next pair the clock after the traceback ends. Loading
 //! the next pair overlaps the engine's work on this one; the worst line,
 //! `n = m = N_MAX`, costs at most
-//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 919 clocks, inside the
+//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 921 clocks, inside the
 //! 1024 of a `W_MAX` line.
 
 use crate::params::*;
@@ -85,9 +85,10 @@ impl GainRule {
 /// Clocks from the engine's sweep clock `sc = T - 2c` reading the column
 /// of node `(i, j)` (`T = 2·(i + j) + [i ≥ N]`, `c = i mod N`, the cell)
 /// to the node's choice in the array's word registers, less the cell's
-/// `2c`: record memory read, its output register, the register that
-/// drives the array, then the array's [`CHOICE_LAG`].
-pub const ENGINE_LAG: usize = 3 + CHOICE_LAG;
+/// `2c`: the record memory's address register, its read, its output
+/// register, the register that drives the array, then the array's
+/// [`CHOICE_LAG`].
+pub const ENGINE_LAG: usize = 4 + CHOICE_LAG;
 
 /// Clocks of a sweep of `n` reference and `m` other declivities through
 /// `cells` cells, from the clock after the engine takes the pair to the
@@ -101,11 +102,16 @@ pub const fn sweep_cycles(n: usize, m: usize, cells: usize) -> usize {
 
 /// Clocks from the engine taking a line pair to its marker on the outputs:
 /// the sweep, the traceback (its walk stopping on anti-diagonal
-/// `stop_diag` with `k` pairs; see [`traceback_cycles`]) and three of
-/// output registers (position read, positions, difference).
+/// `stop_diag` with `k` pairs; see [`traceback_cycles`]) and
+/// [`OUTPUT_LAG`] output registers.
 pub const fn line_cycles(n: usize, m: usize, stop_diag: usize, k: usize, cells: usize) -> usize {
-    sweep_cycles(n, m, cells) + traceback_cycles(n, m, stop_diag, k) + 3
+    sweep_cycles(n, m, cells) + traceback_cycles(n, m, stop_diag, k) + OUTPUT_LAG
 }
+
+/// Clocks from the traceback's marker to the matcher's: the record
+/// memory's address register, its read and output register (the pair's
+/// positions), the difference.
+pub const OUTPUT_LAG: usize = 4;
 
 /// Clocks from a line pair's second marker taken on the ports to the
 /// engine taking the pair, when the engine is idle: the input register,
@@ -220,6 +226,17 @@ pub struct DeclivityMatcher<const N: usize> {
     e_sof: DFF<Bit>,
     e_fold: DFF<Bit>,
     ld_valid_d: DFF<Bit>,
+    ld_valid_e: DFF<Bit>,
+    ld_index_e: DFF<Bits<INDEX_BITS>>,
+    c_valid_e2: DFF<Bit>,
+    c_hi_e2: DFF<Bit>,
+    r_addr_q: DFF<Bits<DIAG_BITS>>,
+    o_addr_q: DFF<Bits<DIAG_BITS>>,
+    q2_valid: DFF<Bit>,
+    q2_last: DFF<Bit>,
+    q2_i: DFF<Bits<INDEX_BITS>>,
+    q2_j: DFF<Bits<INDEX_BITS>>,
+    q2_count: DFF<Bits<COUNT_BITS>>,
     ld_index_d: DFF<Bits<INDEX_BITS>>,
     c_valid_d: DFF<Bit>,
     c_hi_d: DFF<Bit>,
@@ -411,6 +428,17 @@ impl<const N: usize> DeclivityMatcher<N> {
             e_sof: Default::default(),
             e_fold: Default::default(),
             ld_valid_d: Default::default(),
+            ld_valid_e: Default::default(),
+            ld_index_e: Default::default(),
+            c_valid_e2: Default::default(),
+            c_hi_e2: Default::default(),
+            r_addr_q: Default::default(),
+            o_addr_q: Default::default(),
+            q2_valid: Default::default(),
+            q2_last: Default::default(),
+            q2_i: Default::default(),
+            q2_j: Default::default(),
+            q2_count: Default::default(),
             ld_index_d: Default::default(),
             c_valid_d: Default::default(),
             c_hi_d: Default::default(),
@@ -527,7 +555,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_first, ld_first_hi, c_hi_e, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
+            e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_hi_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_first_hi, c_hi_e, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -758,14 +786,20 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.o_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.traceback.out_j.val()) + self.rd_bank_base.val();
         }
 
-        self.r_mem.r_addr.next = self.r_rd.val();
-        self.o_mem.r_addr.next = self.o_rd.val();
+        // (Registered: the route from the engine and the traceback to the
+        // record memories was the critical path.)
+        self.r_addr_q.d.next = self.r_rd.val();
+        self.o_addr_q.d.next = self.o_rd.val();
+        self.r_mem.r_addr.next = self.r_addr_q.q.val();
+        self.o_mem.r_addr.next = self.o_addr_q.q.val();
 
         // ---- The array.
         // Load tokens: high the clock before references 0 and N are on the
         // broadcast (the array moves them on to the cells).
-        self.ld_first.d.next = self.ld_valid_d.q.val() & !self.ld_index_d.q.val().any();
-        self.ld_first_hi.d.next = self.ld_valid_d.q.val() & (self.ld_index_d.q.val() == self.cells_i.val());
+        self.ld_valid_e.d.next = self.ld_valid_d.q.val();
+        self.ld_index_e.d.next = self.ld_index_d.q.val();
+        self.ld_first.d.next = self.ld_valid_e.q.val() & !self.ld_index_e.q.val().any();
+        self.ld_first_hi.d.next = self.ld_valid_e.q.val() & (self.ld_index_e.q.val() == self.cells_i.val());
         self.ld_pos_q.d.next = self.r_mem.pos.val();
         self.ld_lev0_q.d.next = self.r_mem.lev0.val();
         self.ld_lev1_q.d.next = self.r_mem.lev1.val();
@@ -776,8 +810,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.ld_rising_q.d.next = self.r_mem.rising.val();
         self.c_valid_e.d.next = self.c_valid_d.q.val();
         self.c_hi_e.d.next = self.c_hi_d.q.val();
-        self.c_valid_q.d.next = self.c_valid_e.q.val();
-        self.c_hi_q.d.next = self.c_hi_e.q.val();
+        self.c_valid_e2.d.next = self.c_valid_e.q.val();
+        self.c_hi_e2.d.next = self.c_hi_e.q.val();
+        self.c_valid_q.d.next = self.c_valid_e2.q.val();
+        self.c_hi_q.d.next = self.c_hi_e2.q.val();
         self.c_pos_q.d.next = self.o_mem.pos.val();
         self.c_lev0_q.d.next = self.o_mem.lev0.val();
         self.c_lev1_q.d.next = self.o_mem.lev1.val();
@@ -833,14 +869,24 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.q_i.d.next = self.traceback.out_i.val();
         self.q_j.d.next = self.traceback.out_j.val();
         self.q_count.d.next = self.traceback.out_count.val();
-        self.w_valid.d.next = self.q_valid.q.val();
-        self.w_last.d.next = self.q_last.q.val();
-        if self.q_valid.q.val() {
-            self.w_i.d.next = self.q_i.q.val();
-            self.w_j.d.next = self.q_j.q.val();
+        self.q2_valid.d.next = self.q_valid.q.val();
+        self.q2_last.d.next = self.q_last.q.val();
+        self.q2_i.d.next = self.q_i.q.val();
+        self.q2_j.d.next = self.q_j.q.val();
+        self.q2_count.d.next = self.q_count.q.val();
+        self.w_valid.d.next = self.q2_valid.q.val();
+        self.w_last.d.next = self.q2_last.q.val();
+        if self.q2_valid.q.val() {
+            self.w_i.d.next = self.q2_i.q.val();
+            self.w_j.d.next = self.q2_j.q.val();
         }
+        if self.q2_last.q.val() {
+            self.w_count.d.next = self.q2_count.q.val();
+        }
+        // The line's own counts and flags, kept from the clock after the
+        // traceback's marker (the engine may take the next pair on the
+        // clock after that).
         if self.q_last.q.val() {
-            self.w_count.d.next = self.q_count.q.val();
             self.w_n.d.next = self.en.q.val();
             self.w_m.d.next = self.em.q.val();
             self.w_wide.d.next = self.e_wide.q.val();

@@ -36,7 +36,7 @@
 
 use rtl::adaptive_threshold::THRESHOLD_LATENCY;
 use rtl::declivity_detector::{line_starts, MIN_LINE_PERIOD};
-use rtl::declivity_matcher::{line_cycles, sweep_cycles, ENGINE_LAG, TAKE_AFTER_MARKER};
+use rtl::declivity_matcher::{line_cycles, sweep_cycles, ENGINE_LAG, OUTPUT_LAG, TAKE_AFTER_MARKER};
 use rtl::params::{
     CELLS_PER_CHOICE_WORD, CHOICE_WORDS, CHOICE_WORD_BITS, DIAG_BITS, DISPMAX_BITS, HIST_ADDR_BITS, HIST_COUNT_BITS,
     INDEX_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, N_CELLS, N_MAX, PIXEL_BITS, POS_BITS, POS_FRAC_BITS, RECIP_BITS, RECIP_INDEX_BITS,
@@ -304,10 +304,10 @@ pub fn detector_cycles_per_line(width: usize) -> u64 {
 
 /// The clock on which the engine can take the next pair, counted back from
 /// its marker: the engine takes it the clock after the traceback ends, and
-/// the marker leaves three output registers after that end
+/// the marker leaves OUTPUT_LAG output registers after that end
 /// (`rtl::declivity_matcher`, "Timing"; `sim::matcher::match_lines` takes
 /// the same).
-pub const MARKER_AFTER_NEXT_TAKE: usize = 2;
+pub const MARKER_AFTER_NEXT_TAKE: usize = OUTPUT_LAG - 1;
 
 /// Clocks the matcher's engine is busy with a line pair of `n` reference
 /// and `m` other declivities whose path stops on anti-diagonal `stop_diag`
@@ -387,8 +387,8 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
     let (cycles, formula) = render(&[
         Term::new("sweep_cycles(N, N, K)", sweep_cycles(n, m, s.cells)),
         Term::new("traceback_cycles(N, N, 0, N)", traceback_cycles(n, m, stop, k)),
-        Term::new("3 output registers", line_cycles(n, m, stop, k, s.cells) - sweep_cycles(n, m, s.cells) - traceback_cycles(n, m, stop, k)),
-        Term::minus("2 (the next pair is taken the clock after the traceback ends)", MARKER_AFTER_NEXT_TAKE),
+        Term::new("OUTPUT_LAG output registers", line_cycles(n, m, stop, k, s.cells) - sweep_cycles(n, m, s.cells) - traceback_cycles(n, m, stop, k)),
+        Term::minus("(OUTPUT_LAG − 1) (the next pair is taken the clock after the traceback ends)", MARKER_AFTER_NEXT_TAKE),
     ]);
     debug_assert_eq!(cycles, matcher_cycles_per_line(n, m, stop, k, s.cells) as u64);
     let latency_terms = vec![

@@ -17,7 +17,7 @@ use golden::dp::{prefix_max_dp, Choice, GainTable};
 use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
-use rtl::declivity_matcher::{DeclivityMatcher, GainRule, TAKE_AFTER_MARKER};
+use rtl::declivity_matcher::{DeclivityMatcher, GainRule, OUTPUT_LAG, TAKE_AFTER_MARKER};
 use rtl::params::{DT_FRAC_BITS, MATCH_DT_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
 use rust_hdl::prelude::*;
 use serde::Serialize;
@@ -546,9 +546,9 @@ pub fn match_lines<const N: usize>(
         report.malformed_lines += check_line(r, o, &rtl, &golden).is_err() as usize;
         // The engine takes a pair TAKE_AFTER_MARKER clocks after its second
         // marker, or the clock after the previous pair's traceback ends (its
-        // marker leaves three clocks later).
+        // marker leaves OUTPUT_LAG clocks after that end).
         let ready = rtl.input_done_cycle + TAKE_AFTER_MARKER;
-        let take = prev_marker.map_or(ready, |p| ready.max(p - 2));
+        let take = prev_marker.map_or(ready, |p| ready.max(p - (OUTPUT_LAG as u64 - 1)));
         let engine_cycles = rtl.marker_cycle - take;
         if engine_cycles > report.max_cycles_per_line {
             report.max_cycles_per_line = engine_cycles;
