@@ -113,24 +113,24 @@ fn cosim_interpolator_vectors_are_current_and_carry_pixels() {
     assert_eq!(count(&real, "p_last"), 6);
 }
 
-#[test]
-fn cosim_interpolator_icarus_matches_rust_on_corner_cases_and_real_rows() {
+/// Both committed vectors replayed by `simulator` against the design.
+fn replay(simulator: Simulator) {
     let d = design();
     for (name, fresh) in [("corner.trace", corner_trace(&d)), ("real.trace", real_trace(&d))] {
         let trace = committed(name, &fresh);
-        let run = cosim::check(Simulator::Icarus, &d, &trace, &Options::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
-        eprintln!("icarus {name}: {} cycles, run {:.2} s", trace.len(), run.run.as_secs_f64());
+        let run = cosim::check(simulator, &d, &trace, &Options::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        eprintln!("{} {name}: {} cycles, run {:.2} s", simulator.name(), trace.len(), run.run.as_secs_f64());
     }
 }
 
 #[test]
+fn cosim_interpolator_icarus_matches_rust_on_corner_cases_and_real_rows() {
+    replay(Simulator::Icarus);
+}
+
+#[test]
 fn cosim_interpolator_verilator_matches_rust_on_corner_cases_and_real_rows() {
-    let d = design();
-    for (name, fresh) in [("corner.trace", corner_trace(&d)), ("real.trace", real_trace(&d))] {
-        let trace = committed(name, &fresh);
-        let run = cosim::check(Simulator::Verilator, &d, &trace, &Options::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
-        eprintln!("verilator {name}: {} cycles, run {:.2} s", trace.len(), run.run.as_secs_f64());
-    }
+    replay(Simulator::Verilator);
 }
 
 /// Verilator `-Wall` warnings accepted in the interpolator's Verilog, with
