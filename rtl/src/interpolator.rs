@@ -23,7 +23,7 @@
 //!   memory; at the line's end marker the line's description (its last pixel, the
 //!   held values and where their pixels start, start of frame) goes into
 //!   the line queue, and is shown to the pixel engine once the line's last
-//!   segment is in the memory. The segments of a line cover the pixels from
+//!   segment can be in the prefetch registers. The segments of a line cover the pixels from
 //!   the first match's `⌈X⌉` to the last one's without gaps, so the pixel
 //!   engine needs no count of them.
 //! - **Prefetch**: the segment memory (block RAMs with their output
@@ -57,10 +57,10 @@
 //!   room for it when it started (see Timing).
 //!
 //! ## Timing
-//! A line's description is in the queue [`SEGMENT_LAG`] clocks after its
-//! marker; its first pixel leaves [`PIXEL_LAG`] clocks after the pixel
-//! engine starts it, which is on the clock after the description is in if
-//! the engine is idle, or right after the previous line's last pixel.
+//! A line's description is shown [`SEGMENT_LAG`] clocks after its marker;
+//! the pixel engine starts the line on that clock if it is idle, or on the
+//! clock after the previous line's last pixel, and the line's first pixel
+//! leaves [`PIXEL_LAG`] clocks after the engine starts it.
 //! Lines leave back to back at one pixel per clock: a line of `W` pixels
 //! takes `W` clocks. The queue holds [`LINE_QUEUE`] lines and the memory
 //! `2^SEG_ADDR_BITS` segments; a line is admitted on its first match (or
@@ -828,7 +828,8 @@ impl Logic for Interpolator {
 
         // ================= Pixels =================
         // The queue's and the memory's outputs show the entries at the read
-        // pointers (read at the pointers' next values, a clock ahead).
+        // pointers (the queue is read at its pointer's next value, a clock
+        // ahead; the segments are in the prefetch ring).
         self.line_ready.next = self.q_shown.q.val() != self.q_rp.q.val();
         // (No line: as an empty one. The memories' output registers start
         // undefined in Verilog; nothing reads them before a line is shown.)
