@@ -321,6 +321,8 @@ pub struct Interpolator {
     l2: Signal<Local, Bits<SHAPE_BITS>>,
     l3: Signal<Local, Bits<SHAPE_BITS>>,
     l4: Signal<Local, Bits<SHAPE_BITS>>,
+    jump: Signal<Local, Bit>,
+    signed_shape: Signal<Local, Bits<SHAPE_BITS>>,
     line_ready: Signal<Local, Bit>,
     empty_line: Signal<Local, Bit>,
     in_head: Signal<Local, Bit>,
@@ -569,6 +571,8 @@ impl Interpolator {
             l2: Default::default(),
             l3: Default::default(),
             l4: Default::default(),
+            jump: Default::default(),
+            signed_shape: Default::default(),
             line_ready: Default::default(),
             empty_line: Default::default(),
             in_head: Default::default(),
@@ -773,15 +777,14 @@ impl Logic for Interpolator {
             self.n4.next = self.n3.val() << self.sh1.val();
             self.l4.next = self.l3.val() + self.lz1.val();
         }
-        self.s2_shape.d.next = self.l4.val();
+        self.jump.next = self.jump_on.val() & (self.s1_dd.q.val() > self.jump_lsb.val());
+        self.signed_shape.next = self.l4.val();
         if self.s1_neg.q.val() {
-            self.s2_shape.d.next = self.l4.val() | self.neg_flag.val();
+            self.signed_shape.next = self.l4.val() | self.neg_flag.val();
         }
-        if self.jump_on.val() & (self.s1_dd.q.val() > self.jump_lsb.val()) {
-            self.s2_shape.d.next = self.l4.val() | self.jump_flag.val();
-            if self.s1_neg.q.val() {
-                self.s2_shape.d.next = self.l4.val() | self.neg_flag.val() | self.jump_flag.val();
-            }
+        self.s2_shape.d.next = self.signed_shape.val();
+        if self.jump.val() {
+            self.s2_shape.d.next = self.signed_shape.val() | self.jump_flag.val();
         }
         self.s2_seg.d.next = self.s1_seg.q.val();
         self.s2_m.d.next = self.n4.val();
@@ -790,7 +793,7 @@ impl Logic for Interpolator {
         // A jump's pixels take the smaller disparity: it is stored as the
         // segment's base instead of d_a.
         self.s2_ad.d.next = self.s1_ad.q.val();
-        if self.jump_on.val() & (self.s1_dd.q.val() > self.jump_lsb.val()) {
+        if self.jump.val() {
             self.s2_ad.d.next = self.s1_min.q.val();
         }
         self.s2_dd.d.next = self.s1_dd.q.val();

@@ -232,12 +232,10 @@ pub fn golden_line(line: &AnchorLine, jump: Option<u64>) -> Vec<f64> {
 /// and their difference. Lines wider than `W_MAX` keep their first `W_MAX`
 /// pixels, as the hardware does.
 pub fn fixed_anchors(matches: &[golden::line::Match], width: usize, sof: bool) -> AnchorLine {
-    let unit = (1u32 << POS_FRAC_BITS) as f64;
     let anchors = matches
         .iter()
         .map(|m| {
-            let x = (m.x_ref * unit).floor() as u32;
-            let o = (m.x_other * unit).floor() as u32;
+            let (x, o) = (crate::matcher::position_lsb(m.x_ref), crate::matcher::position_lsb(m.x_other));
             FixedAnchor { x, d: x - o }
         })
         .collect();

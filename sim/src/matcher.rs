@@ -290,6 +290,12 @@ pub fn golden_mode(rule: GainRule) -> Mode {
     }
 }
 
+/// A position as the detector gives it: `⌊X · 2^POS_FRAC_BITS⌋`
+/// (`rtl::position_divider`).
+pub fn position_lsb(x: f64) -> u32 {
+    (x * (1u32 << POS_FRAC_BITS) as f64).floor() as u32
+}
+
 /// A line's declivities and `d_t` in the detector's formats: positions
 /// rounded down to `POS_FRAC_BITS` fraction bits (as the eq. 3 divider
 /// does), `d_t` rounded to `DT_FRAC_BITS`; at most `N_MAX` records (the
@@ -300,7 +306,7 @@ pub fn quantize_line(f: &LineFeatures) -> MatchLine {
         .iter()
         .take(N_MAX)
         .map(|d| MatchRecord {
-            pos: (d.position * (1u32 << POS_FRAC_BITS) as f64).floor() as u32,
+            pos: position_lsb(d.position),
             amplitude: d.amplitude,
             left: d.left,
             right: d.right,
