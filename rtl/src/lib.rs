@@ -28,6 +28,9 @@ pub mod record_input;
 pub mod record_memory;
 pub mod declivity_matcher;
 pub mod interpolator;
+pub mod row_check;
+pub mod vertical_median;
+pub mod depth_stage;
 
 pub use rust_hdl;
 

@@ -14,6 +14,7 @@ pub mod budget;
 pub mod bundled;
 pub mod cosim;
 pub mod depth;
+pub mod depth_stage;
 pub mod detector;
 pub mod error;
 pub mod eval;
@@ -23,8 +24,10 @@ pub mod matcher;
 pub mod matcher_cosim;
 pub mod pictures;
 pub mod primitives;
+pub mod row_check;
 pub mod synth;
 pub mod verilog;
+pub mod vertical_median;
 pub mod workdir;
 
 pub use error::SimError;
