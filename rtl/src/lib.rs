@@ -27,6 +27,7 @@ pub mod block_ram;
 pub mod record_input;
 pub mod record_memory;
 pub mod declivity_matcher;
+pub mod record_fifo;
 pub mod interpolator;
 pub mod row_check;
 pub mod vertical_median;
