@@ -29,6 +29,7 @@ pub mod record_memory;
 pub mod declivity_matcher;
 pub mod record_fifo;
 pub mod interpolator;
+pub mod stereo_line_processor;
 pub mod row_check;
 pub mod vertical_median;
 pub mod depth_stage;

@@ -25,6 +25,7 @@ pub mod matcher_cosim;
 pub mod pictures;
 pub mod primitives;
 pub mod row_check;
+pub mod stereo;
 pub mod synth;
 pub mod verilog;
 pub mod vertical_median;

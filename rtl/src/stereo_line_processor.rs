@@ -1,0 +1,310 @@
+//! The sensor's datapath (`DESIGN.md` §3, "top level"): two camera streams
+//! in, one disparity per reference (left) pixel out, every scanline
+//! pipelined behind the one before.
+//!
+//! ```text
+//! left  ─► DeclivityDetector ─► RecordFifo ─┐
+//!                                           ├─► DeclivityMatcher ─► Interpolator ─► out
+//! right ─► DeclivityDetector ─► RecordFifo ─┘
+//! ```
+//!
+//! - Each camera has its own [`DeclivityDetector`] (eq. 2–3): line n is
+//!   detected while line n − 1 is matched and line n − 2 interpolated.
+//! - A [`RecordFifo`] per side holds the records while the matcher is busy
+//!   with a heavier line (`declivity budget` gives the worst line's clocks),
+//!   so that the cameras are not stalled.
+//! - The [`DeclivityMatcher`] (eq. 4–9, the default gain rule
+//!   [`GainRule::Robust`] or the paper's) takes a pair when both sides'
+//!   markers are in.
+//! - The [`Interpolator`] (paper §IV's last step, with the default mode's
+//!   edge jump [`EDGE_JUMP_LSB`] or none) gives one disparity per pixel.
+//!
+//! ## Ports
+//! - In, per camera (`l_` left = reference, `r_` right), AXI4-Stream video:
+//!   `tdata` (grey level), `tvalid`, `tuser` (start of frame, on a line's
+//!   first pixel), `tlast` (end of line); out `tready` (the detector's:
+//!   high except between lines of widths below the detector's
+//!   `MIN_LINE_PERIOD`).
+//! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits.
+//! - Out, AXI4-Stream without back-pressure (`tready` absent, as the
+//!   standard allows: the sink takes a beat every clock): `m_tvalid`,
+//!   `m_tdata` (disparity, [`POS_FRAC_BITS`] fraction bits, 0 = none),
+//!   `m_tuser` (the frame's first pixel), `m_tlast` (a line's last pixel).
+//!   A line has the width of the reference line (at most [`W_MAX`]).
+//! - Status, counters that wrap: `records_dropped` (detector beats that
+//!   found a record queue full), `lines_dropped` (lines the interpolator
+//!   had no room for: their pixels are not sent), `lines_full` (lines with
+//!   more than `2·N` declivities on a side: the first are matched),
+//!   `lines_wide` (line pairs with a side wider than [`W_MAX`]: the first
+//!   `W_MAX` pixels are processed).
+//!
+//! ## Timing
+//! Throughput: one pixel per clock per camera while the matcher keeps up on
+//! average; a line's matching may take longer than its line time as long as
+//! the record queues ([`crate::record_fifo::RECORD_FIFO_DEPTH`] beats)
+//! absorb it. Latency: the
+//! detector's [`crate::declivity_detector::marker_latency`], the queue's
+//! [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line (`line_cycles`), the
+//! interpolator's `SEGMENT_LAG + PIXEL_LAG`, then the line's pixels
+//! (`declivity budget` adds them up; the simulation measures them).
+//!
+//! The width given to the interpolator is the last reference line's
+//! (every line of a frame has one width): it is counted as the line comes
+//! in, long before that line's matches leave the matcher.
+
+use crate::block_ram::DP16KD_WIDTH;
+use crate::declivity_detector::DeclivityDetector;
+use crate::declivity_matcher::{DeclivityMatcher, GainRule};
+use crate::interpolator::Interpolator;
+use crate::params::*;
+use crate::record_fifo::RecordFifo;
+use rust_hdl::prelude::*;
+
+/// Bits of the status counters.
+pub const STATUS_BITS: usize = 16;
+
+/// Where a detector beat's fields sit in the record queue's lanes.
+/// Lane 0: `pos`, then the marker's flags.
+const SOF_BIT: usize = POS_BITS;
+const WIDE_BIT: usize = POS_BITS + 1;
+const FULL_BIT: usize = POS_BITS + 2;
+/// Lane 1: `amp`, then the marker bit.
+const MARKER_BIT: usize = AMP_BITS;
+/// Lanes 2–4: two grey levels each (`left0, left1`, `left2, right0`,
+/// `right1, right2`); on a marker, lane 2 carries `d_t`.
+const _: () = assert!(FULL_BIT < DP16KD_WIDTH && MARKER_BIT < DP16KD_WIDTH && DT_BITS <= DP16KD_WIDTH && 2 * PIXEL_BITS <= DP16KD_WIDTH);
+
+
+#[derive(LogicBlock)]
+pub struct StereoLineProcessor<const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub l_tdata: Signal<In, Bits<PIXEL_BITS>>,
+    pub l_tvalid: Signal<In, Bit>,
+    pub l_tuser: Signal<In, Bit>,
+    pub l_tlast: Signal<In, Bit>,
+    pub l_tready: Signal<Out, Bit>,
+    pub r_tdata: Signal<In, Bits<PIXEL_BITS>>,
+    pub r_tvalid: Signal<In, Bit>,
+    pub r_tuser: Signal<In, Bit>,
+    pub r_tlast: Signal<In, Bit>,
+    pub r_tready: Signal<Out, Bit>,
+    pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
+    pub m_tvalid: Signal<Out, Bit>,
+    pub m_tdata: Signal<Out, Bits<POS_BITS>>,
+    pub m_tuser: Signal<Out, Bit>,
+    pub m_tlast: Signal<Out, Bit>,
+    pub records_dropped: Signal<Out, Bits<STATUS_BITS>>,
+    pub lines_dropped: Signal<Out, Bits<STATUS_BITS>>,
+    pub lines_full: Signal<Out, Bits<STATUS_BITS>>,
+    pub lines_wide: Signal<Out, Bits<STATUS_BITS>>,
+    pub left: DeclivityDetector,
+    pub right: DeclivityDetector,
+    pub l_queue: RecordFifo,
+    pub r_queue: RecordFifo,
+    pub matcher: DeclivityMatcher<N>,
+    pub interpolator: Interpolator,
+    // The reference line's width: pixels counted up to W_MAX, kept at its
+    // last pixel.
+    l_count: DFF<Bits<WIDTH_BITS>>,
+    width: DFFWithInit<Bits<WIDTH_BITS>>,
+    n_records_dropped: DFF<Bits<STATUS_BITS>>,
+    n_lines_dropped: DFF<Bits<STATUS_BITS>>,
+    n_lines_full: DFF<Bits<STATUS_BITS>>,
+    n_lines_wide: DFF<Bits<STATUS_BITS>>,
+    w_max: Constant<Bits<WIDTH_BITS>>,
+    sh_level: Constant<Bits<8>>,
+}
+
+impl<const N: usize> StereoLineProcessor<N> {
+    /// The datapath with the matcher's gain rule `rule` and the
+    /// interpolator's edge jump `jump` ([`POS_FRAC_BITS`] fixed point).
+    pub fn new(rule: GainRule, jump: Option<u64>) -> Self {
+        StereoLineProcessor {
+            clock: Default::default(),
+            l_tdata: Default::default(),
+            l_tvalid: Default::default(),
+            l_tuser: Default::default(),
+            l_tlast: Default::default(),
+            l_tready: Default::default(),
+            r_tdata: Default::default(),
+            r_tvalid: Default::default(),
+            r_tuser: Default::default(),
+            r_tlast: Default::default(),
+            r_tready: Default::default(),
+            dispmax: Default::default(),
+            m_tvalid: Default::default(),
+            m_tdata: Default::default(),
+            m_tuser: Default::default(),
+            m_tlast: Default::default(),
+            records_dropped: Default::default(),
+            lines_dropped: Default::default(),
+            lines_full: Default::default(),
+            lines_wide: Default::default(),
+            left: Default::default(),
+            right: Default::default(),
+            l_queue: Default::default(),
+            r_queue: Default::default(),
+            matcher: DeclivityMatcher::new(rule),
+            interpolator: Interpolator::new(jump),
+            l_count: Default::default(),
+            width: DFFWithInit::new((W_MAX as u64).into()),
+            n_records_dropped: Default::default(),
+            n_lines_dropped: Default::default(),
+            n_lines_full: Default::default(),
+            n_lines_wide: Default::default(),
+            w_max: Constant::new((W_MAX as u64).into()),
+            sh_level: Constant::new((PIXEL_BITS as u64).into()),
+        }
+    }
+
+    /// The default mode's datapath: [`GainRule::Robust`] and the edge jump
+    /// [`EDGE_JUMP_LSB`].
+    pub fn robust() -> Self {
+        Self::new(GainRule::Robust, Some(EDGE_JUMP_LSB))
+    }
+}
+
+impl<const N: usize> Logic for StereoLineProcessor<N> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, l_count, width, n_records_dropped, n_lines_dropped, n_lines_full, n_lines_wide);
+        self.left.clock.next = self.clock.val();
+        self.right.clock.next = self.clock.val();
+        self.l_queue.clock.next = self.clock.val();
+        self.r_queue.clock.next = self.clock.val();
+        self.matcher.clock.next = self.clock.val();
+        self.interpolator.clock.next = self.clock.val();
+
+        // ---- The cameras into their detectors.
+        self.left.s_tdata.next = self.l_tdata.val();
+        self.left.s_tvalid.next = self.l_tvalid.val();
+        self.left.s_tuser.next = self.l_tuser.val();
+        self.left.s_tlast.next = self.l_tlast.val();
+        self.l_tready.next = self.left.s_tready.val();
+        self.right.s_tdata.next = self.r_tdata.val();
+        self.right.s_tvalid.next = self.r_tvalid.val();
+        self.right.s_tuser.next = self.r_tuser.val();
+        self.right.s_tlast.next = self.r_tlast.val();
+        self.r_tready.next = self.right.s_tready.val();
+        // The reference line's width, counted up to W_MAX.
+        if self.l_tvalid.val() & self.left.s_tready.val() {
+            if self.l_count.q.val() < self.w_max.val() {
+                self.l_count.d.next = self.l_count.q.val() + 1;
+            }
+            if self.l_tlast.val() {
+                self.l_count.d.next = 0.into();
+                self.width.d.next = self.l_count.q.val() + 1;
+                if self.l_count.q.val() == self.w_max.val() {
+                    self.width.d.next = self.w_max.val();
+                }
+            }
+        }
+
+        // ---- Detector beats into the record queues (lanes: see the
+        // constants above).
+        self.l_queue.w_valid.next = self.left.m_valid.val();
+        self.l_queue.w_marker.next = self.left.m_last.val();
+        self.l_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
+        self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val());
+        if self.left.m_last.val() {
+            self.l_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val())
+                .replace_bit(SOF_BIT, self.left.m_sof.val())
+                .replace_bit(WIDE_BIT, self.left.m_wide.val())
+                .replace_bit(FULL_BIT, self.left.m_full.val());
+            self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val()).replace_bit(MARKER_BIT, true);
+        }
+        self.l_queue.w_lane2.next =
+            (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left0.val());
+        if self.left.m_last.val() {
+            self.l_queue.w_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.left.m_dt.val());
+        }
+        self.l_queue.w_lane3.next =
+            (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left2.val());
+        self.l_queue.w_lane4.next =
+            (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right1.val());
+        self.r_queue.w_valid.next = self.right.m_valid.val();
+        self.r_queue.w_marker.next = self.right.m_last.val();
+        self.r_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val());
+        self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val());
+        if self.right.m_last.val() {
+            self.r_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val())
+                .replace_bit(SOF_BIT, self.right.m_sof.val())
+                .replace_bit(WIDE_BIT, self.right.m_wide.val())
+                .replace_bit(FULL_BIT, self.right.m_full.val());
+            self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val()).replace_bit(MARKER_BIT, true);
+        }
+        self.r_queue.w_lane2.next =
+            (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left0.val());
+        if self.right.m_last.val() {
+            self.r_queue.w_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.right.m_dt.val());
+        }
+        self.r_queue.w_lane3.next =
+            (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left2.val());
+        self.r_queue.w_lane4.next =
+            (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right1.val());
+
+        // ---- The queues into the matcher.
+        self.matcher.dispmax.next = self.dispmax.val();
+        self.matcher.r_valid.next = self.l_queue.r_valid.val();
+        self.l_queue.r_ready.next = self.matcher.r_ready.val();
+        self.matcher.r_last.next = self.l_queue.r_lane1.val().get_bit(MARKER_BIT);
+        self.matcher.r_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.l_queue.r_lane0.val());
+        self.matcher.r_sof.next = self.l_queue.r_lane0.val().get_bit(SOF_BIT);
+        self.matcher.r_wide.next = self.l_queue.r_lane0.val().get_bit(WIDE_BIT);
+        self.matcher.r_full.next = self.l_queue.r_lane0.val().get_bit(FULL_BIT);
+        self.matcher.r_amp.next = bit_cast::<AMP_BITS, DP16KD_WIDTH>(self.l_queue.r_lane1.val());
+        self.matcher.r_dt.next = bit_cast::<DT_BITS, DP16KD_WIDTH>(self.l_queue.r_lane2.val());
+        self.matcher.r_left0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane2.val());
+        self.matcher.r_left1.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane2.val() >> self.sh_level.val());
+        self.matcher.r_left2.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane3.val());
+        self.matcher.r_right0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane3.val() >> self.sh_level.val());
+        self.matcher.r_right1.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane4.val());
+        self.matcher.r_right2.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane4.val() >> self.sh_level.val());
+        self.matcher.o_valid.next = self.r_queue.r_valid.val();
+        self.r_queue.r_ready.next = self.matcher.o_ready.val();
+        self.matcher.o_last.next = self.r_queue.r_lane1.val().get_bit(MARKER_BIT);
+        self.matcher.o_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.r_queue.r_lane0.val());
+        self.matcher.o_wide.next = self.r_queue.r_lane0.val().get_bit(WIDE_BIT);
+        self.matcher.o_full.next = self.r_queue.r_lane0.val().get_bit(FULL_BIT);
+        self.matcher.o_amp.next = bit_cast::<AMP_BITS, DP16KD_WIDTH>(self.r_queue.r_lane1.val());
+        self.matcher.o_dt.next = bit_cast::<DT_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());
+        self.matcher.o_left0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());
+        self.matcher.o_left1.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val() >> self.sh_level.val());
+        self.matcher.o_left2.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane3.val());
+        self.matcher.o_right0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane3.val() >> self.sh_level.val());
+        self.matcher.o_right1.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane4.val());
+        self.matcher.o_right2.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane4.val() >> self.sh_level.val());
+
+        // ---- The matches into the interpolator.
+        self.interpolator.a_valid.next = self.matcher.m_valid.val();
+        self.interpolator.a_last.next = self.matcher.m_last.val();
+        self.interpolator.a_x.next = self.matcher.m_x_ref.val();
+        self.interpolator.a_d.next = self.matcher.m_disp.val();
+        self.interpolator.a_sof.next = self.matcher.m_sof.val();
+        self.interpolator.a_width.next = self.width.q.val();
+
+        // ---- Out.
+        self.m_tvalid.next = self.interpolator.p_valid.val();
+        self.m_tdata.next = self.interpolator.p_d.val();
+        self.m_tuser.next = self.interpolator.p_sof.val();
+        self.m_tlast.next = self.interpolator.p_last.val();
+
+        // ---- Status.
+        if self.l_queue.dropped.val() | self.r_queue.dropped.val() {
+            self.n_records_dropped.d.next = self.n_records_dropped.q.val() + 1;
+        }
+        if self.interpolator.overflow.val() {
+            self.n_lines_dropped.d.next = self.n_lines_dropped.q.val() + 1;
+        }
+        if self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_full.val() {
+            self.n_lines_full.d.next = self.n_lines_full.q.val() + 1;
+        }
+        if self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_wide.val() {
+            self.n_lines_wide.d.next = self.n_lines_wide.q.val() + 1;
+        }
+        self.records_dropped.next = self.n_records_dropped.q.val();
+        self.lines_dropped.next = self.n_lines_dropped.q.val();
+        self.lines_full.next = self.n_lines_full.q.val();
+        self.lines_wide.next = self.n_lines_wide.q.val();
+    }
+}

@@ -1,0 +1,282 @@
+//! The whole line processor (`rtl::stereo_line_processor`) under direct
+//! drive: a rectified pair in as two camera streams, the disparity map out,
+//! with the clocks it took.
+
+use golden::GreyImage;
+use rtl::declivity_matcher::GainRule;
+use rtl::params::POS_FRAC_BITS;
+use rtl::stereo_line_processor::StereoLineProcessor;
+use rust_hdl::prelude::*;
+
+/// What a frame through the line processor gave.
+#[derive(Debug, Clone, Default)]
+pub struct StereoRun {
+    /// Width of the output lines.
+    pub width: usize,
+    /// The output lines, disparities in `1/2^POS_FRAC_BITS` px (0 = none).
+    pub rows: Vec<Vec<u32>>,
+    /// Whether each output line started a frame (`m_tuser` on its first
+    /// pixel).
+    pub sof: Vec<bool>,
+    /// Clocks simulated.
+    pub cycles: u64,
+    /// Clocks on which a camera offered a pixel and was not ready (either
+    /// camera).
+    pub stall_cycles: u64,
+    /// Pixels taken from the left camera.
+    pub pixels_in: u64,
+    /// Clock of the first pixel taken and of the first disparity out.
+    pub first_in: u64,
+    pub first_out: Option<u64>,
+    /// Clock of the last pixel taken and of the last disparity out.
+    pub last_in: u64,
+    pub last_out: Option<u64>,
+    /// The status counters at the end.
+    pub records_dropped: u64,
+    pub lines_dropped: u64,
+    pub lines_full: u64,
+    pub lines_wide: u64,
+}
+
+impl StereoRun {
+    /// Clocks from the first pixel in to the first disparity out.
+    pub fn latency_cycles(&self) -> Option<u64> {
+        self.first_out.map(|o| o - self.first_in)
+    }
+
+    /// Pixels in per clock from the first pixel in to the last one in.
+    pub fn px_per_clk(&self) -> f64 {
+        self.pixels_in as f64 / (self.last_in - self.first_in + 1).max(1) as f64
+    }
+
+    /// The output as one row-major map in px (`0.0` = none), `height` rows
+    /// (missing rows are 0).
+    pub fn disparity_px(&self, height: usize) -> Vec<f64> {
+        let mut out = vec![0.0; self.width * height];
+        for (row, dst) in self.rows.iter().zip(out.chunks_mut(self.width)) {
+            for (d, &v) in dst.iter_mut().zip(row) {
+                *d = v as f64 / (1u32 << POS_FRAC_BITS) as f64;
+            }
+        }
+        out
+    }
+}
+
+/// The line processor under direct drive.
+pub struct StereoSim<const N: usize> {
+    pub uut: Box<StereoLineProcessor<N>>,
+    /// Clocks so far.
+    pub cycle: u64,
+    /// Eq. 6's bound, `1/2^POS_FRAC_BITS` px.
+    pub dispmax: u32,
+}
+
+/// Passes over the logic before `simulate` is asked whether it settled
+/// (as `sim::matcher`'s).
+const SETTLE_LOW: usize = 4;
+const SETTLE_HIGH: usize = 8;
+
+fn settle<const N: usize>(u: &mut StereoLineProcessor<N>, passes: usize) {
+    for _ in 0..passes {
+        u.update_all();
+    }
+    assert!(simulate(u, 300), "the line processor's logic did not settle");
+}
+
+/// Builds and connects the line processor on a thread with a stack large
+/// enough for it (as [`crate::matcher::build_matcher`]).
+pub fn build_stereo<const N: usize>(rule: GainRule, jump: Option<u64>) -> Box<StereoLineProcessor<N>> {
+    std::thread::Builder::new()
+        .stack_size(1 << 30)
+        .spawn(move || {
+            let mut uut = Box::new(StereoLineProcessor::<N>::new(rule, jump));
+            uut.connect_all();
+            uut
+        })
+        .and_then(|h| h.join().map_err(|_| std::io::Error::other("building the line processor panicked")))
+        .expect("a thread to build the line processor")
+}
+
+/// One camera's stream: the pixel offered, and where it is.
+struct Camera<'a> {
+    image: &'a GreyImage,
+    x: usize,
+    y: usize,
+    /// Idle clocks left before the next line.
+    idle: usize,
+}
+
+impl Camera<'_> {
+    fn done(&self) -> bool {
+        self.y >= self.image.height()
+    }
+
+    /// `(tdata, tuser, tlast)` of the pixel offered, if any.
+    fn offer(&self) -> Option<(u8, bool, bool)> {
+        (!self.done() && self.idle == 0).then(|| {
+            let w = self.image.width();
+            (self.image.row(self.y)[self.x], self.x == 0 && self.y == 0, self.x + 1 == w)
+        })
+    }
+
+    fn advance(&mut self, taken: bool, hblank: usize) {
+        if self.idle > 0 {
+            self.idle -= 1;
+        } else if taken {
+            self.x += 1;
+            if self.x == self.image.width() {
+                self.x = 0;
+                self.y += 1;
+                self.idle = hblank;
+            }
+        }
+    }
+}
+
+impl<const N: usize> StereoSim<N> {
+    /// The line processor with gain rule `rule` and edge jump `jump`
+    /// (`1/2^POS_FRAC_BITS` px), eq. 6's bound `dispmax` in the same unit.
+    pub fn new(rule: GainRule, jump: Option<u64>, dispmax: u32) -> Self {
+        StereoSim { uut: build_stereo::<N>(rule, jump), cycle: 0, dispmax }
+    }
+
+    /// Streams the pair through, both cameras from the same clock, a line
+    /// every `width + hblank` clocks at best (`tvalid` low for `hblank`
+    /// clocks after each line), until `height` lines have left or nothing
+    /// has left for `quiet` clocks after the last pixel in. `progress` is
+    /// called with the number of lines out after each.
+    pub fn run(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, mut progress: impl FnMut(usize)) -> StereoRun {
+        let quiet = 20_000u64;
+        let mut run = StereoRun { width: left.width().min(rtl::params::W_MAX), ..StereoRun::default() };
+        let mut cams = [Camera { image: left, x: 0, y: 0, idle: 0 }, Camera { image: right, x: 0, y: 0, idle: 0 }];
+        let mut row: Vec<u32> = Vec::with_capacity(run.width);
+        let mut first_in = None;
+        let mut last_activity = 0u64;
+        let height = left.height();
+        loop {
+            let u = &mut *self.uut;
+            u.clock.next = false.into();
+            u.dispmax.next = (self.dispmax as u64).into();
+            let offers = [cams[0].offer(), cams[1].offer()];
+            for (k, offer) in offers.iter().enumerate() {
+                let (tdata, tuser, tlast) = offer.unwrap_or((0, false, false));
+                let (d, v, us, l) = if k == 0 {
+                    (&mut u.l_tdata, &mut u.l_tvalid, &mut u.l_tuser, &mut u.l_tlast)
+                } else {
+                    (&mut u.r_tdata, &mut u.r_tvalid, &mut u.r_tuser, &mut u.r_tlast)
+                };
+                d.next = (tdata as u64).into();
+                v.next = offer.is_some();
+                us.next = tuser;
+                l.next = tlast;
+            }
+            settle(u, SETTLE_LOW);
+            let taken = [offers[0].is_some() && u.l_tready.val(), offers[1].is_some() && u.r_tready.val()];
+            if (offers[0].is_some() && !taken[0]) || (offers[1].is_some() && !taken[1]) {
+                run.stall_cycles += 1;
+            }
+            if taken[0] {
+                run.pixels_in += 1;
+                first_in.get_or_insert(self.cycle);
+                run.last_in = self.cycle;
+                last_activity = self.cycle;
+            }
+            if u.m_tvalid.val() {
+                run.first_out.get_or_insert(self.cycle);
+                run.last_out = Some(self.cycle);
+                last_activity = self.cycle;
+                if row.is_empty() {
+                    run.sof.push(u.m_tuser.val());
+                }
+                row.push(u.m_tdata.val().to_u64() as u32);
+                if u.m_tlast.val() {
+                    run.rows.push(std::mem::take(&mut row));
+                    progress(run.rows.len());
+                }
+            }
+            u.clock.next = true.into();
+            settle(u, SETTLE_HIGH);
+            self.cycle += 1;
+            for (cam, &t) in cams.iter_mut().zip(&taken) {
+                cam.advance(t, hblank);
+            }
+            let inputs_done = cams.iter().all(Camera::done);
+            if run.rows.len() >= height || (inputs_done && self.cycle - last_activity > quiet) {
+                break;
+            }
+        }
+        let u = &*self.uut;
+        run.first_in = first_in.unwrap_or(0);
+        run.cycles = self.cycle;
+        run.records_dropped = u.records_dropped.val().to_u64();
+        run.lines_dropped = u.lines_dropped.val().to_u64();
+        run.lines_full = u.lines_full.val().to_u64();
+        run.lines_wide = u.lines_wide.val().to_u64();
+        run
+    }
+}
+
+/// golden's disparity map of the pair for what the line processor computes
+/// (default mode, hardware parity, left reference, `dispmax` px): each
+/// line's matches interpolated with the default mode's edge jump.
+pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmax: f64) -> Result<Vec<f64>, golden::GoldenError> {
+    use rayon::prelude::*;
+    let mut params = golden::Params::new(dispmax)?;
+    params.hardware = Some(crate::detector::hardware_limits());
+    params.validate()?;
+    let w = left.width();
+    let mut map = vec![0.0; w * left.height()];
+    map.par_chunks_mut(w).enumerate().for_each(|(y, out)| {
+        let line = golden::process_line(left.row(y), right.row(y), &params);
+        let anchors: Vec<golden::disparity::Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
+        golden::disparity::interpolate_into(&anchors, params.ends, params.mode.features().edge_jump, out);
+    });
+    Ok(map)
+}
+
+/// The share of `rtl`'s pixels within a quarter pixel of `golden`'s (both
+/// row-major px maps of one size).
+pub fn agree_quarter_px(rtl: &[f64], golden: &[f64]) -> f64 {
+    let close = rtl.iter().zip(golden).filter(|(a, b)| (*a - *b).abs() <= 0.25).count();
+    close as f64 / rtl.len().max(1) as f64
+}
+
+/// The line processor's blocks run one after the other, each under its own
+/// driver: both detectors over the pair, the matcher over their records
+/// (with `N` cells, gain rule `rule`), the interpolator over the matches
+/// (edge jump `jump`). The line processor joins exactly these blocks, so
+/// its output must equal this line for line and pixel for pixel; timing
+/// differs (here each block waits for the one before).
+pub fn blocks_one_after_the_other<const N: usize>(left: &GreyImage, right: &GreyImage, rule: GainRule, jump: Option<u64>, dispmax: u32) -> Vec<Vec<u32>> {
+    use crate::detector::{run_lines, DetectorSim};
+    use crate::interpolator::{AnchorLine, FixedAnchor, InterpolatorSim};
+    use crate::matcher::{MatchLine, MatchRecord, MatcherSim};
+    let detect = |img: &GreyImage| {
+        let rows: Vec<&[u8]> = (0..img.height()).map(|y| img.row(y)).collect();
+        let mut sim = DetectorSim::new();
+        run_lines(&mut sim, &rows, |_| false, |_| {}).expect("the detector runs").lines
+    };
+    let as_match_line = |l: &crate::detector::HwLine| MatchLine {
+        dt: l.marker.dt,
+        records: l.records.iter().map(|r| MatchRecord { pos: r.pos, amplitude: r.amplitude, left: r.left, right: r.right }).collect(),
+        wide: l.marker.wide,
+        full: l.marker.full,
+        sof: l.marker.sof,
+    };
+    let (l, r) = (detect(left), detect(right));
+    let pairs: Vec<(MatchLine, MatchLine)> = l.iter().zip(&r).map(|(a, b)| (as_match_line(a), as_match_line(b))).collect();
+    let mut matcher = MatcherSim::<N>::new(rule, dispmax);
+    let matched = matcher.run(&pairs, false, || {});
+    let width = left.width().min(rtl::params::W_MAX);
+    let lines: Vec<AnchorLine> = matched
+        .iter()
+        .map(|m| AnchorLine {
+            anchors: m.matches.iter().map(|b| FixedAnchor { x: b.x_ref, d: b.disp }).collect(),
+            width,
+            sof: m.marker.sof,
+        })
+        .collect();
+    let mut interpolator = InterpolatorSim::new(jump);
+    let (pixels, _) = interpolator.run(&lines, width);
+    pixels.into_iter().map(|p| p.d).collect()
+}
