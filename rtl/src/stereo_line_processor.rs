@@ -113,6 +113,10 @@ pub struct StereoLineProcessor<const N: usize> {
     n_lines_wide: DFF<Bits<STATUS_BITS>>,
     w_max: Constant<Bits<WIDTH_BITS>>,
     sh_level: Constant<Bits<8>>,
+    sof_mask: Constant<Bits<DP16KD_WIDTH>>,
+    wide_mask: Constant<Bits<DP16KD_WIDTH>>,
+    full_mask: Constant<Bits<DP16KD_WIDTH>>,
+    marker_mask: Constant<Bits<DP16KD_WIDTH>>,
 }
 
 impl<const N: usize> StereoLineProcessor<N> {
@@ -154,6 +158,10 @@ impl<const N: usize> StereoLineProcessor<N> {
             n_lines_wide: Default::default(),
             w_max: Constant::new((W_MAX as u64).into()),
             sh_level: Constant::new((PIXEL_BITS as u64).into()),
+            sof_mask: Constant::new((1u64 << SOF_BIT).into()),
+            wide_mask: Constant::new((1u64 << WIDE_BIT).into()),
+            full_mask: Constant::new((1u64 << FULL_BIT).into()),
+            marker_mask: Constant::new((1u64 << MARKER_BIT).into()),
         }
     }
 
@@ -207,11 +215,16 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.l_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
         self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val());
         if self.left.m_last.val() {
-            self.l_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val())
-                .replace_bit(SOF_BIT, self.left.m_sof.val())
-                .replace_bit(WIDE_BIT, self.left.m_wide.val())
-                .replace_bit(FULL_BIT, self.left.m_full.val());
-            self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val()).replace_bit(MARKER_BIT, true);
+            self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val()) | self.marker_mask.val();
+            if self.left.m_sof.val() {
+                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.sof_mask.val();
+            }
+            if self.left.m_wide.val() {
+                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.wide_mask.val();
+            }
+            if self.left.m_full.val() {
+                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.full_mask.val();
+            }
         }
         self.l_queue.w_lane2.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left0.val());
@@ -227,11 +240,16 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.r_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val());
         self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val());
         if self.right.m_last.val() {
-            self.r_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val())
-                .replace_bit(SOF_BIT, self.right.m_sof.val())
-                .replace_bit(WIDE_BIT, self.right.m_wide.val())
-                .replace_bit(FULL_BIT, self.right.m_full.val());
-            self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val()).replace_bit(MARKER_BIT, true);
+            self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val()) | self.marker_mask.val();
+            if self.right.m_sof.val() {
+                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.sof_mask.val();
+            }
+            if self.right.m_wide.val() {
+                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.wide_mask.val();
+            }
+            if self.right.m_full.val() {
+                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.full_mask.val();
+            }
         }
         self.r_queue.w_lane2.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left0.val());
@@ -247,11 +265,11 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.matcher.dispmax.next = self.dispmax.val();
         self.matcher.r_valid.next = self.l_queue.r_valid.val();
         self.l_queue.r_ready.next = self.matcher.r_ready.val();
-        self.matcher.r_last.next = self.l_queue.r_lane1.val().get_bit(MARKER_BIT);
+        self.matcher.r_last.next = (self.l_queue.r_lane1.val() & self.marker_mask.val()).any();
         self.matcher.r_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.l_queue.r_lane0.val());
-        self.matcher.r_sof.next = self.l_queue.r_lane0.val().get_bit(SOF_BIT);
-        self.matcher.r_wide.next = self.l_queue.r_lane0.val().get_bit(WIDE_BIT);
-        self.matcher.r_full.next = self.l_queue.r_lane0.val().get_bit(FULL_BIT);
+        self.matcher.r_sof.next = (self.l_queue.r_lane0.val() & self.sof_mask.val()).any();
+        self.matcher.r_wide.next = (self.l_queue.r_lane0.val() & self.wide_mask.val()).any();
+        self.matcher.r_full.next = (self.l_queue.r_lane0.val() & self.full_mask.val()).any();
         self.matcher.r_amp.next = bit_cast::<AMP_BITS, DP16KD_WIDTH>(self.l_queue.r_lane1.val());
         self.matcher.r_dt.next = bit_cast::<DT_BITS, DP16KD_WIDTH>(self.l_queue.r_lane2.val());
         self.matcher.r_left0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane2.val());
@@ -262,10 +280,10 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.matcher.r_right2.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.l_queue.r_lane4.val() >> self.sh_level.val());
         self.matcher.o_valid.next = self.r_queue.r_valid.val();
         self.r_queue.r_ready.next = self.matcher.o_ready.val();
-        self.matcher.o_last.next = self.r_queue.r_lane1.val().get_bit(MARKER_BIT);
+        self.matcher.o_last.next = (self.r_queue.r_lane1.val() & self.marker_mask.val()).any();
         self.matcher.o_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.r_queue.r_lane0.val());
-        self.matcher.o_wide.next = self.r_queue.r_lane0.val().get_bit(WIDE_BIT);
-        self.matcher.o_full.next = self.r_queue.r_lane0.val().get_bit(FULL_BIT);
+        self.matcher.o_wide.next = (self.r_queue.r_lane0.val() & self.wide_mask.val()).any();
+        self.matcher.o_full.next = (self.r_queue.r_lane0.val() & self.full_mask.val()).any();
         self.matcher.o_amp.next = bit_cast::<AMP_BITS, DP16KD_WIDTH>(self.r_queue.r_lane1.val());
         self.matcher.o_dt.next = bit_cast::<DT_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());
         self.matcher.o_left0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());

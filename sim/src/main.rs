@@ -225,10 +225,10 @@ struct VerilogArgs {
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
     /// Cells of the matcher's systolic array (2, 4, 8, 16, 32 or 64 = N_CELLS; each holds two
-    /// reference declivities; --top matcher only).
+    /// reference declivities; --top matcher and stereo only).
     #[arg(long, default_value_t = rtl::params::N_CELLS)]
     cells: usize,
-    /// Gain rule the matcher is generated for (--top matcher only).
+    /// Gain rule the matcher is generated for (--top matcher and stereo only).
     #[arg(long, value_enum, default_value_t = CliRule::Robust)]
     rule: CliRule,
     /// Output folder (created if missing).
@@ -242,10 +242,10 @@ struct SynthArgs {
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
     /// Cells of the matcher's systolic array (2, 4, 8, 16, 32 or 64 = N_CELLS; each holds two
-    /// reference declivities; --top matcher only).
+    /// reference declivities; --top matcher and stereo only).
     #[arg(long, default_value_t = rtl::params::N_CELLS)]
     cells: usize,
-    /// Gain rule the matcher is generated for (--top matcher only).
+    /// Gain rule the matcher is generated for (--top matcher and stereo only).
     #[arg(long, value_enum, default_value_t = CliRule::Robust)]
     rule: CliRule,
     /// Target clock for place and route, MHz.
@@ -382,8 +382,9 @@ impl CliRule {
 
 /// The Verilog of a block as the command line asks for it.
 fn block_verilog(top: sim::verilog::Top, cells: usize, rule: CliRule) -> Result<String, SimError> {
-    if top != sim::verilog::Top::Matcher && (cells != rtl::params::N_CELLS || rule != CliRule::Robust) {
-        return Err(SimError::Argument("--cells and --rule apply to --top matcher only".into()));
+    let has_matcher = matches!(top, sim::verilog::Top::Matcher | sim::verilog::Top::Stereo);
+    if !has_matcher && (cells != rtl::params::N_CELLS || rule != CliRule::Robust) {
+        return Err(SimError::Argument("--cells and --rule apply to --top matcher and --top stereo only".into()));
     }
     sim::verilog::generate_with(top, cells, rule.rule()).ok_or_else(|| {
         SimError::Argument(format!("--cells {cells}: the matcher is generated with {:?} cells", sim::verilog::MATCHER_CELLS))

@@ -16,6 +16,10 @@ pub enum Top {
     /// The interpolator (`rtl::interpolator`): a line's matches in, one
     /// disparity per pixel per clock out, the default mode's edge jump.
     Interpolator,
+    /// The whole line processor (`rtl::stereo_line_processor`): two
+    /// detectors, the record queues, the matcher (--cells), the
+    /// interpolator.
+    Stereo,
 }
 
 impl Top {
@@ -25,6 +29,7 @@ impl Top {
             Top::Detector => "detector",
             Top::Matcher => "matcher",
             Top::Interpolator => "interpolator",
+            Top::Stereo => "stereo",
         }
     }
 }
@@ -52,6 +57,15 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
             uut.connect_all();
             Some(mark_memories_no_rw_check(&generate_verilog(&uut)))
         }
+        Top::Stereo => match cells {
+            2 => Some(stereo_verilog::<2>(rule)),
+            4 => Some(stereo_verilog::<4>(rule)),
+            8 => Some(stereo_verilog::<8>(rule)),
+            16 => Some(stereo_verilog::<16>(rule)),
+            32 => Some(stereo_verilog::<32>(rule)),
+            64 => Some(stereo_verilog::<64>(rule)),
+            _ => None,
+        },
         Top::Matcher => match cells {
             2 => Some(matcher_verilog::<2>(rule)),
             4 => Some(matcher_verilog::<4>(rule)),
@@ -83,6 +97,18 @@ fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
         .stack_size(1 << 30)
         .spawn(move || generate_verilog(&*uut))
         .and_then(|h| h.join().map_err(|_| std::io::Error::other("generating the matcher's Verilog panicked")))
+        .expect("a thread to generate the Verilog");
+    mark_memories_no_rw_check(&v)
+}
+
+/// The line processor's Verilog (the matcher's rule, the default mode's
+/// edge jump), built as [`matcher_verilog`] builds the matcher's.
+fn stereo_verilog<const N: usize>(rule: GainRule) -> String {
+    let uut = crate::stereo::build_stereo::<N>(rule, Some(rtl::params::EDGE_JUMP_LSB));
+    let v = std::thread::Builder::new()
+        .stack_size(1 << 30)
+        .spawn(move || generate_verilog(&*uut))
+        .and_then(|h| h.join().map_err(|_| std::io::Error::other("generating the line processor's Verilog panicked")))
         .expect("a thread to generate the Verilog");
     mark_memories_no_rw_check(&v)
 }
