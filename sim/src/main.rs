@@ -172,6 +172,48 @@ time), rows ([first, end) of the rows run), seconds (wall time of the simulation
 picture). Writes into --out graph_rtl_line_Y.png: the matching graph of row Y (fig. 4) with \
 golden's gains, golden's optimal path as green rings and the rtl path as orange boxes.")]
     Match(RtlMatchArgs),
+    /// Run a stereo pair through the whole rtl line processor, clock by clock.
+    #[command(long_about = "Run a rectified stereo pair (8-bit grey; colour is converted with ITU-R \
+601 luma) through the cycle-accurate line processor (rtl::stereo_line_processor: two declivity \
+detectors, a record queue per side, the matcher of N_CELLS = 64 cells in the default gain rule, \
+the interpolator with the default mode's edge jump), the two cameras streaming one pixel per \
+clock from the same clock with --hblank idle clocks after each line, and compare the disparity map \
+with golden's (hardware parity, the same stages: the check against neighbouring rows and the \
+vertical median of the default mode are not in the line processor yet). About 2 thousand clocks \
+per second: a 384x288 pair takes a minute; --rows runs a band.
+
+Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels (left \
+pixels taken), cycles (clocks simulated), px_per_clk (left pixels per clock while the frame came \
+in), stall_cycles (clocks a camera was not ready), latency_cycles (first pixel in to first \
+disparity out), agree_quarter_px (share of pixels within 1/4 px of golden), sim_cycles_per_s, \
+seconds, lines_out, and the status counters records_dropped, lines_dropped, lines_full, \
+lines_wide. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one \
+scale) and disparity16_rtl.png (the output word: 16-bit, value = d x 16, 0 = none).")]
+    Depth(RtlDepthArgs),
+}
+
+#[derive(Args, Debug)]
+struct RtlDepthArgs {
+    /// Left image of the rectified pair (the reference view).
+    left: PathBuf,
+    /// Right image of the rectified pair.
+    right: PathBuf,
+    /// Search bound of eq. 6 in pixels: 0 < d < DISPMAX (greater than 1, at most W_MAX = 1024,
+    /// a multiple of 1/16 px: the matcher takes it in 1/16 px).
+    #[arg(long)]
+    dispmax: f64,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Folder for the pictures [default: ./declivity-out/rtl-depth-LEFT_STEM].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Idle clocks (tvalid low) after each line of the cameras: horizontal blanking.
+    #[arg(long, default_value_t = 0)]
+    hblank: usize,
+    /// Rows to run, as A..B (rows A to B-1, a frame of their own) [default: all].
+    #[arg(long, value_parser = parse_range)]
+    rows: Option<std::ops::Range<usize>>,
 }
 
 #[derive(Args, Debug)]
@@ -435,6 +477,7 @@ fn main() -> ExitCode {
         Some(Command::Eval(a)) => eval_cmd(a),
         Some(Command::Rtl(RtlCommand::Detect(a))) => rtl_detect(a),
         Some(Command::Rtl(RtlCommand::Match(a))) => rtl_match(a),
+        Some(Command::Rtl(RtlCommand::Depth(a))) => rtl_depth(a),
         Some(Command::Verilog(a)) => verilog_cmd(a),
         Some(Command::Synth(a)) => synth_cmd(a),
         Some(Command::Budget(a)) => budget_cmd(a),
@@ -775,6 +818,78 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
             "warning: the rtl matcher disagrees with golden ({} mismatch lines, {} malformed lines)",
             report.mismatch_lines, report.malformed_lines
         );
+    }
+    Ok(())
+}
+
+fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
+    let left = load_grey(&a.left)?;
+    let right = load_grey(&a.right)?;
+    for (p, l) in [(&a.left, &left), (&a.right, &right)] {
+        if let Some(note) = &l.converted {
+            eprintln!("note: {}: {note}", p.display());
+        }
+    }
+    let (l, r) = (&left.image, &right.image);
+    if (l.width(), l.height()) != (r.width(), r.height()) {
+        return Err(golden::GoldenError::SizeMismatch { left_w: l.width(), left_h: l.height(), right_w: r.width(), right_h: r.height() }.into());
+    }
+    let height = l.height();
+    let rows = a.rows.clone().unwrap_or(0..height);
+    if rows.end > height || rows.is_empty() {
+        return Err(SimError::Argument(format!(
+            "--rows {}..{}: not a band of the image ({} has {height} rows)",
+            rows.start,
+            rows.end,
+            a.left.display()
+        )));
+    }
+    let band = |img: &golden::GreyImage| {
+        let w = img.width();
+        golden::GreyImage::new(w, rows.len(), img.pixels()[rows.start * w..rows.end * w].to_vec())
+    };
+    let (l, r) = (band(l)?, band(r)?);
+    let bar = lines_bar(l.height(), "rtl line processor".into(), a.json);
+    let name = a.left.display().to_string();
+    let (report, rtl, gold) = sim::stereo::run_pair(&name, &l, &r, a.dispmax, a.hblank, |n| bar.set_position(n as u64))?;
+    bar.finish_and_clear();
+
+    let out = a.out.clone().unwrap_or_else(|| {
+        let stem = a.left.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
+        PathBuf::from("declivity-out").join(format!("rtl-depth-{stem}"))
+    });
+    std::fs::create_dir_all(&out).map_err(|source| SimError::Io { path: out.clone(), source })?;
+    let (w, h) = (l.width(), l.height());
+    let files = [
+        (out.join("disparity_rtl.png"), "rtl disparity, near is bright"),
+        (out.join("disparity_golden.png"), "golden's disparity, same scale"),
+        (out.join("disparity16_rtl.png"), "rtl output word, 16-bit, value = d x 16, 0 = none"),
+    ];
+    pictures::save_png(&pictures::disparity_visual_of(&rtl, w, h, a.dispmax), &files[0].0)?;
+    pictures::save_png(&pictures::disparity_visual_of(&gold, w, h, a.dispmax), &files[1].0)?;
+    let word: Vec<u16> = rtl.iter().map(|&d| (d * (1u32 << rtl::params::POS_FRAC_BITS) as f64).round() as u16).collect();
+    let png16 = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(w as u32, h as u32, word).expect("one word per pixel");
+    pictures::save_png(&png16, &files[2].0)?;
+
+    if a.json {
+        println!("{}", serde_json::to_string(&report).expect("the report serializes"));
+    } else {
+        let r = &report;
+        println!("{}: {}x{} (rows {}..{}), dispmax {} px, hblank {}", r.image, r.width, r.height, rows.start, rows.end, r.dispmax, r.hblank);
+        println!("  pixels              {} in {} clocks, {:.4} px/clk, {} stall clocks", r.pixels, r.cycles, r.px_per_clk, r.stall_cycles);
+        match r.latency_cycles {
+            Some(c) => println!("  latency             {c} clocks (first pixel in to first disparity out)"),
+            None => println!("  latency             no disparity came out"),
+        }
+        println!("  agree_quarter_px    {:.4} (share within 1/4 px of golden)", r.agree_quarter_px);
+        println!(
+            "  status              {} lines out, {} records dropped, {} lines dropped, {} lines full, {} lines wide",
+            r.lines_out, r.records_dropped, r.lines_dropped, r.lines_full, r.lines_wide
+        );
+        println!("  simulation          {} clocks in {:.1} s, {:.0} clocks/s", r.cycles, r.seconds, r.sim_cycles_per_s);
+        for (p, what) in &files {
+            println!("  {:<44} {what}", p.display());
+        }
     }
     Ok(())
 }

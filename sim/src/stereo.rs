@@ -280,3 +280,89 @@ pub fn blocks_one_after_the_other<const N: usize>(left: &GreyImage, right: &Grey
     let (pixels, _) = interpolator.run(&lines, width);
     pixels.into_iter().map(|p| p.d).collect()
 }
+
+/// What `declivity rtl depth` reports on a pair (one JSON object).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct StereoReport {
+    /// The left image (or the pair's name).
+    pub image: String,
+    pub width: usize,
+    pub height: usize,
+    /// Eq. 6's bound, px.
+    pub dispmax: f64,
+    /// Idle clocks after each line of the cameras.
+    pub hblank: usize,
+    /// Pixels taken from the left camera.
+    pub pixels: u64,
+    /// Clocks simulated (until the last line left).
+    pub cycles: u64,
+    /// Left pixels per clock while the cameras sent the frame.
+    pub px_per_clk: f64,
+    /// Clocks a camera offered a pixel and was not ready.
+    pub stall_cycles: u64,
+    /// First pixel in to first disparity out.
+    pub latency_cycles: Option<u64>,
+    /// Share of pixels within 1/4 px of golden (hardware parity, the same
+    /// stages).
+    pub agree_quarter_px: f64,
+    /// Clocks simulated per second of wall time.
+    pub sim_cycles_per_s: f64,
+    pub seconds: f64,
+    /// Lines that came out.
+    pub lines_out: usize,
+    pub records_dropped: u64,
+    pub lines_dropped: u64,
+    pub lines_full: u64,
+    pub lines_wide: u64,
+}
+
+/// Runs a pair through the line processor (default mode: [`GainRule::Robust`],
+/// the edge jump) and compares with golden; returns the report, the rtl's
+/// map and golden's (px, row-major, 0 = none).
+pub fn run_pair(
+    name: &str,
+    left: &GreyImage,
+    right: &GreyImage,
+    dispmax: f64,
+    hblank: usize,
+    progress: impl FnMut(usize),
+) -> Result<(StereoReport, Vec<f64>, Vec<f64>), crate::SimError> {
+    let lsb = crate::budget::dispmax_lsb(dispmax)?;
+    if left.width() > rtl::params::W_MAX {
+        return Err(crate::SimError::Argument(format!(
+            "{name}: lines of {} px are wider than the hardware's W_MAX = {} px",
+            left.width(),
+            rtl::params::W_MAX
+        )));
+    }
+    if (left.width(), left.height()) != (right.width(), right.height()) {
+        return Err(golden::GoldenError::SizeMismatch { left_w: left.width(), left_h: left.height(), right_w: right.width(), right_h: right.height() }.into());
+    }
+    let mut sim = StereoSim::<{ rtl::params::N_CELLS }>::new(GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), lsb);
+    let t0 = std::time::Instant::now();
+    let run = sim.run(left, right, hblank, progress);
+    let seconds = t0.elapsed().as_secs_f64();
+    let rtl = run.disparity_px(left.height());
+    let gold = golden_map(left, right, dispmax)?;
+    let report = StereoReport {
+        image: name.to_string(),
+        width: left.width(),
+        height: left.height(),
+        dispmax,
+        hblank,
+        pixels: run.pixels_in,
+        cycles: run.cycles,
+        px_per_clk: run.px_per_clk(),
+        stall_cycles: run.stall_cycles,
+        latency_cycles: run.latency_cycles(),
+        agree_quarter_px: agree_quarter_px(&rtl, &gold),
+        sim_cycles_per_s: run.cycles as f64 / seconds.max(1e-9),
+        seconds,
+        lines_out: run.rows.len(),
+        records_dropped: run.records_dropped,
+        lines_dropped: run.lines_dropped,
+        lines_full: run.lines_full,
+        lines_wide: run.lines_wide,
+    };
+    Ok((report, rtl, gold))
+}
