@@ -376,6 +376,12 @@ struct EvalArgs {
     /// cyan missed with a true partner).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Run each pair through the cycle-accurate line processor instead (rtl depth: the
+    /// default mode's matcher and interpolator, a pixel per clock per camera, about 2 thousand
+    /// clocks per second, minutes per pair) and report its agree_quarter_px, px_per_clk,
+    /// stall_cycles, latency_cycles, bad2, nonocc_bad2 and golden's bad2 with the same stages.
+    #[arg(long)]
+    rtl: bool,
     #[command(flatten)]
     method: MethodArgs,
 }
@@ -589,6 +595,9 @@ fn write_eval_pictures(out: &std::path::Path, pair: &str, frame: &golden::FrameR
 fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
     let params = a.method.params(2.0)?;
     let dirs = expand_pair_dirs(&a.pairs)?;
+    if a.rtl {
+        return eval_rtl(&dirs, a.json);
+    }
     let bar = ProgressBar::new(dirs.len() as u64).with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
@@ -818,6 +827,28 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
             "warning: the rtl matcher disagrees with golden ({} mismatch lines, {} malformed lines)",
             report.mismatch_lines, report.malformed_lines
         );
+    }
+    Ok(())
+}
+
+/// `eval --rtl`: each pair through the line processor.
+fn eval_rtl(dirs: &[PathBuf], json: bool) -> Result<(), SimError> {
+    let mut reports = Vec::new();
+    for dir in dirs {
+        let pair = load_pair_dir(dir)?;
+        for n in &pair.notes {
+            eprintln!("note: {n}");
+        }
+        let bar = lines_bar(pair.left.height(), format!("{} rtl", pair.name), json);
+        let report = sim::stereo::evaluate_pair_rtl(&pair, 0, |n| bar.set_position(n as u64))?;
+        bar.finish_and_clear();
+        if json {
+            println!("{}", serde_json::to_string(&report).expect("the report serializes"));
+        }
+        reports.push(report);
+    }
+    if !json {
+        print!("{}", sim::stereo::rtl_markdown_table(&reports));
     }
     Ok(())
 }

@@ -366,3 +366,66 @@ pub fn run_pair(
     };
     Ok((report, rtl, gold))
 }
+
+/// One pair through the line processor, scored against its ground truth:
+/// the `eval --rtl --json` object.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RtlEvalReport {
+    /// Pair folder name.
+    pub pair: String,
+    #[serde(flatten)]
+    pub run: StereoReport,
+    /// Dense scores of the rtl's map, all pixels with ground truth (as
+    /// `eval`'s).
+    pub bad1: f64,
+    pub bad2: f64,
+    pub bad2v: f64,
+    pub density: f64,
+    /// `bad2` on `nonocc.png > 127`; `null` without a mask.
+    pub nonocc_bad2: Option<f64>,
+    /// golden's `bad2` with the same stages, for comparison.
+    pub golden_bad2: f64,
+}
+
+/// Runs a pair folder through the line processor with the search bound
+/// `dispmax + 1` (as `eval`) and scores the map against the left ground
+/// truth.
+pub fn evaluate_pair_rtl(pair: &crate::io::PairData, hblank: usize, progress: impl FnMut(usize)) -> Result<RtlEvalReport, crate::SimError> {
+    use crate::eval::dense_scores;
+    let (run, rtl, gold) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, progress)?;
+    let gt = &pair.gt_left;
+    let all = dense_scores(&rtl, gt, None);
+    Ok(RtlEvalReport {
+        pair: pair.name.clone(),
+        run,
+        bad1: all.bad1,
+        bad2: all.bad2,
+        bad2v: all.bad2v,
+        density: all.density,
+        nonocc_bad2: pair.nonocc.as_deref().map(|m| dense_scores(&rtl, gt, Some(m)).bad2),
+        golden_bad2: dense_scores(&gold, gt, None).bad2,
+    })
+}
+
+/// The `eval --rtl` table.
+pub fn rtl_markdown_table(reports: &[RtlEvalReport]) -> String {
+    let mut s = String::from(
+        "| pair | agree_quarter_px | px_per_clk | stall_cycles | latency_cycles | bad2 | golden bad2 | nonocc_bad2 | lines dropped | sim clocks/s |\n|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in reports {
+        s.push_str(&format!(
+            "| {} | {:.4} | {:.4} | {} | {} | {:.1} | {:.1} | {} | {} | {:.0} |\n",
+            r.pair,
+            r.run.agree_quarter_px,
+            r.run.px_per_clk,
+            r.run.stall_cycles,
+            r.run.latency_cycles.map_or("-".into(), |c| c.to_string()),
+            r.bad2,
+            r.golden_bad2,
+            r.nonocc_bad2.map_or("-".into(), |v| format!("{v:.1}")),
+            r.run.lines_dropped,
+            r.run.sim_cycles_per_s
+        ));
+    }
+    s
+}
