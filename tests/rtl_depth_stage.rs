@@ -60,7 +60,7 @@ fn extreme_cameras() -> [DepthCamera; 2] {
 fn sweep(cam: DepthCamera) -> (f64, usize) {
     let mut sim = DepthStageSim::new(cam).expect("the camera is in range");
     let all: Vec<u64> = (0..=D_MAX).collect();
-    let run = sim.run(&[all.clone()], 0);
+    let run = sim.run(std::slice::from_ref(&all), 0);
     assert_eq!(run.pixels.len(), all.len());
     let (mut worst, mut saturated) = (0f64, 0);
     for (&d, o) in all.iter().zip(&run.pixels) {
@@ -351,7 +351,7 @@ fn depth_stage_verilog_replays_the_rust_model_under_icarus_and_verilator() {
     let mut beats: Vec<DepthIn> = (0..=D_MAX).map(|d| DepthIn { valid: true, d, last: d % 97 == 0, sof: d == 0 }).collect();
     beats.extend((0..3000).map(|_| {
         let r = rng.next();
-        DepthIn { valid: r % 5 != 0, d: (r >> 8) % (D_MAX + 1) >> ((r >> 40) % 14), last: r % 7 == 0, sof: r % 11 == 0 }
+        DepthIn { valid: !r.is_multiple_of(5), d: ((r >> 8) % (D_MAX + 1)) >> ((r >> 40) % 14), last: r.is_multiple_of(7), sof: r.is_multiple_of(11) }
     }));
     beats.extend((0..DEPTH_LAG + 2).map(|_| DepthIn::default()));
     let value = |b: &DepthIn, n: &str| match n {
