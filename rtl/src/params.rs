@@ -235,3 +235,40 @@ pub const ROW_GROUP_BITS: usize = INDEX_BITS - CELLS_PER_CHOICE_WORD.trailing_ze
 pub const CELL_BITS: usize = INDEX_BITS - 1;
 /// Bits of a choice's offset `2·(c mod CELLS_PER_CHOICE_WORD)` in its word.
 pub const PAIR_BITS: usize = 5;
+
+// ---- The depth stage (paper eq. 1, `rtl::depth_stage`).
+
+/// Bits of a depth in millimetres: `0` is "no depth" (disparity 0), and
+/// depths from [`DEPTH_MAX_MM`] on read as it (saturation).
+pub const DEPTH_BITS: usize = 16;
+/// The largest depth the stage outputs, millimetres (65.535 m).
+pub const DEPTH_MAX_MM: u64 = (1 << DEPTH_BITS) - 1;
+/// Index bits of the depth table: the normalised disparity's bits after its
+/// leading one (512 entries).
+pub const DEPTH_INDEX_BITS: usize = 9;
+/// Bits of the normalised disparity below the table's index: the
+/// linear interpolation's weight between two entries (sixteenths).
+pub const DEPTH_WEIGHT_BITS: usize = POS_BITS - 1 - DEPTH_INDEX_BITS;
+/// Bits of a depth table entry `round(K / m)` for a normalised disparity
+/// `m ∈ [2^(POS_BITS-1), 2^POS_BITS)`: the numerator `K` is below
+/// [`DEPTH_K_LIMIT`], so an entry lies in `(2^16 - 1, 2^18)`.
+pub const DEPTH_TABLE_BITS: usize = 18;
+/// Bits of an entry's slope, the difference to the next entry (at most
+/// `2^18 / 512 ≈ 512`).
+pub const DEPTH_SLOPE_BITS: usize = 10;
+/// Bits of a depth table word: the entry above its slope.
+pub const DEPTH_WORD_BITS: usize = DEPTH_TABLE_BITS + DEPTH_SLOPE_BITS;
+/// The numerator `K = round(f_px · b_mm · 2^POS_FRAC_BITS · 2^s)` of
+/// `Z_mm = K / (D_lsb · 2^s)` is scaled (the exponent `s` chosen) to lie
+/// below this bound and at least half of it: every entry `round(K / m)`
+/// then fits [`DEPTH_TABLE_BITS`] bits and has at least 16 significant ones.
+pub const DEPTH_K_LIMIT: u64 = (1 << (POS_BITS - 1 + DEPTH_TABLE_BITS)) - (1 << (POS_BITS - 1));
+/// Bits of the depth stage's shift amounts (`s - 1 - lz`, `0 ..= 15`).
+pub const DEPTH_SHIFT_BITS: usize = 4;
+/// The smallest scale exponent `s` of a camera: `s = 0` would saturate
+/// every depth (`Z ≥ 2^30 / 2^14 = 65536` mm at the largest disparity).
+pub const DEPTH_SCALE_MIN: u32 = 1;
+/// The largest scale exponent `s` (a shift of `s - 1` must fit
+/// [`DEPTH_SHIFT_BITS`]); it makes the smallest depth, at the largest
+/// disparity, at least 1 mm, so that 0 only ever means "no depth".
+pub const DEPTH_SCALE_MAX: u32 = 1 << DEPTH_SHIFT_BITS;
