@@ -235,3 +235,14 @@ pub const ROW_GROUP_BITS: usize = INDEX_BITS - CELLS_PER_CHOICE_WORD.trailing_ze
 pub const CELL_BITS: usize = INDEX_BITS - 1;
 /// Bits of a choice's offset `2·(c mod CELLS_PER_CHOICE_WORD)` in its word.
 pub const PAIR_BITS: usize = 5;
+
+// ---------------------------------------------------------------------------
+// The vertical median (`rtl::vertical_median`)
+
+/// Rows of the vertical median of the default mode (golden's
+/// `MEDIAN_ROWS`): the taps of `rtl::vertical_median`'s network.
+pub const MEDIAN_TAPS: usize = 5;
+/// Line buffers of the vertical median: the rows above the incoming one
+/// that its taps reach, `MEDIAN_TAPS - 1`, each of `W_MAX` disparities of
+/// `POS_BITS` (one `DP16KD`).
+pub const MEDIAN_LINE_BUFFERS: usize = MEDIAN_TAPS - 1;
