@@ -272,3 +272,14 @@ pub const DEPTH_SCALE_MIN: u32 = 1;
 /// [`DEPTH_SHIFT_BITS`]); it makes the smallest depth, at the largest
 /// disparity, at least 1 mm, so that 0 only ever means "no depth".
 pub const DEPTH_SCALE_MAX: u32 = 1 << DEPTH_SHIFT_BITS;
+
+// ---------------------------------------------------------------------------
+// The vertical median (`rtl::vertical_median`)
+
+/// Rows of the vertical median of the default mode (golden's
+/// `MEDIAN_ROWS`): the taps of `rtl::vertical_median`'s network.
+pub const MEDIAN_TAPS: usize = 5;
+/// Line buffers of the vertical median: the rows above the incoming one
+/// that its taps reach, `MEDIAN_TAPS - 1`, each of `W_MAX` disparities of
+/// `POS_BITS` (one `DP16KD`).
+pub const MEDIAN_LINE_BUFFERS: usize = MEDIAN_TAPS - 1;
