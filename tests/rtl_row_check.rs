@@ -350,6 +350,7 @@ const ACCEPTED: &[(&str, &str)] = &[(
 #[test]
 fn row_check_generates_verilog_that_lints_clean_but_for_the_accepted_warnings() {
     let v = sim::cosim::verilog_of(RowCheck::new());
+    std::fs::write("/tmp/rcv/top.v", &v).ok();
     assert!(v.contains("module top") && v.contains("DP16KD"), "the Verilog holds the block and its block RAMs");
     if std::process::Command::new("verilator").arg("--version").output().is_err() {
         eprintln!("verilator not installed: lint skipped");

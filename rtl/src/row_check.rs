@@ -18,8 +18,7 @@
 //!   or right after its own marker if `y` is the frame's last row (so after
 //!   the last row's marker rows `h - 2` and `h - 1` leave back to back).
 //!   Its matches are read in order into a 4-entry prefetch ring; each
-//!   neighbour is read in order into a window ring ([`RowWindow`],
-//!   [`ROW_WINDOW`] entries) that drops the matches left of the checked
+//!   neighbour is read in order into a window ring ([`ROW_WINDOW`] entries) that drops the matches left of the checked
 //!   match's window as the checked match moves right (a merge: positions
 //!   increase in every row) and compares every held entry with the checked
 //!   match in one clock. A match is decided on the clock either window
@@ -66,12 +65,9 @@
 //! [`row_check_period`]` = row_check_cycles(N_MAX, N_MAX, N_MAX) + 1`
 //! clocks apart (within and across frames) no row is dropped.
 
-mod window;
-
 use crate::block_ram::BlockRam;
 use crate::params::*;
 use rust_hdl::prelude::*;
-pub use window::RowWindow;
 
 /// Clocks from the marker that makes a row ready to its start clock.
 pub const ROW_START_LAG: usize = 1;
@@ -85,6 +81,10 @@ const CUR_RING: usize = 4;
 const CUR_SLOT_BITS: usize = 2;
 /// Bits of its fill `0 ..= CUR_RING`.
 const CUR_FILL_BITS: usize = 3;
+/// Bits of the position comparisons: a position plus a threshold.
+const WIDE: usize = POS_BITS + 1;
+/// Bits of a window ring's fill `0 ..= ROW_WINDOW`.
+const WIN_FILL_BITS: usize = ROW_WINDOW_BITS + 1;
 /// Bits of a row number modulo twice the banks (so that full and empty
 /// differ).
 const ROW_PTR_BITS: usize = ROW_BANK_BITS + 1;
@@ -142,9 +142,225 @@ pub struct RowCheck {
     pub c_count: Signal<Out, Bits<COUNT_BITS>>,
     pub overflow: Signal<Out, Bit>,
     pub crowded: Signal<Out, Bit>,
-    // ---- The neighbours' windows and the checked row's memory copy.
-    above: RowWindow,
-    below: RowWindow,
+    // ---- The window of the row above (see the module doc).
+    a_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
+    a_base: DFF<Bits<ROW_ADDR_BITS>>,
+    a_n: DFF<Bits<COUNT_BITS>>,
+    a_rd: DFF<Bits<COUNT_BITS>>,
+    a_rd1: DFF<Bit>,
+    a_rd2: DFF<Bit>,
+    a_head: DFF<Bits<ROW_WINDOW_BITS>>,
+    a_wi: DFF<Bits<ROW_WINDOW_BITS>>,
+    a_fill: DFF<Bits<WIN_FILL_BITS>>,
+    a_x0: DFF<Bits<POS_BITS>>,
+    a_x1: DFF<Bits<POS_BITS>>,
+    a_x2: DFF<Bits<POS_BITS>>,
+    a_x3: DFF<Bits<POS_BITS>>,
+    a_x4: DFF<Bits<POS_BITS>>,
+    a_x5: DFF<Bits<POS_BITS>>,
+    a_x6: DFF<Bits<POS_BITS>>,
+    a_x7: DFF<Bits<POS_BITS>>,
+    a_d0: DFF<Bits<POS_BITS>>,
+    a_d1: DFF<Bits<POS_BITS>>,
+    a_d2: DFF<Bits<POS_BITS>>,
+    a_d3: DFF<Bits<POS_BITS>>,
+    a_d4: DFF<Bits<POS_BITS>>,
+    a_d5: DFF<Bits<POS_BITS>>,
+    a_d6: DFF<Bits<POS_BITS>>,
+    a_d7: DFF<Bits<POS_BITS>>,
+    a_r0: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v0: Signal<Local, Bit>,
+    a_ex0: Signal<Local, Bits<WIDE>>,
+    a_ed0: Signal<Local, Bits<WIDE>>,
+    a_lt0: Signal<Local, Bit>,
+    a_gt0: Signal<Local, Bit>,
+    a_ok0: Signal<Local, Bit>,
+    a_p0: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_r1: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v1: Signal<Local, Bit>,
+    a_ex1: Signal<Local, Bits<WIDE>>,
+    a_ed1: Signal<Local, Bits<WIDE>>,
+    a_lt1: Signal<Local, Bit>,
+    a_gt1: Signal<Local, Bit>,
+    a_ok1: Signal<Local, Bit>,
+    a_p1: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_r2: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v2: Signal<Local, Bit>,
+    a_ex2: Signal<Local, Bits<WIDE>>,
+    a_ed2: Signal<Local, Bits<WIDE>>,
+    a_lt2: Signal<Local, Bit>,
+    a_gt2: Signal<Local, Bit>,
+    a_ok2: Signal<Local, Bit>,
+    a_p2: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_r3: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v3: Signal<Local, Bit>,
+    a_ex3: Signal<Local, Bits<WIDE>>,
+    a_ed3: Signal<Local, Bits<WIDE>>,
+    a_lt3: Signal<Local, Bit>,
+    a_gt3: Signal<Local, Bit>,
+    a_ok3: Signal<Local, Bit>,
+    a_p3: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_r4: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v4: Signal<Local, Bit>,
+    a_ex4: Signal<Local, Bits<WIDE>>,
+    a_ed4: Signal<Local, Bits<WIDE>>,
+    a_lt4: Signal<Local, Bit>,
+    a_gt4: Signal<Local, Bit>,
+    a_ok4: Signal<Local, Bit>,
+    a_p4: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_r5: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v5: Signal<Local, Bit>,
+    a_ex5: Signal<Local, Bits<WIDE>>,
+    a_ed5: Signal<Local, Bits<WIDE>>,
+    a_lt5: Signal<Local, Bit>,
+    a_gt5: Signal<Local, Bit>,
+    a_ok5: Signal<Local, Bit>,
+    a_p5: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_r6: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v6: Signal<Local, Bit>,
+    a_ex6: Signal<Local, Bits<WIDE>>,
+    a_ed6: Signal<Local, Bits<WIDE>>,
+    a_lt6: Signal<Local, Bit>,
+    a_gt6: Signal<Local, Bit>,
+    a_ok6: Signal<Local, Bit>,
+    a_p6: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_r7: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_v7: Signal<Local, Bit>,
+    a_ex7: Signal<Local, Bits<WIDE>>,
+    a_ed7: Signal<Local, Bits<WIDE>>,
+    a_lt7: Signal<Local, Bit>,
+    a_gt7: Signal<Local, Bit>,
+    a_ok7: Signal<Local, Bit>,
+    a_p7: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_beyond: Signal<Local, Bit>,
+    a_found: Signal<Local, Bit>,
+    a_npop: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_kept: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_occ: Signal<Local, Bits<WIN_FILL_BITS>>,
+    a_loaded: Signal<Local, Bit>,
+    a_issue: Signal<Local, Bit>,
+    a_rx: Signal<Local, Bits<POS_BITS>>,
+    a_rdd: Signal<Local, Bits<POS_BITS>>,
+    a_hit: Signal<Local, Bit>,
+    a_done: Signal<Local, Bit>,
+    a_crowded: Signal<Local, Bit>,
+    a_count: Signal<Local, Bits<COUNT_BITS>>,
+    a_bank: Signal<Local, Bits<ROW_BANK_BITS>>,
+    // ---- The window of the row below (see the module doc).
+    b_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
+    b_base: DFF<Bits<ROW_ADDR_BITS>>,
+    b_n: DFF<Bits<COUNT_BITS>>,
+    b_rd: DFF<Bits<COUNT_BITS>>,
+    b_rd1: DFF<Bit>,
+    b_rd2: DFF<Bit>,
+    b_head: DFF<Bits<ROW_WINDOW_BITS>>,
+    b_wi: DFF<Bits<ROW_WINDOW_BITS>>,
+    b_fill: DFF<Bits<WIN_FILL_BITS>>,
+    b_x0: DFF<Bits<POS_BITS>>,
+    b_x1: DFF<Bits<POS_BITS>>,
+    b_x2: DFF<Bits<POS_BITS>>,
+    b_x3: DFF<Bits<POS_BITS>>,
+    b_x4: DFF<Bits<POS_BITS>>,
+    b_x5: DFF<Bits<POS_BITS>>,
+    b_x6: DFF<Bits<POS_BITS>>,
+    b_x7: DFF<Bits<POS_BITS>>,
+    b_d0: DFF<Bits<POS_BITS>>,
+    b_d1: DFF<Bits<POS_BITS>>,
+    b_d2: DFF<Bits<POS_BITS>>,
+    b_d3: DFF<Bits<POS_BITS>>,
+    b_d4: DFF<Bits<POS_BITS>>,
+    b_d5: DFF<Bits<POS_BITS>>,
+    b_d6: DFF<Bits<POS_BITS>>,
+    b_d7: DFF<Bits<POS_BITS>>,
+    b_r0: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v0: Signal<Local, Bit>,
+    b_ex0: Signal<Local, Bits<WIDE>>,
+    b_ed0: Signal<Local, Bits<WIDE>>,
+    b_lt0: Signal<Local, Bit>,
+    b_gt0: Signal<Local, Bit>,
+    b_ok0: Signal<Local, Bit>,
+    b_p0: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_r1: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v1: Signal<Local, Bit>,
+    b_ex1: Signal<Local, Bits<WIDE>>,
+    b_ed1: Signal<Local, Bits<WIDE>>,
+    b_lt1: Signal<Local, Bit>,
+    b_gt1: Signal<Local, Bit>,
+    b_ok1: Signal<Local, Bit>,
+    b_p1: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_r2: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v2: Signal<Local, Bit>,
+    b_ex2: Signal<Local, Bits<WIDE>>,
+    b_ed2: Signal<Local, Bits<WIDE>>,
+    b_lt2: Signal<Local, Bit>,
+    b_gt2: Signal<Local, Bit>,
+    b_ok2: Signal<Local, Bit>,
+    b_p2: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_r3: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v3: Signal<Local, Bit>,
+    b_ex3: Signal<Local, Bits<WIDE>>,
+    b_ed3: Signal<Local, Bits<WIDE>>,
+    b_lt3: Signal<Local, Bit>,
+    b_gt3: Signal<Local, Bit>,
+    b_ok3: Signal<Local, Bit>,
+    b_p3: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_r4: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v4: Signal<Local, Bit>,
+    b_ex4: Signal<Local, Bits<WIDE>>,
+    b_ed4: Signal<Local, Bits<WIDE>>,
+    b_lt4: Signal<Local, Bit>,
+    b_gt4: Signal<Local, Bit>,
+    b_ok4: Signal<Local, Bit>,
+    b_p4: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_r5: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v5: Signal<Local, Bit>,
+    b_ex5: Signal<Local, Bits<WIDE>>,
+    b_ed5: Signal<Local, Bits<WIDE>>,
+    b_lt5: Signal<Local, Bit>,
+    b_gt5: Signal<Local, Bit>,
+    b_ok5: Signal<Local, Bit>,
+    b_p5: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_r6: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v6: Signal<Local, Bit>,
+    b_ex6: Signal<Local, Bits<WIDE>>,
+    b_ed6: Signal<Local, Bits<WIDE>>,
+    b_lt6: Signal<Local, Bit>,
+    b_gt6: Signal<Local, Bit>,
+    b_ok6: Signal<Local, Bit>,
+    b_p6: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_r7: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_v7: Signal<Local, Bit>,
+    b_ex7: Signal<Local, Bits<WIDE>>,
+    b_ed7: Signal<Local, Bits<WIDE>>,
+    b_lt7: Signal<Local, Bit>,
+    b_gt7: Signal<Local, Bit>,
+    b_ok7: Signal<Local, Bit>,
+    b_p7: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_beyond: Signal<Local, Bit>,
+    b_found: Signal<Local, Bit>,
+    b_npop: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_kept: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_occ: Signal<Local, Bits<WIN_FILL_BITS>>,
+    b_loaded: Signal<Local, Bit>,
+    b_issue: Signal<Local, Bit>,
+    b_rx: Signal<Local, Bits<POS_BITS>>,
+    b_rdd: Signal<Local, Bits<POS_BITS>>,
+    b_hit: Signal<Local, Bit>,
+    b_done: Signal<Local, Bit>,
+    b_crowded: Signal<Local, Bit>,
+    b_count: Signal<Local, Bits<COUNT_BITS>>,
+    b_bank: Signal<Local, Bits<ROW_BANK_BITS>>,
+    // ---- The checked match's window bounds: [X - DX, X + DX] (no left
+    // bound below DX), [d - DD, d + DD] (from 0 below DD), one bit wider
+    // than a position.
+    qx: Signal<Local, Bits<WIDE>>,
+    qx_hi: Signal<Local, Bits<WIDE>>,
+    qx_lo: Signal<Local, Bits<WIDE>>,
+    qd: Signal<Local, Bits<WIDE>>,
+    qd_hi: Signal<Local, Bits<WIDE>>,
+    qd_lo: Signal<Local, Bits<WIDE>>,
+    any_left: Signal<Local, Bit>,
+    // ---- The checked row's memory copy.
     cur_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
     // ---- Loader: the row being received (admission, its next index), the
     // rows stored (modulo 8; the bank is the low bits), each bank's row.
@@ -245,6 +461,18 @@ pub struct RowCheck {
     cur_ring: Constant<Bits<CUR_FILL_BITS>>,
     one_fill: Constant<Bits<CUR_FILL_BITS>>,
     n_max: Constant<Bits<COUNT_BITS>>,
+    wslot0: Constant<Bits<ROW_WINDOW_BITS>>,
+    wslot1: Constant<Bits<ROW_WINDOW_BITS>>,
+    wslot2: Constant<Bits<ROW_WINDOW_BITS>>,
+    wslot3: Constant<Bits<ROW_WINDOW_BITS>>,
+    wslot4: Constant<Bits<ROW_WINDOW_BITS>>,
+    wslot5: Constant<Bits<ROW_WINDOW_BITS>>,
+    wslot6: Constant<Bits<ROW_WINDOW_BITS>>,
+    wslot7: Constant<Bits<ROW_WINDOW_BITS>>,
+    dx: Constant<Bits<WIDE>>,
+    dd: Constant<Bits<WIDE>>,
+    one: Constant<Bits<WIN_FILL_BITS>>,
+    ring_size: Constant<Bits<WIN_FILL_BITS>>,
     index_bits: Constant<Bits<8>>,
     pos_bits: Constant<Bits<8>>,
 }
@@ -278,8 +506,219 @@ impl RowCheck {
             c_count: Default::default(),
             overflow: Default::default(),
             crowded: Default::default(),
-            above: Default::default(),
-            below: Default::default(),
+            a_mem: Default::default(),
+            a_base: Default::default(),
+            a_n: Default::default(),
+            a_rd: Default::default(),
+            a_rd1: Default::default(),
+            a_rd2: Default::default(),
+            a_head: Default::default(),
+            a_wi: Default::default(),
+            a_fill: Default::default(),
+            a_x0: Default::default(),
+            a_x1: Default::default(),
+            a_x2: Default::default(),
+            a_x3: Default::default(),
+            a_x4: Default::default(),
+            a_x5: Default::default(),
+            a_x6: Default::default(),
+            a_x7: Default::default(),
+            a_d0: Default::default(),
+            a_d1: Default::default(),
+            a_d2: Default::default(),
+            a_d3: Default::default(),
+            a_d4: Default::default(),
+            a_d5: Default::default(),
+            a_d6: Default::default(),
+            a_d7: Default::default(),
+            a_r0: Default::default(),
+            a_v0: Default::default(),
+            a_ex0: Default::default(),
+            a_ed0: Default::default(),
+            a_lt0: Default::default(),
+            a_gt0: Default::default(),
+            a_ok0: Default::default(),
+            a_p0: Default::default(),
+            a_r1: Default::default(),
+            a_v1: Default::default(),
+            a_ex1: Default::default(),
+            a_ed1: Default::default(),
+            a_lt1: Default::default(),
+            a_gt1: Default::default(),
+            a_ok1: Default::default(),
+            a_p1: Default::default(),
+            a_r2: Default::default(),
+            a_v2: Default::default(),
+            a_ex2: Default::default(),
+            a_ed2: Default::default(),
+            a_lt2: Default::default(),
+            a_gt2: Default::default(),
+            a_ok2: Default::default(),
+            a_p2: Default::default(),
+            a_r3: Default::default(),
+            a_v3: Default::default(),
+            a_ex3: Default::default(),
+            a_ed3: Default::default(),
+            a_lt3: Default::default(),
+            a_gt3: Default::default(),
+            a_ok3: Default::default(),
+            a_p3: Default::default(),
+            a_r4: Default::default(),
+            a_v4: Default::default(),
+            a_ex4: Default::default(),
+            a_ed4: Default::default(),
+            a_lt4: Default::default(),
+            a_gt4: Default::default(),
+            a_ok4: Default::default(),
+            a_p4: Default::default(),
+            a_r5: Default::default(),
+            a_v5: Default::default(),
+            a_ex5: Default::default(),
+            a_ed5: Default::default(),
+            a_lt5: Default::default(),
+            a_gt5: Default::default(),
+            a_ok5: Default::default(),
+            a_p5: Default::default(),
+            a_r6: Default::default(),
+            a_v6: Default::default(),
+            a_ex6: Default::default(),
+            a_ed6: Default::default(),
+            a_lt6: Default::default(),
+            a_gt6: Default::default(),
+            a_ok6: Default::default(),
+            a_p6: Default::default(),
+            a_r7: Default::default(),
+            a_v7: Default::default(),
+            a_ex7: Default::default(),
+            a_ed7: Default::default(),
+            a_lt7: Default::default(),
+            a_gt7: Default::default(),
+            a_ok7: Default::default(),
+            a_p7: Default::default(),
+            a_beyond: Default::default(),
+            a_found: Default::default(),
+            a_npop: Default::default(),
+            a_kept: Default::default(),
+            a_occ: Default::default(),
+            a_loaded: Default::default(),
+            a_issue: Default::default(),
+            a_rx: Default::default(),
+            a_rdd: Default::default(),
+            a_hit: Default::default(),
+            a_done: Default::default(),
+            a_crowded: Default::default(),
+            a_count: Default::default(),
+            a_bank: Default::default(),
+            b_mem: Default::default(),
+            b_base: Default::default(),
+            b_n: Default::default(),
+            b_rd: Default::default(),
+            b_rd1: Default::default(),
+            b_rd2: Default::default(),
+            b_head: Default::default(),
+            b_wi: Default::default(),
+            b_fill: Default::default(),
+            b_x0: Default::default(),
+            b_x1: Default::default(),
+            b_x2: Default::default(),
+            b_x3: Default::default(),
+            b_x4: Default::default(),
+            b_x5: Default::default(),
+            b_x6: Default::default(),
+            b_x7: Default::default(),
+            b_d0: Default::default(),
+            b_d1: Default::default(),
+            b_d2: Default::default(),
+            b_d3: Default::default(),
+            b_d4: Default::default(),
+            b_d5: Default::default(),
+            b_d6: Default::default(),
+            b_d7: Default::default(),
+            b_r0: Default::default(),
+            b_v0: Default::default(),
+            b_ex0: Default::default(),
+            b_ed0: Default::default(),
+            b_lt0: Default::default(),
+            b_gt0: Default::default(),
+            b_ok0: Default::default(),
+            b_p0: Default::default(),
+            b_r1: Default::default(),
+            b_v1: Default::default(),
+            b_ex1: Default::default(),
+            b_ed1: Default::default(),
+            b_lt1: Default::default(),
+            b_gt1: Default::default(),
+            b_ok1: Default::default(),
+            b_p1: Default::default(),
+            b_r2: Default::default(),
+            b_v2: Default::default(),
+            b_ex2: Default::default(),
+            b_ed2: Default::default(),
+            b_lt2: Default::default(),
+            b_gt2: Default::default(),
+            b_ok2: Default::default(),
+            b_p2: Default::default(),
+            b_r3: Default::default(),
+            b_v3: Default::default(),
+            b_ex3: Default::default(),
+            b_ed3: Default::default(),
+            b_lt3: Default::default(),
+            b_gt3: Default::default(),
+            b_ok3: Default::default(),
+            b_p3: Default::default(),
+            b_r4: Default::default(),
+            b_v4: Default::default(),
+            b_ex4: Default::default(),
+            b_ed4: Default::default(),
+            b_lt4: Default::default(),
+            b_gt4: Default::default(),
+            b_ok4: Default::default(),
+            b_p4: Default::default(),
+            b_r5: Default::default(),
+            b_v5: Default::default(),
+            b_ex5: Default::default(),
+            b_ed5: Default::default(),
+            b_lt5: Default::default(),
+            b_gt5: Default::default(),
+            b_ok5: Default::default(),
+            b_p5: Default::default(),
+            b_r6: Default::default(),
+            b_v6: Default::default(),
+            b_ex6: Default::default(),
+            b_ed6: Default::default(),
+            b_lt6: Default::default(),
+            b_gt6: Default::default(),
+            b_ok6: Default::default(),
+            b_p6: Default::default(),
+            b_r7: Default::default(),
+            b_v7: Default::default(),
+            b_ex7: Default::default(),
+            b_ed7: Default::default(),
+            b_lt7: Default::default(),
+            b_gt7: Default::default(),
+            b_ok7: Default::default(),
+            b_p7: Default::default(),
+            b_beyond: Default::default(),
+            b_found: Default::default(),
+            b_npop: Default::default(),
+            b_kept: Default::default(),
+            b_occ: Default::default(),
+            b_loaded: Default::default(),
+            b_issue: Default::default(),
+            b_rx: Default::default(),
+            b_rdd: Default::default(),
+            b_hit: Default::default(),
+            b_done: Default::default(),
+            b_crowded: Default::default(),
+            b_count: Default::default(),
+            b_bank: Default::default(),
+            qx: Default::default(),
+            qx_hi: Default::default(),
+            qx_lo: Default::default(),
+            qd: Default::default(),
+            qd_hi: Default::default(),
+            qd_lo: Default::default(),
+            any_left: Default::default(),
             cur_mem: Default::default(),
             in_line: Default::default(),
             dropping: Default::default(),
@@ -371,6 +810,18 @@ impl RowCheck {
             cur_ring: Constant::new((CUR_RING as u64).into()),
             one_fill: Constant::new(1u64.into()),
             n_max: Constant::new((N_MAX as u64).into()),
+            wslot0: Constant::new(0u64.into()),
+            wslot1: Constant::new(1u64.into()),
+            wslot2: Constant::new(2u64.into()),
+            wslot3: Constant::new(3u64.into()),
+            wslot4: Constant::new(4u64.into()),
+            wslot5: Constant::new(5u64.into()),
+            wslot6: Constant::new(6u64.into()),
+            wslot7: Constant::new(7u64.into()),
+            dx: Constant::new(CONSISTENT_DX_LSB.into()),
+            dd: Constant::new(CONSISTENT_DD_LSB.into()),
+            one: Constant::new(1u64.into()),
+            ring_size: Constant::new((ROW_WINDOW as u64).into()),
             index_bits: Constant::new((INDEX_BITS as u64).into()),
             pos_bits: Constant::new((POS_BITS as u64).into()),
         }
@@ -380,9 +831,7 @@ impl RowCheck {
 impl Logic for RowCheck {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, widx, wl, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, kept, crd, crd1, crd2, cfill, cwi, cri, cx0, cd0, cx1, cd1, cx2, cd2, cx3, cd3, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
-        self.above.clock.next = self.clock.val();
-        self.below.clock.next = self.clock.val();
+        dff_setup!(self, clock, a_base, a_n, a_rd, a_rd1, a_rd2, a_head, a_wi, a_fill, a_x0, a_x1, a_x2, a_x3, a_x4, a_x5, a_x6, a_x7, a_d0, a_d1, a_d2, a_d3, a_d4, a_d5, a_d6, a_d7, b_base, b_n, b_rd, b_rd1, b_rd2, b_head, b_wi, b_fill, b_x0, b_x1, b_x2, b_x3, b_x4, b_x5, b_x6, b_x7, b_d0, b_d1, b_d2, b_d3, b_d4, b_d5, b_d6, b_d7, in_line, dropping, widx, wl, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, kept, crd, crd1, crd2, cfill, cwi, cri, cx0, cd0, cx1, cd1, cx2, cd2, cx3, cd3, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
         self.cur_mem.clock.next = self.clock.val();
 
         // ================= Loader =================
@@ -405,12 +854,6 @@ impl Logic for RowCheck {
         self.wbank.next = bit_cast::<ROW_BANK_BITS, ROW_PTR_BITS>(self.wl.q.val());
         self.waddr.next = (bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.wbank.val()) << self.index_bits.val()) + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.widx.q.val());
         self.wdata.next = (bit_cast::<ROW_ENTRY_BITS, POS_BITS>(self.m_x_ref.val()) << self.pos_bits.val()) | bit_cast::<ROW_ENTRY_BITS, POS_BITS>(self.m_disp.val());
-        self.above.w_en.next = self.take_match.val();
-        self.above.w_addr.next = self.waddr.val();
-        self.above.w_data.next = self.wdata.val();
-        self.below.w_en.next = self.take_match.val();
-        self.below.w_addr.next = self.waddr.val();
-        self.below.w_data.next = self.wdata.val();
         self.cur_mem.write_enable.next = self.take_match.val();
         self.cur_mem.write_address.next = self.waddr.val();
         self.cur_mem.write_data.next = self.wdata.val();
@@ -508,17 +951,15 @@ impl Logic for RowCheck {
         }
         // Ready: the row below has arrived, or this row ends its frame.
         self.start.next = !self.busy.q.val() & ((self.pend.val() >= self.two.val()) | (self.pend.val().any() & self.eof_el.val()));
-        self.above.start.next = self.start.val();
-        self.above.bank.next = self.bank_up.val();
-        self.above.count.next = 0.into();
+        self.a_bank.next = self.bank_up.val();
+        self.a_count.next = 0.into();
         if !self.sof_el.val() & self.prev_needed.q.val() {
-            self.above.count.next = self.cnt_up.val();
+            self.a_count.next = self.cnt_up.val();
         }
-        self.below.start.next = self.start.val();
-        self.below.bank.next = self.bank_dn.val();
-        self.below.count.next = 0.into();
+        self.b_bank.next = self.bank_dn.val();
+        self.b_count.next = 0.into();
         if !self.eof_el.val() {
-            self.below.count.next = self.cnt_dn.val();
+            self.b_count.next = self.cnt_dn.val();
         }
         // The checked match: the prefetch ring's head.
         self.head_x.next = self.cx0.q.val();
@@ -536,19 +977,370 @@ impl Logic for RowCheck {
             self.head_d.next = self.cd3.q.val();
         }
         self.q_valid.next = self.busy.q.val() & self.cfill.q.val().any();
-        self.above.q_valid.next = self.q_valid.val();
-        self.above.q_x.next = self.head_x.val();
-        self.above.q_d.next = self.head_d.val();
-        self.below.q_valid.next = self.q_valid.val();
-        self.below.q_x.next = self.head_x.val();
-        self.below.q_d.next = self.head_d.val();
+        // ---- The windows (one per neighbour): each reads its row in order into
+        // its ring and compares every entry with the checked match.
+        // The window's bounds: [q_x - DX, q_x + DX] (no left bound below DX),
+        // [q_d - DD, q_d + DD] (from 0 below DD), one bit wider than a
+        // position.
+        self.qx.next = bit_cast::<WIDE, POS_BITS>(self.head_x.val());
+        self.qd.next = bit_cast::<WIDE, POS_BITS>(self.head_d.val());
+        self.qx_hi.next = self.qx.val() + self.dx.val();
+        self.qd_hi.next = self.qd.val() + self.dd.val();
+        self.any_left.next = self.q_valid.val() & (self.qx.val() >= self.dx.val());
+        self.qx_lo.next = self.qx.val() - self.dx.val();
+        self.qd_lo.next = 0.into();
+        if self.qd.val() >= self.dd.val() {
+            self.qd_lo.next = self.qd.val() - self.dd.val();
+        }
+        self.a_mem.clock.next = self.clock.val();
+        self.a_mem.write_enable.next = self.take_match.val();
+        self.a_mem.write_address.next = self.waddr.val();
+        self.a_mem.write_data.next = self.wdata.val();
+        // Each slot: held (its place after the head below the fill), left
+        // of the window (popped), right of it, confirming.
+        self.a_r0.next = self.wslot0.val() - self.a_head.q.val();
+        self.a_v0.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r0.val()) < self.a_fill.q.val();
+        self.a_ex0.next = bit_cast::<WIDE, POS_BITS>(self.a_x0.q.val());
+        self.a_ed0.next = bit_cast::<WIDE, POS_BITS>(self.a_d0.q.val());
+        self.a_lt0.next = self.a_v0.val() & self.any_left.val() & (self.a_ex0.val() < self.qx_lo.val());
+        self.a_gt0.next = self.a_v0.val() & (self.a_ex0.val() > self.qx_hi.val());
+        self.a_ok0.next = self.a_v0.val() & !self.a_lt0.val() & !self.a_gt0.val() & (self.a_ed0.val() >= self.qd_lo.val()) & (self.a_ed0.val() <= self.qd_hi.val());
+        self.a_p0.next = 0.into();
+        if self.a_lt0.val() {
+            self.a_p0.next = self.one.val();
+        }
+        self.a_r1.next = self.wslot1.val() - self.a_head.q.val();
+        self.a_v1.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r1.val()) < self.a_fill.q.val();
+        self.a_ex1.next = bit_cast::<WIDE, POS_BITS>(self.a_x1.q.val());
+        self.a_ed1.next = bit_cast::<WIDE, POS_BITS>(self.a_d1.q.val());
+        self.a_lt1.next = self.a_v1.val() & self.any_left.val() & (self.a_ex1.val() < self.qx_lo.val());
+        self.a_gt1.next = self.a_v1.val() & (self.a_ex1.val() > self.qx_hi.val());
+        self.a_ok1.next = self.a_v1.val() & !self.a_lt1.val() & !self.a_gt1.val() & (self.a_ed1.val() >= self.qd_lo.val()) & (self.a_ed1.val() <= self.qd_hi.val());
+        self.a_p1.next = 0.into();
+        if self.a_lt1.val() {
+            self.a_p1.next = self.one.val();
+        }
+        self.a_r2.next = self.wslot2.val() - self.a_head.q.val();
+        self.a_v2.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r2.val()) < self.a_fill.q.val();
+        self.a_ex2.next = bit_cast::<WIDE, POS_BITS>(self.a_x2.q.val());
+        self.a_ed2.next = bit_cast::<WIDE, POS_BITS>(self.a_d2.q.val());
+        self.a_lt2.next = self.a_v2.val() & self.any_left.val() & (self.a_ex2.val() < self.qx_lo.val());
+        self.a_gt2.next = self.a_v2.val() & (self.a_ex2.val() > self.qx_hi.val());
+        self.a_ok2.next = self.a_v2.val() & !self.a_lt2.val() & !self.a_gt2.val() & (self.a_ed2.val() >= self.qd_lo.val()) & (self.a_ed2.val() <= self.qd_hi.val());
+        self.a_p2.next = 0.into();
+        if self.a_lt2.val() {
+            self.a_p2.next = self.one.val();
+        }
+        self.a_r3.next = self.wslot3.val() - self.a_head.q.val();
+        self.a_v3.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r3.val()) < self.a_fill.q.val();
+        self.a_ex3.next = bit_cast::<WIDE, POS_BITS>(self.a_x3.q.val());
+        self.a_ed3.next = bit_cast::<WIDE, POS_BITS>(self.a_d3.q.val());
+        self.a_lt3.next = self.a_v3.val() & self.any_left.val() & (self.a_ex3.val() < self.qx_lo.val());
+        self.a_gt3.next = self.a_v3.val() & (self.a_ex3.val() > self.qx_hi.val());
+        self.a_ok3.next = self.a_v3.val() & !self.a_lt3.val() & !self.a_gt3.val() & (self.a_ed3.val() >= self.qd_lo.val()) & (self.a_ed3.val() <= self.qd_hi.val());
+        self.a_p3.next = 0.into();
+        if self.a_lt3.val() {
+            self.a_p3.next = self.one.val();
+        }
+        self.a_r4.next = self.wslot4.val() - self.a_head.q.val();
+        self.a_v4.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r4.val()) < self.a_fill.q.val();
+        self.a_ex4.next = bit_cast::<WIDE, POS_BITS>(self.a_x4.q.val());
+        self.a_ed4.next = bit_cast::<WIDE, POS_BITS>(self.a_d4.q.val());
+        self.a_lt4.next = self.a_v4.val() & self.any_left.val() & (self.a_ex4.val() < self.qx_lo.val());
+        self.a_gt4.next = self.a_v4.val() & (self.a_ex4.val() > self.qx_hi.val());
+        self.a_ok4.next = self.a_v4.val() & !self.a_lt4.val() & !self.a_gt4.val() & (self.a_ed4.val() >= self.qd_lo.val()) & (self.a_ed4.val() <= self.qd_hi.val());
+        self.a_p4.next = 0.into();
+        if self.a_lt4.val() {
+            self.a_p4.next = self.one.val();
+        }
+        self.a_r5.next = self.wslot5.val() - self.a_head.q.val();
+        self.a_v5.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r5.val()) < self.a_fill.q.val();
+        self.a_ex5.next = bit_cast::<WIDE, POS_BITS>(self.a_x5.q.val());
+        self.a_ed5.next = bit_cast::<WIDE, POS_BITS>(self.a_d5.q.val());
+        self.a_lt5.next = self.a_v5.val() & self.any_left.val() & (self.a_ex5.val() < self.qx_lo.val());
+        self.a_gt5.next = self.a_v5.val() & (self.a_ex5.val() > self.qx_hi.val());
+        self.a_ok5.next = self.a_v5.val() & !self.a_lt5.val() & !self.a_gt5.val() & (self.a_ed5.val() >= self.qd_lo.val()) & (self.a_ed5.val() <= self.qd_hi.val());
+        self.a_p5.next = 0.into();
+        if self.a_lt5.val() {
+            self.a_p5.next = self.one.val();
+        }
+        self.a_r6.next = self.wslot6.val() - self.a_head.q.val();
+        self.a_v6.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r6.val()) < self.a_fill.q.val();
+        self.a_ex6.next = bit_cast::<WIDE, POS_BITS>(self.a_x6.q.val());
+        self.a_ed6.next = bit_cast::<WIDE, POS_BITS>(self.a_d6.q.val());
+        self.a_lt6.next = self.a_v6.val() & self.any_left.val() & (self.a_ex6.val() < self.qx_lo.val());
+        self.a_gt6.next = self.a_v6.val() & (self.a_ex6.val() > self.qx_hi.val());
+        self.a_ok6.next = self.a_v6.val() & !self.a_lt6.val() & !self.a_gt6.val() & (self.a_ed6.val() >= self.qd_lo.val()) & (self.a_ed6.val() <= self.qd_hi.val());
+        self.a_p6.next = 0.into();
+        if self.a_lt6.val() {
+            self.a_p6.next = self.one.val();
+        }
+        self.a_r7.next = self.wslot7.val() - self.a_head.q.val();
+        self.a_v7.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r7.val()) < self.a_fill.q.val();
+        self.a_ex7.next = bit_cast::<WIDE, POS_BITS>(self.a_x7.q.val());
+        self.a_ed7.next = bit_cast::<WIDE, POS_BITS>(self.a_d7.q.val());
+        self.a_lt7.next = self.a_v7.val() & self.any_left.val() & (self.a_ex7.val() < self.qx_lo.val());
+        self.a_gt7.next = self.a_v7.val() & (self.a_ex7.val() > self.qx_hi.val());
+        self.a_ok7.next = self.a_v7.val() & !self.a_lt7.val() & !self.a_gt7.val() & (self.a_ed7.val() >= self.qd_lo.val()) & (self.a_ed7.val() <= self.qd_hi.val());
+        self.a_p7.next = 0.into();
+        if self.a_lt7.val() {
+            self.a_p7.next = self.one.val();
+        }
+        self.a_beyond.next = self.a_gt0.val() | self.a_gt1.val() | self.a_gt2.val() | self.a_gt3.val() | self.a_gt4.val() | self.a_gt5.val() | self.a_gt6.val() | self.a_gt7.val();
+        self.a_found.next = self.q_valid.val() & (self.a_ok0.val() | self.a_ok1.val() | self.a_ok2.val() | self.a_ok3.val() | self.a_ok4.val() | self.a_ok5.val() | self.a_ok6.val() | self.a_ok7.val());
+        self.a_npop.next = self.a_p0.val() + self.a_p1.val() + self.a_p2.val() + self.a_p3.val() + self.a_p4.val() + self.a_p5.val() + self.a_p6.val() + self.a_p7.val();
+        // Every match of the row read and arrived.
+        self.a_loaded.next = (self.a_rd.q.val() == self.a_n.q.val()) & !self.a_rd1.q.val() & !self.a_rd2.q.val();
+        self.a_hit.next = self.a_found.val();
+        self.a_done.next = self.a_beyond.val() | self.a_loaded.val();
+        self.a_crowded.next = (self.a_fill.q.val() == self.ring_size.val()) & !self.a_npop.val().any() & !self.a_beyond.val() & !self.a_found.val() & !self.a_loaded.val();
+        // The ring: pops at the head, the arriving read at `wi`; a read is
+        // issued while the entries kept and in flight leave a slot free.
+        self.a_kept.next = self.a_fill.q.val() - self.a_npop.val();
+        self.a_head.d.next = self.a_head.q.val() + bit_cast::<ROW_WINDOW_BITS, WIN_FILL_BITS>(self.a_npop.val());
+        self.a_occ.next = self.a_kept.val();
+        if self.a_rd1.q.val() {
+            self.a_occ.next = self.a_kept.val() + self.one.val();
+        }
+        self.a_fill.d.next = self.a_kept.val();
+        if self.a_rd2.q.val() {
+            self.a_fill.d.next = self.a_kept.val() + self.one.val();
+            self.a_occ.next = self.a_kept.val() + self.one.val();
+            if self.a_rd1.q.val() {
+                self.a_occ.next = self.a_kept.val() + self.one.val() + self.one.val();
+            }
+            self.a_wi.d.next = self.a_wi.q.val() + 1;
+        }
+        self.a_issue.next = (self.a_rd.q.val() != self.a_n.q.val()) & (self.a_occ.val() < self.ring_size.val());
+        self.a_rd1.d.next = self.a_issue.val();
+        self.a_rd2.d.next = self.a_rd1.q.val();
+        if self.a_issue.val() {
+            self.a_rd.d.next = self.a_rd.q.val() + 1;
+        }
+        self.a_mem.read_address.next = self.a_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.a_rd.q.val());
+        self.a_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val() >> self.pos_bits.val());
+        self.a_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val());
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot0.val()) {
+            self.a_x0.d.next = self.a_rx.val();
+            self.a_d0.d.next = self.a_rdd.val();
+        }
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot1.val()) {
+            self.a_x1.d.next = self.a_rx.val();
+            self.a_d1.d.next = self.a_rdd.val();
+        }
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot2.val()) {
+            self.a_x2.d.next = self.a_rx.val();
+            self.a_d2.d.next = self.a_rdd.val();
+        }
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot3.val()) {
+            self.a_x3.d.next = self.a_rx.val();
+            self.a_d3.d.next = self.a_rdd.val();
+        }
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot4.val()) {
+            self.a_x4.d.next = self.a_rx.val();
+            self.a_d4.d.next = self.a_rdd.val();
+        }
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot5.val()) {
+            self.a_x5.d.next = self.a_rx.val();
+            self.a_d5.d.next = self.a_rdd.val();
+        }
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot6.val()) {
+            self.a_x6.d.next = self.a_rx.val();
+            self.a_d6.d.next = self.a_rdd.val();
+        }
+        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot7.val()) {
+            self.a_x7.d.next = self.a_rx.val();
+            self.a_d7.d.next = self.a_rdd.val();
+        }
+        // A new row: the ring empties, the reads in flight are forgotten.
+        if self.start.val() {
+            self.a_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.a_bank.val()) << self.index_bits.val();
+            self.a_n.d.next = self.a_count.val();
+            self.a_rd.d.next = 0.into();
+            self.a_rd1.d.next = false;
+            self.a_rd2.d.next = false;
+            self.a_head.d.next = 0.into();
+            self.a_wi.d.next = 0.into();
+            self.a_fill.d.next = 0.into();
+        }
+        self.b_mem.clock.next = self.clock.val();
+        self.b_mem.write_enable.next = self.take_match.val();
+        self.b_mem.write_address.next = self.waddr.val();
+        self.b_mem.write_data.next = self.wdata.val();
+        // Each slot: held (its place after the head below the fill), left
+        // of the window (popped), right of it, confirming.
+        self.b_r0.next = self.wslot0.val() - self.b_head.q.val();
+        self.b_v0.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r0.val()) < self.b_fill.q.val();
+        self.b_ex0.next = bit_cast::<WIDE, POS_BITS>(self.b_x0.q.val());
+        self.b_ed0.next = bit_cast::<WIDE, POS_BITS>(self.b_d0.q.val());
+        self.b_lt0.next = self.b_v0.val() & self.any_left.val() & (self.b_ex0.val() < self.qx_lo.val());
+        self.b_gt0.next = self.b_v0.val() & (self.b_ex0.val() > self.qx_hi.val());
+        self.b_ok0.next = self.b_v0.val() & !self.b_lt0.val() & !self.b_gt0.val() & (self.b_ed0.val() >= self.qd_lo.val()) & (self.b_ed0.val() <= self.qd_hi.val());
+        self.b_p0.next = 0.into();
+        if self.b_lt0.val() {
+            self.b_p0.next = self.one.val();
+        }
+        self.b_r1.next = self.wslot1.val() - self.b_head.q.val();
+        self.b_v1.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r1.val()) < self.b_fill.q.val();
+        self.b_ex1.next = bit_cast::<WIDE, POS_BITS>(self.b_x1.q.val());
+        self.b_ed1.next = bit_cast::<WIDE, POS_BITS>(self.b_d1.q.val());
+        self.b_lt1.next = self.b_v1.val() & self.any_left.val() & (self.b_ex1.val() < self.qx_lo.val());
+        self.b_gt1.next = self.b_v1.val() & (self.b_ex1.val() > self.qx_hi.val());
+        self.b_ok1.next = self.b_v1.val() & !self.b_lt1.val() & !self.b_gt1.val() & (self.b_ed1.val() >= self.qd_lo.val()) & (self.b_ed1.val() <= self.qd_hi.val());
+        self.b_p1.next = 0.into();
+        if self.b_lt1.val() {
+            self.b_p1.next = self.one.val();
+        }
+        self.b_r2.next = self.wslot2.val() - self.b_head.q.val();
+        self.b_v2.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r2.val()) < self.b_fill.q.val();
+        self.b_ex2.next = bit_cast::<WIDE, POS_BITS>(self.b_x2.q.val());
+        self.b_ed2.next = bit_cast::<WIDE, POS_BITS>(self.b_d2.q.val());
+        self.b_lt2.next = self.b_v2.val() & self.any_left.val() & (self.b_ex2.val() < self.qx_lo.val());
+        self.b_gt2.next = self.b_v2.val() & (self.b_ex2.val() > self.qx_hi.val());
+        self.b_ok2.next = self.b_v2.val() & !self.b_lt2.val() & !self.b_gt2.val() & (self.b_ed2.val() >= self.qd_lo.val()) & (self.b_ed2.val() <= self.qd_hi.val());
+        self.b_p2.next = 0.into();
+        if self.b_lt2.val() {
+            self.b_p2.next = self.one.val();
+        }
+        self.b_r3.next = self.wslot3.val() - self.b_head.q.val();
+        self.b_v3.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r3.val()) < self.b_fill.q.val();
+        self.b_ex3.next = bit_cast::<WIDE, POS_BITS>(self.b_x3.q.val());
+        self.b_ed3.next = bit_cast::<WIDE, POS_BITS>(self.b_d3.q.val());
+        self.b_lt3.next = self.b_v3.val() & self.any_left.val() & (self.b_ex3.val() < self.qx_lo.val());
+        self.b_gt3.next = self.b_v3.val() & (self.b_ex3.val() > self.qx_hi.val());
+        self.b_ok3.next = self.b_v3.val() & !self.b_lt3.val() & !self.b_gt3.val() & (self.b_ed3.val() >= self.qd_lo.val()) & (self.b_ed3.val() <= self.qd_hi.val());
+        self.b_p3.next = 0.into();
+        if self.b_lt3.val() {
+            self.b_p3.next = self.one.val();
+        }
+        self.b_r4.next = self.wslot4.val() - self.b_head.q.val();
+        self.b_v4.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r4.val()) < self.b_fill.q.val();
+        self.b_ex4.next = bit_cast::<WIDE, POS_BITS>(self.b_x4.q.val());
+        self.b_ed4.next = bit_cast::<WIDE, POS_BITS>(self.b_d4.q.val());
+        self.b_lt4.next = self.b_v4.val() & self.any_left.val() & (self.b_ex4.val() < self.qx_lo.val());
+        self.b_gt4.next = self.b_v4.val() & (self.b_ex4.val() > self.qx_hi.val());
+        self.b_ok4.next = self.b_v4.val() & !self.b_lt4.val() & !self.b_gt4.val() & (self.b_ed4.val() >= self.qd_lo.val()) & (self.b_ed4.val() <= self.qd_hi.val());
+        self.b_p4.next = 0.into();
+        if self.b_lt4.val() {
+            self.b_p4.next = self.one.val();
+        }
+        self.b_r5.next = self.wslot5.val() - self.b_head.q.val();
+        self.b_v5.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r5.val()) < self.b_fill.q.val();
+        self.b_ex5.next = bit_cast::<WIDE, POS_BITS>(self.b_x5.q.val());
+        self.b_ed5.next = bit_cast::<WIDE, POS_BITS>(self.b_d5.q.val());
+        self.b_lt5.next = self.b_v5.val() & self.any_left.val() & (self.b_ex5.val() < self.qx_lo.val());
+        self.b_gt5.next = self.b_v5.val() & (self.b_ex5.val() > self.qx_hi.val());
+        self.b_ok5.next = self.b_v5.val() & !self.b_lt5.val() & !self.b_gt5.val() & (self.b_ed5.val() >= self.qd_lo.val()) & (self.b_ed5.val() <= self.qd_hi.val());
+        self.b_p5.next = 0.into();
+        if self.b_lt5.val() {
+            self.b_p5.next = self.one.val();
+        }
+        self.b_r6.next = self.wslot6.val() - self.b_head.q.val();
+        self.b_v6.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r6.val()) < self.b_fill.q.val();
+        self.b_ex6.next = bit_cast::<WIDE, POS_BITS>(self.b_x6.q.val());
+        self.b_ed6.next = bit_cast::<WIDE, POS_BITS>(self.b_d6.q.val());
+        self.b_lt6.next = self.b_v6.val() & self.any_left.val() & (self.b_ex6.val() < self.qx_lo.val());
+        self.b_gt6.next = self.b_v6.val() & (self.b_ex6.val() > self.qx_hi.val());
+        self.b_ok6.next = self.b_v6.val() & !self.b_lt6.val() & !self.b_gt6.val() & (self.b_ed6.val() >= self.qd_lo.val()) & (self.b_ed6.val() <= self.qd_hi.val());
+        self.b_p6.next = 0.into();
+        if self.b_lt6.val() {
+            self.b_p6.next = self.one.val();
+        }
+        self.b_r7.next = self.wslot7.val() - self.b_head.q.val();
+        self.b_v7.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r7.val()) < self.b_fill.q.val();
+        self.b_ex7.next = bit_cast::<WIDE, POS_BITS>(self.b_x7.q.val());
+        self.b_ed7.next = bit_cast::<WIDE, POS_BITS>(self.b_d7.q.val());
+        self.b_lt7.next = self.b_v7.val() & self.any_left.val() & (self.b_ex7.val() < self.qx_lo.val());
+        self.b_gt7.next = self.b_v7.val() & (self.b_ex7.val() > self.qx_hi.val());
+        self.b_ok7.next = self.b_v7.val() & !self.b_lt7.val() & !self.b_gt7.val() & (self.b_ed7.val() >= self.qd_lo.val()) & (self.b_ed7.val() <= self.qd_hi.val());
+        self.b_p7.next = 0.into();
+        if self.b_lt7.val() {
+            self.b_p7.next = self.one.val();
+        }
+        self.b_beyond.next = self.b_gt0.val() | self.b_gt1.val() | self.b_gt2.val() | self.b_gt3.val() | self.b_gt4.val() | self.b_gt5.val() | self.b_gt6.val() | self.b_gt7.val();
+        self.b_found.next = self.q_valid.val() & (self.b_ok0.val() | self.b_ok1.val() | self.b_ok2.val() | self.b_ok3.val() | self.b_ok4.val() | self.b_ok5.val() | self.b_ok6.val() | self.b_ok7.val());
+        self.b_npop.next = self.b_p0.val() + self.b_p1.val() + self.b_p2.val() + self.b_p3.val() + self.b_p4.val() + self.b_p5.val() + self.b_p6.val() + self.b_p7.val();
+        // Every match of the row read and arrived.
+        self.b_loaded.next = (self.b_rd.q.val() == self.b_n.q.val()) & !self.b_rd1.q.val() & !self.b_rd2.q.val();
+        self.b_hit.next = self.b_found.val();
+        self.b_done.next = self.b_beyond.val() | self.b_loaded.val();
+        self.b_crowded.next = (self.b_fill.q.val() == self.ring_size.val()) & !self.b_npop.val().any() & !self.b_beyond.val() & !self.b_found.val() & !self.b_loaded.val();
+        // The ring: pops at the head, the arriving read at `wi`; a read is
+        // issued while the entries kept and in flight leave a slot free.
+        self.b_kept.next = self.b_fill.q.val() - self.b_npop.val();
+        self.b_head.d.next = self.b_head.q.val() + bit_cast::<ROW_WINDOW_BITS, WIN_FILL_BITS>(self.b_npop.val());
+        self.b_occ.next = self.b_kept.val();
+        if self.b_rd1.q.val() {
+            self.b_occ.next = self.b_kept.val() + self.one.val();
+        }
+        self.b_fill.d.next = self.b_kept.val();
+        if self.b_rd2.q.val() {
+            self.b_fill.d.next = self.b_kept.val() + self.one.val();
+            self.b_occ.next = self.b_kept.val() + self.one.val();
+            if self.b_rd1.q.val() {
+                self.b_occ.next = self.b_kept.val() + self.one.val() + self.one.val();
+            }
+            self.b_wi.d.next = self.b_wi.q.val() + 1;
+        }
+        self.b_issue.next = (self.b_rd.q.val() != self.b_n.q.val()) & (self.b_occ.val() < self.ring_size.val());
+        self.b_rd1.d.next = self.b_issue.val();
+        self.b_rd2.d.next = self.b_rd1.q.val();
+        if self.b_issue.val() {
+            self.b_rd.d.next = self.b_rd.q.val() + 1;
+        }
+        self.b_mem.read_address.next = self.b_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.b_rd.q.val());
+        self.b_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val() >> self.pos_bits.val());
+        self.b_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val());
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot0.val()) {
+            self.b_x0.d.next = self.b_rx.val();
+            self.b_d0.d.next = self.b_rdd.val();
+        }
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot1.val()) {
+            self.b_x1.d.next = self.b_rx.val();
+            self.b_d1.d.next = self.b_rdd.val();
+        }
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot2.val()) {
+            self.b_x2.d.next = self.b_rx.val();
+            self.b_d2.d.next = self.b_rdd.val();
+        }
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot3.val()) {
+            self.b_x3.d.next = self.b_rx.val();
+            self.b_d3.d.next = self.b_rdd.val();
+        }
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot4.val()) {
+            self.b_x4.d.next = self.b_rx.val();
+            self.b_d4.d.next = self.b_rdd.val();
+        }
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot5.val()) {
+            self.b_x5.d.next = self.b_rx.val();
+            self.b_d5.d.next = self.b_rdd.val();
+        }
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot6.val()) {
+            self.b_x6.d.next = self.b_rx.val();
+            self.b_d6.d.next = self.b_rdd.val();
+        }
+        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot7.val()) {
+            self.b_x7.d.next = self.b_rx.val();
+            self.b_d7.d.next = self.b_rdd.val();
+        }
+        // A new row: the ring empties, the reads in flight are forgotten.
+        if self.start.val() {
+            self.b_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.b_bank.val()) << self.index_bits.val();
+            self.b_n.d.next = self.b_count.val();
+            self.b_rd.d.next = 0.into();
+            self.b_rd1.d.next = false;
+            self.b_rd2.d.next = false;
+            self.b_head.d.next = 0.into();
+            self.b_wi.d.next = 0.into();
+            self.b_fill.d.next = 0.into();
+        }
         // The decision: a confirming entry, or both windows complete (a
         // crowded window counts as complete, flagged).
-        self.keep.next = self.above.hit.val() | self.below.hit.val();
-        self.up_ready.next = self.above.done.val() | self.above.crowded.val();
-        self.dn_ready.next = self.below.done.val() | self.below.crowded.val();
+        self.keep.next = self.a_hit.val() | self.b_hit.val();
+        self.up_ready.next = self.a_done.val() | self.a_crowded.val();
+        self.dn_ready.next = self.b_done.val() | self.b_crowded.val();
         self.decide.next = self.q_valid.val() & (self.keep.val() | (self.up_ready.val() & self.dn_ready.val()));
-        self.crowded_q.d.next = self.decide.val() & !self.keep.val() & ((self.above.crowded.val() & !self.above.done.val()) | (self.below.crowded.val() & !self.below.done.val()));
+        self.crowded_q.d.next = self.decide.val() & !self.keep.val() & ((self.a_crowded.val() & !self.a_done.val()) | (self.b_crowded.val() & !self.b_done.val()));
         self.finish.next = self.busy.q.val() & (self.dec.q.val() == self.n_cur.q.val());
         if self.decide.val() {
             self.dec.d.next = self.dec.q.val() + 1;
