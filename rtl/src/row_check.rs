@@ -48,7 +48,8 @@
 //!   found all four banks in use when it started (its first match or its
 //!   marker): that row is dropped whole (its matches are not stored, it
 //!   never leaves, and the rows around it are checked against each other
-//!   as neighbours). `crowded`: high for a clock with a match decided
+//!   as neighbours; its `m_sof` goes to the next row stored, its `m_eof`
+//!   to the last row stored, so that frames still start and end). `crowded`: high for a clock with a match decided
 //!   without the whole of a neighbour's window (see above).
 //!
 //! ## Timing
@@ -63,7 +64,12 @@
 //! finished. A row is dropped only if, when it starts, the engine has not
 //! finished the row two before it; with row markers at least
 //! [`row_check_period`]` = row_check_cycles(N_MAX, N_MAX, N_MAX) + 1`
-//! clocks apart (within and across frames) no row is dropped.
+//! clocks apart (within and across frames) no row is dropped. The bound is
+//! loose: measured (`tests/rtl_row_check.rs`), a row of 128 matches a
+//! pixel apart between two such rows takes 132 clocks, one of 128 matches
+//! 17 LSB apart between them 276 (the bound says 900); real rows take
+//! about `n + 5` (tsukuba at most 59 clocks for 54 matches, cones 66 for
+//! 58), far inside their line of 384 or 450 pixels.
 
 use crate::block_ram::BlockRam;
 use crate::params::*;
@@ -368,6 +374,7 @@ pub struct RowCheck {
     dropping: DFF<Bit>,
     widx: DFF<Bits<COUNT_BITS>>,
     wl: DFF<Bits<ROW_PTR_BITS>>,
+    sof_pending: DFF<Bit>,
     cnt0: DFF<Bits<COUNT_BITS>>,
     sof0: DFF<Bit>,
     eof0: DFF<Bit>,
@@ -423,6 +430,8 @@ pub struct RowCheck {
     take_match: Signal<Local, Bit>,
     take_marker: Signal<Local, Bit>,
     wbank: Signal<Local, Bits<ROW_BANK_BITS>>,
+    lbank: Signal<Local, Bits<ROW_BANK_BITS>>,
+    drop_eof: Signal<Local, Bit>,
     waddr: Signal<Local, Bits<ROW_ADDR_BITS>>,
     wdata: Signal<Local, Bits<ROW_ENTRY_BITS>>,
     pend: Signal<Local, Bits<ROW_PTR_BITS>>,
@@ -724,6 +733,9 @@ impl RowCheck {
             dropping: Default::default(),
             widx: Default::default(),
             wl: Default::default(),
+            sof_pending: Default::default(),
+            lbank: Default::default(),
+            drop_eof: Default::default(),
             cnt0: Default::default(),
             sof0: Default::default(),
             eof0: Default::default(),
@@ -831,7 +843,7 @@ impl RowCheck {
 impl Logic for RowCheck {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, a_base, a_n, a_rd, a_rd1, a_rd2, a_head, a_wi, a_fill, a_x0, a_x1, a_x2, a_x3, a_x4, a_x5, a_x6, a_x7, a_d0, a_d1, a_d2, a_d3, a_d4, a_d5, a_d6, a_d7, b_base, b_n, b_rd, b_rd1, b_rd2, b_head, b_wi, b_fill, b_x0, b_x1, b_x2, b_x3, b_x4, b_x5, b_x6, b_x7, b_d0, b_d1, b_d2, b_d3, b_d4, b_d5, b_d6, b_d7, in_line, dropping, widx, wl, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, kept, crd, crd1, crd2, cfill, cwi, cri, cx0, cd0, cx1, cd1, cx2, cd2, cx3, cd3, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
+        dff_setup!(self, clock, a_base, a_n, a_rd, a_rd1, a_rd2, a_head, a_wi, a_fill, a_x0, a_x1, a_x2, a_x3, a_x4, a_x5, a_x6, a_x7, a_d0, a_d1, a_d2, a_d3, a_d4, a_d5, a_d6, a_d7, b_base, b_n, b_rd, b_rd1, b_rd2, b_head, b_wi, b_fill, b_x0, b_x1, b_x2, b_x3, b_x4, b_x5, b_x6, b_x7, b_d0, b_d1, b_d2, b_d3, b_d4, b_d5, b_d6, b_d7, in_line, dropping, widx, wl, sof_pending, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, kept, crd, crd1, crd2, cfill, cwi, cri, cx0, cd0, cx1, cd1, cx2, cd2, cx3, cd3, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
         self.cur_mem.clock.next = self.clock.val();
 
         // ================= Loader =================
@@ -872,25 +884,46 @@ impl Logic for RowCheck {
         }
         if self.take_marker.val() {
             self.wl.d.next = self.wl.q.val() + 1;
+            self.sof_pending.d.next = false;
+        }
+        // A dropped row's flags: its start of frame goes to the next row
+        // stored, its end of frame to the last row stored if that one is
+        // not yet checked (so that the frame still ends).
+        self.lbank.next = self.wbank.val() - 1;
+        self.drop_eof.next = self.m_valid.val() & self.m_last.val() & self.drop_now.val() & self.m_eof.val() & self.pend.val().any();
+        if self.m_valid.val() & self.m_last.val() & self.drop_now.val() & self.m_sof.val() {
+            self.sof_pending.d.next = true;
+        }
+        if self.drop_eof.val() & (self.lbank.val() == self.bank0.val()) {
+            self.eof0.d.next = true;
         }
         if self.take_marker.val() & (self.wbank.val() == self.bank0.val()) {
             self.cnt0.d.next = self.widx.q.val();
-            self.sof0.d.next = self.m_sof.val();
+            self.sof0.d.next = self.m_sof.val() | self.sof_pending.q.val();
             self.eof0.d.next = self.m_eof.val();
+        }
+        if self.drop_eof.val() & (self.lbank.val() == self.bank1.val()) {
+            self.eof1.d.next = true;
         }
         if self.take_marker.val() & (self.wbank.val() == self.bank1.val()) {
             self.cnt1.d.next = self.widx.q.val();
-            self.sof1.d.next = self.m_sof.val();
+            self.sof1.d.next = self.m_sof.val() | self.sof_pending.q.val();
             self.eof1.d.next = self.m_eof.val();
+        }
+        if self.drop_eof.val() & (self.lbank.val() == self.bank2.val()) {
+            self.eof2.d.next = true;
         }
         if self.take_marker.val() & (self.wbank.val() == self.bank2.val()) {
             self.cnt2.d.next = self.widx.q.val();
-            self.sof2.d.next = self.m_sof.val();
+            self.sof2.d.next = self.m_sof.val() | self.sof_pending.q.val();
             self.eof2.d.next = self.m_eof.val();
+        }
+        if self.drop_eof.val() & (self.lbank.val() == self.bank3.val()) {
+            self.eof3.d.next = true;
         }
         if self.take_marker.val() & (self.wbank.val() == self.bank3.val()) {
             self.cnt3.d.next = self.widx.q.val();
-            self.sof3.d.next = self.m_sof.val();
+            self.sof3.d.next = self.m_sof.val() | self.sof_pending.q.val();
             self.eof3.d.next = self.m_eof.val();
         }
 
