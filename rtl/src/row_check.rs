@@ -817,7 +817,7 @@ impl RowCheck {
             slot1: slot(1),
             slot2: slot(2),
             slot3: slot(3),
-            banks: Constant::new(((1u64 << ROW_BANK_BITS) as u64).into()),
+            banks: Constant::new((1u64 << ROW_BANK_BITS).into()),
             two: Constant::new(2u64.into()),
             cur_ring: Constant::new((CUR_RING as u64).into()),
             one_fill: Constant::new(1u64.into()),
