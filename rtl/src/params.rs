@@ -283,3 +283,29 @@ pub const MEDIAN_TAPS: usize = 5;
 /// that its taps reach, `MEDIAN_TAPS - 1`, each of `W_MAX` disparities of
 /// `POS_BITS` (one `DP16KD`).
 pub const MEDIAN_LINE_BUFFERS: usize = MEDIAN_TAPS - 1;
+
+// ---- The row check (golden's `confirmed_matches`, the default mode's
+// consistency check across neighbouring rows).
+
+/// golden's `CONSISTENT_DX` (3 px) in [`POS_FRAC_BITS`] fixed point: a
+/// match of a neighbouring row at most this far in position confirms
+/// (inclusive).
+pub const CONSISTENT_DX_LSB: u64 = 3 << POS_FRAC_BITS;
+/// golden's `CONSISTENT_DD` (1 px) in [`POS_FRAC_BITS`] fixed point: the
+/// confirming match's disparity differs by at most this (inclusive).
+pub const CONSISTENT_DD_LSB: u64 = 1 << POS_FRAC_BITS;
+/// Bits of a row-check bank index: four banks of [`N_MAX`] matches (the
+/// rows above, at and below the one checked, and the incoming one).
+pub const ROW_BANK_BITS: usize = 2;
+/// Address bits of a row-check memory: the bank, then the match's index.
+pub const ROW_ADDR_BITS: usize = ROW_BANK_BITS + INDEX_BITS;
+/// Bits of a stored match: `X` above the disparity, both [`POS_BITS`].
+pub const ROW_ENTRY_BITS: usize = 2 * POS_BITS;
+/// Bits of a slot index of a neighbour's window ring.
+pub const ROW_WINDOW_BITS: usize = 3;
+/// Slots of a neighbour's window ring: the matches of the neighbouring row
+/// from the first one not left of the checked match's window on. A window
+/// `[X - 3 px, X + 3 px]` holds at most 7 matches at least a pixel apart
+/// (as declivities are, so their positions at least 16 LSB apart), and
+/// the eighth slot takes the first match right of it.
+pub const ROW_WINDOW: usize = 1 << ROW_WINDOW_BITS;
