@@ -319,11 +319,6 @@ fn design() -> String {
     sim::cosim::verilog_of(DepthStage::default())
 }
 
-/// Verilator `-Wall` warnings accepted in the depth stage's Verilog.
-const ACCEPTED: &[(&str, &str)] = &[(
-    "WIDTH",
-    "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc)",
-)];
 
 #[test]
 fn depth_stage_verilog_generates_and_lints_clean_but_for_the_accepted_warnings() {
@@ -334,7 +329,7 @@ fn depth_stage_verilog_generates_and_lints_clean_but_for_the_accepted_warnings()
         return;
     }
     let warnings = sim::cosim::lint_verilator(&v).unwrap_or_else(|e| panic!("{e}"));
-    let counts = sim::cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{e}"));
+    let counts = sim::cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }
 

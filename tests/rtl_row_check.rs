@@ -340,11 +340,6 @@ fn every_row_of_cones_keeps_golden_confirmed_matches() {
 // Verilog
 // ===========================================================================
 
-/// Verilator `-Wall` warnings accepted in the row check's Verilog.
-const ACCEPTED: &[(&str, &str)] = &[(
-    "WIDTH",
-    "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc)",
-)];
 
 #[test]
 fn row_check_generates_verilog_that_lints_clean_but_for_the_accepted_warnings() {
@@ -355,6 +350,6 @@ fn row_check_generates_verilog_that_lints_clean_but_for_the_accepted_warnings() 
         return;
     }
     let warnings = sim::cosim::lint_verilator(&v).unwrap_or_else(|e| panic!("{e}"));
-    let counts = sim::cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{e}"));
+    let counts = sim::cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }

@@ -1783,6 +1783,14 @@ pub fn lint_verilator_with(design: &str, opts: &Options) -> Result<Vec<LintWarni
     Ok(parse_lint(&full))
 }
 
+/// The Verilator `-Wall` warnings every block's lint accepts, with why
+/// (`check_accepted`'s list; a block adds its own with their reasons).
+pub const ACCEPTED_LINT: &[(&str, &str)] = &[
+    ("WIDTH", "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc), so the widths that matter are explicit"),
+    ("UNUSEDPARAM", "rust-hdl declares a localparam for every state of an enum in each module that holds it"),
+    DP16KD_UNUSED_OUTPUTS,
+];
+
 /// The accepted-list entry for the `DP16KD` instances of `rtl::block_ram`:
 /// their read-port-A outputs (`DOA*`, the port only writes) and port B's
 /// outputs above the data width are left unconnected. [`check_accepted`]

@@ -121,16 +121,11 @@ fn cosim_detector_verilator_matches_rust_on_corner_cases_and_real_rows() {
     }
 }
 
-/// Verilator `-Wall` warnings accepted in the detector's Verilog, with why.
-const ACCEPTED: &[(&str, &str)] = &[
-    ("WIDTH", "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc), so the widths that matter are explicit"),
-    ("UNUSEDPARAM", "rust-hdl declares a localparam for every state of an enum in each module that holds it"),
-];
 
 #[test]
 fn detector_verilog_lints_clean_but_for_the_accepted_warnings() {
     let warnings = cosim::lint_verilator(&design()).unwrap_or_else(|e| panic!("{e}"));
-    let counts = cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{e}"));
+    let counts = cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }
 

@@ -133,17 +133,11 @@ fn cosim_interpolator_verilator_matches_rust_on_corner_cases_and_real_rows() {
     replay(Simulator::Verilator);
 }
 
-/// Verilator `-Wall` warnings accepted in the interpolator's Verilog, with
-/// why.
-const ACCEPTED: &[(&str, &str)] = &[(
-    "WIDTH",
-    "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc), so the widths that matter are explicit",
-)];
 
 #[test]
 fn interpolator_verilog_lints_clean_but_for_the_accepted_warnings() {
     let warnings = cosim::lint_verilator(&design()).unwrap_or_else(|e| panic!("{e}"));
-    let counts = cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{e}"));
+    let counts = cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }
 

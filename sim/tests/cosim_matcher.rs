@@ -407,19 +407,13 @@ fn cosim_matcher_icarus_catches_a_changed_design() {
     }
 }
 
-/// Verilator `-Wall` warnings accepted in the matcher's Verilog: exactly the
-/// detector's list (`cosim_detector.rs`).
-const ACCEPTED: &[(&str, &str)] = &[
-    ("WIDTH", "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc), so the widths that matter are explicit"),
-    ("UNUSEDPARAM", "rust-hdl declares a localparam for every state of an enum in each module that holds it"),
-];
 
 /// On the sensor's 64-cell Verilog.
 #[test]
 fn matcher_verilog_lints_clean_but_for_the_accepted_warnings() {
     let t0 = Instant::now();
     let warnings = cosim::lint_verilator(&design(N_CELLS, RULE)).unwrap_or_else(|e| panic!("{e}"));
-    let counts = cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{e}"));
+    let counts = cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?} ({:.1} s)", t0.elapsed().as_secs_f64());
 }
 

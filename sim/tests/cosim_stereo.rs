@@ -15,8 +15,9 @@ const CELLS: usize = 16;
 /// Verilator `-Wall` warnings accepted in the line processor's Verilog,
 /// with why.
 const ACCEPTED: &[(&str, &str)] = &[
-    ("WIDTH", "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc), so the widths that matter are explicit"),
-    ("UNUSEDPARAM", "rust-hdl declares a localparam for every state of an enum in each module that holds it"),
+    sim::cosim::ACCEPTED_LINT[0],
+    sim::cosim::ACCEPTED_LINT[1],
+    sim::cosim::DP16KD_UNUSED_OUTPUTS,
     ("UNUSEDSIGNAL", "outputs of the blocks that the line processor does not use (listed in UNUSED_OUTPUTS and checked one by one)"),
 ];
 
