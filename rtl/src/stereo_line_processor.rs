@@ -4,8 +4,8 @@
 //!
 //! ```text
 //! left  ─► DeclivityDetector ─► RecordFifo ─┐
-//!                                           ├─► DeclivityMatcher ─► Interpolator ─► out
-//! right ─► DeclivityDetector ─► RecordFifo ─┘
+//!                                           ├─► DeclivityMatcher ─► RowCheck ─► Interpolator
+//! right ─► DeclivityDetector ─► RecordFifo ─┘                      ─► VerticalMedian ─► DepthStage ─► out
 //! ```
 //!
 //! - Each camera has its own [`DeclivityDetector`] (eq. 2–3): line n is
@@ -16,8 +16,15 @@
 //! - The [`DeclivityMatcher`] (eq. 4–9, the default gain rule
 //!   [`GainRule::Robust`] or the paper's) takes a pair when both sides'
 //!   markers are in.
+//! - The [`RowCheck`] keeps the matches a neighbouring row confirms (the
+//!   default mode's consistency check; one line of delay).
 //! - The [`Interpolator`] (paper §IV's last step, with the default mode's
 //!   edge jump [`EDGE_JUMP_LSB`] or none) gives one disparity per pixel.
+//! - The [`VerticalMedian`] takes the median of five rows (the default
+//!   mode's; two lines of delay, the last two rows flushed after the
+//!   frame's last).
+//! - The [`DepthStage`] gives each disparity its depth (eq. 1) for the
+//!   camera the processor is generated for.
 //!
 //! ## Ports
 //! - In, per camera (`l_` left = reference, `r_` right), AXI4-Stream video:
@@ -25,15 +32,22 @@
 //!   first pixel), `tlast` (end of line); out `tready` (the detector's:
 //!   high except between lines of widths below the detector's
 //!   `MIN_LINE_PERIOD`).
-//! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits.
+//! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits; `height`:
+//!   the frame's rows (its last row ends the frame for the row check and
+//!   the median, which then flush it).
 //! - Out, AXI4-Stream without back-pressure (`tready` absent, as the
 //!   standard allows: the sink takes a beat every clock): `m_tvalid`,
-//!   `m_tdata` (disparity, [`POS_FRAC_BITS`] fraction bits, 0 = none),
-//!   `m_tuser` (the frame's first pixel), `m_tlast` (a line's last pixel).
+//!   `m_tdata` (bits 15..0 the disparity, [`POS_FRAC_BITS`] fraction bits,
+//!   0 = none; bits 31..16 the depth in mm, 0 = none, [`DEPTH_MAX_MM`] =
+//!   that far or farther), `m_tuser` (the frame's first pixel), `m_tlast`
+//!   (a line's last pixel).
 //!   A line has the width of the reference line (at most [`W_MAX`]).
 //! - Status, counters that wrap: `records_dropped` (detector beats that
 //!   found a record queue full), `lines_dropped` (lines the interpolator
-//!   had no room for: their pixels are not sent), `lines_full` (lines with
+//!   or the row check had no room for: their pixels are not sent),
+//!   `pixels_dropped` (pixels that came to the median while it flushed a
+//!   frame's last rows: the vertical blanking must last two lines),
+//!   `lines_full` (lines with
 //!   more than `2·N` declivities on a side: the first are matched),
 //!   `lines_wide` (line pairs with a side wider than [`W_MAX`]: the first
 //!   `W_MAX` pixels are processed).
@@ -42,11 +56,16 @@
 //! Throughput: one pixel per clock per camera while the matcher keeps up on
 //! average; a line's matching may take longer than its line time as long as
 //! the record queues ([`crate::record_fifo::RECORD_FIFO_DEPTH`] beats)
-//! absorb it. Latency: the
-//! detector's [`crate::declivity_detector::marker_latency`], the queue's
-//! [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line (`line_cycles`), the
-//! interpolator's `SEGMENT_LAG + PIXEL_LAG`, then the line's pixels
-//! (`declivity budget` adds them up; the simulation measures them).
+//! absorb it. Latency from a line's last pixel in to its first disparity
+//! out: the detector's [`crate::declivity_detector::marker_latency`], the
+//! queue's [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line
+//! (`line_cycles`), one line period in the row check (it waits for the
+//! next line's matches), the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
+//! line periods in the median (it waits for the row two below) and the
+//! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
+//! depth`: `latency_cycles`). After the frame's last line the row check
+//! and the median flush their last rows by themselves; the next frame may
+//! start once they have (two lines of vertical blanking).
 //!
 //! The width given to the interpolator is the last reference line's
 //! (every line of a frame has one width): it is counted as the line comes
@@ -55,13 +74,21 @@
 use crate::block_ram::DP16KD_WIDTH;
 use crate::declivity_detector::DeclivityDetector;
 use crate::declivity_matcher::{DeclivityMatcher, GainRule};
+use crate::depth_stage::{DepthCamera, DepthError, DepthStage};
 use crate::interpolator::Interpolator;
 use crate::params::*;
 use crate::record_fifo::RecordFifo;
+use crate::row_check::RowCheck;
+use crate::vertical_median::VerticalMedian;
 use rust_hdl::prelude::*;
 
 /// Bits of the status counters.
 pub const STATUS_BITS: usize = 16;
+/// Bits of the frame's row count (`height`).
+pub const HEIGHT_BITS: usize = W_MAX_BITS + 1;
+/// Bits of an output beat: the depth above the disparity, 16 bits each.
+pub const OUT_BITS: usize = 2 * DEPTH_BITS;
+const _: () = assert!(POS_BITS <= DEPTH_BITS);
 
 /// Where a detector beat's fields sit in the record queue's lanes.
 /// Lane 0: `pos`, then the marker's flags.
@@ -89,12 +116,14 @@ pub struct StereoLineProcessor<const N: usize> {
     pub r_tlast: Signal<In, Bit>,
     pub r_tready: Signal<Out, Bit>,
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
+    pub height: Signal<In, Bits<HEIGHT_BITS>>,
     pub m_tvalid: Signal<Out, Bit>,
-    pub m_tdata: Signal<Out, Bits<POS_BITS>>,
+    pub m_tdata: Signal<Out, Bits<OUT_BITS>>,
     pub m_tuser: Signal<Out, Bit>,
     pub m_tlast: Signal<Out, Bit>,
     pub records_dropped: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_dropped: Signal<Out, Bits<STATUS_BITS>>,
+    pub pixels_dropped: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_full: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_wide: Signal<Out, Bits<STATUS_BITS>>,
     pub left: DeclivityDetector,
@@ -102,17 +131,28 @@ pub struct StereoLineProcessor<const N: usize> {
     pub l_queue: RecordFifo,
     pub r_queue: RecordFifo,
     pub matcher: DeclivityMatcher<N>,
+    pub row_check: RowCheck,
     pub interpolator: Interpolator,
+    pub median: VerticalMedian,
+    pub depth: DepthStage,
+    // The row of the matcher's line and of the interpolator's (so that the
+    // frame's last can be marked).
+    m_row: DFF<Bits<HEIGHT_BITS>>,
+    p_row: DFF<Bits<HEIGHT_BITS>>,
+    m_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
+    p_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
     // The reference line's width: pixels counted up to W_MAX, kept at its
     // last pixel.
     l_count: DFF<Bits<WIDTH_BITS>>,
     width: DFFWithInit<Bits<WIDTH_BITS>>,
     n_records_dropped: DFF<Bits<STATUS_BITS>>,
     n_lines_dropped: DFF<Bits<STATUS_BITS>>,
+    n_pixels_dropped: DFF<Bits<STATUS_BITS>>,
     n_lines_full: DFF<Bits<STATUS_BITS>>,
     n_lines_wide: DFF<Bits<STATUS_BITS>>,
     w_max: Constant<Bits<WIDTH_BITS>>,
     sh_level: Constant<Bits<8>>,
+    sh_depth: Constant<Bits<8>>,
     sof_mask: Constant<Bits<DP16KD_WIDTH>>,
     wide_mask: Constant<Bits<DP16KD_WIDTH>>,
     full_mask: Constant<Bits<DP16KD_WIDTH>>,
@@ -120,10 +160,11 @@ pub struct StereoLineProcessor<const N: usize> {
 }
 
 impl<const N: usize> StereoLineProcessor<N> {
-    /// The datapath with the matcher's gain rule `rule` and the
-    /// interpolator's edge jump `jump` ([`POS_FRAC_BITS`] fixed point).
-    pub fn new(rule: GainRule, jump: Option<u64>) -> Self {
-        StereoLineProcessor {
+    /// The datapath with the matcher's gain rule `rule`, the interpolator's
+    /// edge jump `jump` ([`POS_FRAC_BITS`] fixed point) and the depth
+    /// stage's `camera` (an error if the depth stage cannot hold it).
+    pub fn new(rule: GainRule, jump: Option<u64>, camera: DepthCamera) -> Result<Self, DepthError> {
+        Ok(StereoLineProcessor {
             clock: Default::default(),
             l_tdata: Default::default(),
             l_tvalid: Default::default(),
@@ -136,12 +177,14 @@ impl<const N: usize> StereoLineProcessor<N> {
             r_tlast: Default::default(),
             r_tready: Default::default(),
             dispmax: Default::default(),
+            height: Default::default(),
             m_tvalid: Default::default(),
             m_tdata: Default::default(),
             m_tuser: Default::default(),
             m_tlast: Default::default(),
             records_dropped: Default::default(),
             lines_dropped: Default::default(),
+            pixels_dropped: Default::default(),
             lines_full: Default::default(),
             lines_wide: Default::default(),
             left: Default::default(),
@@ -149,39 +192,51 @@ impl<const N: usize> StereoLineProcessor<N> {
             l_queue: Default::default(),
             r_queue: Default::default(),
             matcher: DeclivityMatcher::new(rule),
+            row_check: RowCheck::new(),
             interpolator: Interpolator::new(jump),
+            median: VerticalMedian::new(),
+            depth: DepthStage::new(camera)?,
+            m_row: Default::default(),
+            p_row: Default::default(),
+            m_row_now: Default::default(),
+            p_row_now: Default::default(),
             l_count: Default::default(),
             width: DFFWithInit::new((W_MAX as u64).into()),
             n_records_dropped: Default::default(),
             n_lines_dropped: Default::default(),
+            n_pixels_dropped: Default::default(),
             n_lines_full: Default::default(),
             n_lines_wide: Default::default(),
             w_max: Constant::new((W_MAX as u64).into()),
             sh_level: Constant::new((PIXEL_BITS as u64).into()),
+            sh_depth: Constant::new((DEPTH_BITS as u64).into()),
             sof_mask: Constant::new((1u64 << SOF_BIT).into()),
             wide_mask: Constant::new((1u64 << WIDE_BIT).into()),
             full_mask: Constant::new((1u64 << FULL_BIT).into()),
             marker_mask: Constant::new((1u64 << MARKER_BIT).into()),
-        }
+        })
     }
 
-    /// The default mode's datapath: [`GainRule::Robust`] and the edge jump
-    /// [`EDGE_JUMP_LSB`].
+    /// The default mode's datapath: [`GainRule::Robust`], the edge jump
+    /// [`EDGE_JUMP_LSB`], the default camera.
     pub fn robust() -> Self {
-        Self::new(GainRule::Robust, Some(EDGE_JUMP_LSB))
+        Self::new(GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default()).expect("the default camera fits the depth stage")
     }
 }
 
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, l_count, width, n_records_dropped, n_lines_dropped, n_lines_full, n_lines_wide);
+        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide);
         self.left.clock.next = self.clock.val();
         self.right.clock.next = self.clock.val();
         self.l_queue.clock.next = self.clock.val();
         self.r_queue.clock.next = self.clock.val();
         self.matcher.clock.next = self.clock.val();
+        self.row_check.clock.next = self.clock.val();
         self.interpolator.clock.next = self.clock.val();
+        self.median.clock.next = self.clock.val();
+        self.depth.clock.next = self.clock.val();
 
         // ---- The cameras into their detectors.
         self.left.s_tdata.next = self.l_tdata.val();
@@ -293,26 +348,65 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.matcher.o_right1.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane4.val());
         self.matcher.o_right2.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane4.val() >> self.sh_level.val());
 
-        // ---- The matches into the interpolator.
-        self.interpolator.a_valid.next = self.matcher.m_valid.val();
-        self.interpolator.a_last.next = self.matcher.m_last.val();
-        self.interpolator.a_x.next = self.matcher.m_x_ref.val();
-        self.interpolator.a_d.next = self.matcher.m_disp.val();
-        self.interpolator.a_sof.next = self.matcher.m_sof.val();
+        // ---- The matches through the row check (the frame's last row
+        // marked from the row count) into the interpolator.
+        self.m_row_now.next = self.m_row.q.val();
+        if self.matcher.m_sof.val() {
+            self.m_row_now.next = 0.into();
+        }
+        if self.matcher.m_valid.val() & self.matcher.m_last.val() {
+            self.m_row.d.next = self.m_row_now.val() + 1;
+        }
+        self.row_check.m_valid.next = self.matcher.m_valid.val();
+        self.row_check.m_last.next = self.matcher.m_last.val();
+        self.row_check.m_x_ref.next = self.matcher.m_x_ref.val();
+        self.row_check.m_disp.next = self.matcher.m_disp.val();
+        self.row_check.m_sof.next = self.matcher.m_sof.val();
+        self.row_check.m_eof.next = self.m_row_now.val() == self.height.val() - 1;
+        self.interpolator.a_valid.next = self.row_check.c_valid.val();
+        self.interpolator.a_last.next = self.row_check.c_last.val();
+        self.interpolator.a_x.next = self.row_check.c_x_ref.val();
+        self.interpolator.a_d.next = self.row_check.c_disp.val();
+        self.interpolator.a_sof.next = self.row_check.c_sof.val();
         self.interpolator.a_width.next = self.width.q.val();
 
+        // ---- Pixels through the median (the frame's last row marked from
+        // the row count) and the depth stage.
+        self.p_row_now.next = self.p_row.q.val();
+        if self.interpolator.p_sof.val() {
+            self.p_row_now.next = 0.into();
+        }
+        if self.interpolator.p_valid.val() {
+            self.p_row.d.next = self.p_row_now.val();
+            if self.interpolator.p_last.val() {
+                self.p_row.d.next = self.p_row_now.val() + 1;
+            }
+        }
+        self.median.p_valid.next = self.interpolator.p_valid.val();
+        self.median.p_d.next = self.interpolator.p_d.val();
+        self.median.p_last.next = self.interpolator.p_last.val();
+        self.median.p_sof.next = self.interpolator.p_sof.val();
+        self.median.p_eof.next = self.p_row_now.val() == self.height.val() - 1;
+        self.depth.p_valid.next = self.median.v_valid.val();
+        self.depth.p_d.next = self.median.v_d.val();
+        self.depth.p_last.next = self.median.v_last.val();
+        self.depth.p_sof.next = self.median.v_sof.val();
+
         // ---- Out.
-        self.m_tvalid.next = self.interpolator.p_valid.val();
-        self.m_tdata.next = self.interpolator.p_d.val();
-        self.m_tuser.next = self.interpolator.p_sof.val();
-        self.m_tlast.next = self.interpolator.p_last.val();
+        self.m_tvalid.next = self.depth.z_valid.val();
+        self.m_tdata.next = (bit_cast::<OUT_BITS, DEPTH_BITS>(self.depth.z_mm.val()) << self.sh_depth.val()) | bit_cast::<OUT_BITS, POS_BITS>(self.depth.z_d.val());
+        self.m_tuser.next = self.depth.z_sof.val();
+        self.m_tlast.next = self.depth.z_last.val();
 
         // ---- Status.
         if self.l_queue.dropped.val() | self.r_queue.dropped.val() {
             self.n_records_dropped.d.next = self.n_records_dropped.q.val() + 1;
         }
-        if self.interpolator.overflow.val() {
+        if self.interpolator.overflow.val() | self.row_check.overflow.val() {
             self.n_lines_dropped.d.next = self.n_lines_dropped.q.val() + 1;
+        }
+        if self.median.overflow.val() {
+            self.n_pixels_dropped.d.next = self.n_pixels_dropped.q.val() + 1;
         }
         if self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_full.val() {
             self.n_lines_full.d.next = self.n_lines_full.q.val() + 1;
@@ -322,6 +416,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         }
         self.records_dropped.next = self.n_records_dropped.q.val();
         self.lines_dropped.next = self.n_lines_dropped.q.val();
+        self.pixels_dropped.next = self.n_pixels_dropped.q.val();
         self.lines_full.next = self.n_lines_full.q.val();
         self.lines_wide.next = self.n_lines_wide.q.val();
     }

@@ -176,18 +176,19 @@ golden's gains, golden's optimal path as green rings and the rtl path as orange 
     #[command(long_about = "Run a rectified stereo pair (8-bit grey; colour is converted with ITU-R \
 601 luma) through the cycle-accurate line processor (rtl::stereo_line_processor: two declivity \
 detectors, a record queue per side, the matcher of N_CELLS = 64 cells in the default gain rule, \
-the interpolator with the default mode's edge jump), the two cameras streaming one pixel per \
-clock from the same clock with --hblank idle clocks after each line, and compare the disparity map \
-with golden's (hardware parity, the same stages: the check against neighbouring rows and the \
-vertical median of the default mode are not in the line processor yet). About 2 thousand clocks \
-per second: a 384x288 pair takes a minute; --rows runs a band.
+the row check against the neighbouring rows, the interpolator with the default mode's edge jump, \
+the vertical median of five rows, the depth stage for the default camera), the two cameras \
+streaming one pixel per clock from the same clock with --hblank idle clocks after each line, and \
+compare the disparity map with golden's default mode in hardware parity. About 1-2 thousand \
+clocks per second: a 384x288 pair takes one to two minutes; --rows runs a band (as a frame of its \
+own).
 
 Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels (left \
 pixels taken), cycles (clocks simulated), px_per_clk (left pixels per clock while the frame came \
 in), stall_cycles (clocks a camera was not ready), latency_cycles (first pixel in to first \
 disparity out), agree_quarter_px (share of pixels within 1/4 px of golden), sim_cycles_per_s, \
-seconds, lines_out, and the status counters records_dropped, lines_dropped, lines_full, \
-lines_wide. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one \
+seconds, lines_out, and the status counters records_dropped, lines_dropped, pixels_dropped, \
+lines_full, lines_wide. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one \
 scale) and disparity16_rtl.png (the output word: 16-bit, value = d x 16, 0 = none).")]
     Depth(RtlDepthArgs),
 }
@@ -377,7 +378,7 @@ struct EvalArgs {
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Run each pair through the cycle-accurate line processor instead (rtl depth: the
-    /// default mode's matcher and interpolator, a pixel per clock per camera, about 2 thousand
+    /// default mode in hardware, a pixel per clock per camera, about 1-2 thousand
     /// clocks per second, minutes per pair) and report its agree_quarter_px, px_per_clk,
     /// stall_cycles, latency_cycles, bad2, nonocc_bad2 and golden's bad2 with the same stages.
     #[arg(long)]
@@ -914,8 +915,8 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
         }
         println!("  agree_quarter_px    {:.4} (share within 1/4 px of golden)", r.agree_quarter_px);
         println!(
-            "  status              {} lines out, {} records dropped, {} lines dropped, {} lines full, {} lines wide",
-            r.lines_out, r.records_dropped, r.lines_dropped, r.lines_full, r.lines_wide
+            "  status              {} lines out, {} records dropped, {} lines dropped, {} pixels dropped, {} lines full, {} lines wide",
+            r.lines_out, r.records_dropped, r.lines_dropped, r.pixels_dropped, r.lines_full, r.lines_wide
         );
         println!("  simulation          {} clocks in {:.1} s, {:.0} clocks/s", r.cycles, r.seconds, r.sim_cycles_per_s);
         for (p, what) in &files {

@@ -4,7 +4,8 @@
 
 use golden::GreyImage;
 use rtl::declivity_matcher::GainRule;
-use rtl::params::POS_FRAC_BITS;
+use rtl::depth_stage::DepthCamera;
+use rtl::params::{DEPTH_BITS, POS_FRAC_BITS};
 use rtl::stereo_line_processor::StereoLineProcessor;
 use rust_hdl::prelude::*;
 
@@ -15,6 +16,8 @@ pub struct StereoRun {
     pub width: usize,
     /// The output lines, disparities in `1/2^POS_FRAC_BITS` px (0 = none).
     pub rows: Vec<Vec<u32>>,
+    /// Their depths in mm (0 = none).
+    pub depth_rows: Vec<Vec<u16>>,
     /// Whether each output line started a frame (`m_tuser` on its first
     /// pixel).
     pub sof: Vec<bool>,
@@ -34,6 +37,7 @@ pub struct StereoRun {
     /// The status counters at the end.
     pub records_dropped: u64,
     pub lines_dropped: u64,
+    pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
 }
@@ -85,13 +89,13 @@ fn settle<const N: usize>(u: &mut StereoLineProcessor<N>, passes: usize) {
 
 /// Builds and connects the line processor on a thread with a stack large
 /// enough for it (as [`crate::matcher::build_matcher`]).
-pub fn build_stereo<const N: usize>(rule: GainRule, jump: Option<u64>) -> Box<StereoLineProcessor<N>> {
+pub fn build_stereo<const N: usize>(rule: GainRule, jump: Option<u64>, camera: DepthCamera) -> Result<Box<StereoLineProcessor<N>>, rtl::depth_stage::DepthError> {
     std::thread::Builder::new()
         .stack_size(1 << 30)
         .spawn(move || {
-            let mut uut = Box::new(StereoLineProcessor::<N>::new(rule, jump));
+            let mut uut = Box::new(StereoLineProcessor::<N>::new(rule, jump, camera)?);
             uut.connect_all();
-            uut
+            Ok(uut)
         })
         .and_then(|h| h.join().map_err(|_| std::io::Error::other("building the line processor panicked")))
         .expect("a thread to build the line processor")
@@ -134,10 +138,16 @@ impl Camera<'_> {
 }
 
 impl<const N: usize> StereoSim<N> {
-    /// The line processor with gain rule `rule` and edge jump `jump`
-    /// (`1/2^POS_FRAC_BITS` px), eq. 6's bound `dispmax` in the same unit.
-    pub fn new(rule: GainRule, jump: Option<u64>, dispmax: u32) -> Self {
-        StereoSim { uut: build_stereo::<N>(rule, jump), cycle: 0, dispmax }
+    /// The line processor with gain rule `rule`, edge jump `jump`
+    /// (`1/2^POS_FRAC_BITS` px) and the depth stage's `camera`, eq. 6's
+    /// bound `dispmax` in the same unit.
+    pub fn new(rule: GainRule, jump: Option<u64>, camera: DepthCamera, dispmax: u32) -> Result<Self, rtl::depth_stage::DepthError> {
+        Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax })
+    }
+
+    /// The default mode's line processor (as [`StereoLineProcessor::robust`]).
+    pub fn robust(dispmax: u32) -> Self {
+        Self::new(GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), DepthCamera::default(), dispmax).expect("the default camera fits")
     }
 
     /// Streams the pair through, both cameras from the same clock, a line
@@ -150,6 +160,7 @@ impl<const N: usize> StereoSim<N> {
         let mut run = StereoRun { width: left.width().min(rtl::params::W_MAX), ..StereoRun::default() };
         let mut cams = [Camera { image: left, x: 0, y: 0, idle: 0 }, Camera { image: right, x: 0, y: 0, idle: 0 }];
         let mut row: Vec<u32> = Vec::with_capacity(run.width);
+        let mut depth_row: Vec<u16> = Vec::with_capacity(run.width);
         let mut first_in = None;
         let mut last_activity = 0u64;
         let height = left.height();
@@ -157,6 +168,7 @@ impl<const N: usize> StereoSim<N> {
             let u = &mut *self.uut;
             u.clock.next = false.into();
             u.dispmax.next = (self.dispmax as u64).into();
+            u.height.next = (height as u64).into();
             let offers = [cams[0].offer(), cams[1].offer()];
             for (k, offer) in offers.iter().enumerate() {
                 let (tdata, tuser, tlast) = offer.unwrap_or((0, false, false));
@@ -188,9 +200,12 @@ impl<const N: usize> StereoSim<N> {
                 if row.is_empty() {
                     run.sof.push(u.m_tuser.val());
                 }
-                row.push(u.m_tdata.val().to_u64() as u32);
+                let word = u.m_tdata.val().to_u64();
+                row.push((word & ((1 << DEPTH_BITS) - 1)) as u32);
+                depth_row.push((word >> DEPTH_BITS) as u16);
                 if u.m_tlast.val() {
                     run.rows.push(std::mem::take(&mut row));
+                    run.depth_rows.push(std::mem::take(&mut depth_row));
                     progress(run.rows.len());
                 }
             }
@@ -210,28 +225,20 @@ impl<const N: usize> StereoSim<N> {
         run.cycles = self.cycle;
         run.records_dropped = u.records_dropped.val().to_u64();
         run.lines_dropped = u.lines_dropped.val().to_u64();
+        run.pixels_dropped = u.pixels_dropped.val().to_u64();
         run.lines_full = u.lines_full.val().to_u64();
         run.lines_wide = u.lines_wide.val().to_u64();
         run
     }
 }
 
-/// golden's disparity map of the pair for what the line processor computes
-/// (default mode, hardware parity, left reference, `dispmax` px): each
-/// line's matches interpolated with the default mode's edge jump.
+/// golden's disparity map of the pair for what the line processor computes:
+/// the default mode (its row check, edge jump and vertical median) in
+/// hardware parity, left reference, `dispmax` px.
 pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmax: f64) -> Result<Vec<f64>, golden::GoldenError> {
-    use rayon::prelude::*;
     let mut params = golden::Params::new(dispmax)?;
     params.hardware = Some(crate::detector::hardware_limits());
-    params.validate()?;
-    let w = left.width();
-    let mut map = vec![0.0; w * left.height()];
-    map.par_chunks_mut(w).enumerate().for_each(|(y, out)| {
-        let line = golden::process_line(left.row(y), right.row(y), &params);
-        let anchors: Vec<golden::disparity::Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
-        golden::disparity::interpolate_into(&anchors, params.ends, params.mode.features().edge_jump, out);
-    });
-    Ok(map)
+    Ok(golden::process_frame(left, right, &params, golden::Threads::All)?.disparity)
 }
 
 /// The share of `rtl`'s pixels within a quarter pixel of `golden`'s (both
@@ -243,11 +250,20 @@ pub fn agree_quarter_px(rtl: &[f64], golden: &[f64]) -> f64 {
 
 /// The line processor's blocks run one after the other, each under its own
 /// driver: both detectors over the pair, the matcher over their records
-/// (with `N` cells, gain rule `rule`), the interpolator over the matches
-/// (edge jump `jump`). The line processor joins exactly these blocks, so
-/// its output must equal this line for line and pixel for pixel; timing
-/// differs (here each block waits for the one before).
-pub fn blocks_one_after_the_other<const N: usize>(left: &GreyImage, right: &GreyImage, rule: GainRule, jump: Option<u64>, dispmax: u32) -> Vec<Vec<u32>> {
+/// (with `N` cells, gain rule `rule`), the row check over the matches, the
+/// interpolator over the kept ones (edge jump `jump`), the median over the
+/// map and the depth stage (`camera`) over that. The line processor joins
+/// exactly these blocks, so its output must equal this, line for line and
+/// pixel for pixel; timing differs (here each block waits for the one
+/// before). Returns the disparity rows and the depth rows.
+pub fn blocks_one_after_the_other<const N: usize>(
+    left: &GreyImage,
+    right: &GreyImage,
+    rule: GainRule,
+    jump: Option<u64>,
+    camera: DepthCamera,
+    dispmax: u32,
+) -> (Vec<Vec<u32>>, Vec<Vec<u16>>) {
     use crate::detector::{run_lines, DetectorSim};
     use crate::interpolator::{AnchorLine, FixedAnchor, InterpolatorSim};
     use crate::matcher::{MatchLine, MatchRecord, MatcherSim};
@@ -268,17 +284,20 @@ pub fn blocks_one_after_the_other<const N: usize>(left: &GreyImage, right: &Grey
     let mut matcher = MatcherSim::<N>::new(rule, dispmax);
     let matched = matcher.run(&pairs, false, || {});
     let width = left.width().min(rtl::params::W_MAX);
-    let lines: Vec<AnchorLine> = matched
+    let frame: Vec<Vec<crate::row_check::FixedMatch>> =
+        matched.iter().map(|m| m.matches.iter().map(|b| (b.x_ref as u64, b.disp as u64)).collect()).collect();
+    let checked = crate::row_check::RowCheckSim::new().run(&frame, width.max(rtl::row_check::row_check_period()));
+    let lines: Vec<AnchorLine> = checked
+        .rows
         .iter()
-        .map(|m| AnchorLine {
-            anchors: m.matches.iter().map(|b| FixedAnchor { x: b.x_ref, d: b.disp }).collect(),
-            width,
-            sof: m.marker.sof,
-        })
+        .enumerate()
+        .map(|(y, c)| AnchorLine { anchors: c.kept.iter().map(|&(x, d)| FixedAnchor { x: x as u32, d: d as u32 }).collect(), width, sof: y == 0 })
         .collect();
-    let mut interpolator = InterpolatorSim::new(jump);
-    let (pixels, _) = interpolator.run(&lines, width);
-    pixels.into_iter().map(|p| p.d).collect()
+    let (pixels, _) = InterpolatorSim::new(jump).run(&lines, width);
+    let map: Vec<Vec<u64>> = pixels.into_iter().map(|p| p.d.into_iter().map(u64::from).collect()).collect();
+    let (medianed, _) = crate::vertical_median::VerticalMedianSim::new().run(&map, width).expect("a map of one width");
+    let depth = crate::depth_stage::DepthStageSim::new(camera).expect("the camera fits").run(&medianed, width);
+    (medianed.into_iter().map(|r| r.into_iter().map(|d| d as u32).collect()).collect(), depth.z)
 }
 
 /// What `declivity rtl depth` reports on a pair (one JSON object).
@@ -312,6 +331,7 @@ pub struct StereoReport {
     pub lines_out: usize,
     pub records_dropped: u64,
     pub lines_dropped: u64,
+    pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
 }
@@ -338,7 +358,7 @@ pub fn run_pair(
     if (left.width(), left.height()) != (right.width(), right.height()) {
         return Err(golden::GoldenError::SizeMismatch { left_w: left.width(), left_h: left.height(), right_w: right.width(), right_h: right.height() }.into());
     }
-    let mut sim = StereoSim::<{ rtl::params::N_CELLS }>::new(GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), lsb);
+    let mut sim = StereoSim::<{ rtl::params::N_CELLS }>::robust(lsb);
     let t0 = std::time::Instant::now();
     let run = sim.run(left, right, hblank, progress);
     let seconds = t0.elapsed().as_secs_f64();
@@ -361,6 +381,7 @@ pub fn run_pair(
         lines_out: run.rows.len(),
         records_dropped: run.records_dropped,
         lines_dropped: run.lines_dropped,
+        pixels_dropped: run.pixels_dropped,
         lines_full: run.lines_full,
         lines_wide: run.lines_wide,
     };

@@ -17,8 +17,9 @@ pub enum Top {
     /// disparity per pixel per clock out, the default mode's edge jump.
     Interpolator,
     /// The whole line processor (`rtl::stereo_line_processor`): two
-    /// detectors, the record queues, the matcher (--cells), the
-    /// interpolator.
+    /// detectors, the record queues, the matcher (--cells), the row check,
+    /// the interpolator, the vertical median and the depth stage (the
+    /// default camera).
     Stereo,
 }
 
@@ -104,7 +105,7 @@ fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
 /// The line processor's Verilog (the matcher's rule, the default mode's
 /// edge jump), built as [`matcher_verilog`] builds the matcher's.
 fn stereo_verilog<const N: usize>(rule: GainRule) -> String {
-    let uut = crate::stereo::build_stereo::<N>(rule, Some(rtl::params::EDGE_JUMP_LSB));
+    let uut = crate::stereo::build_stereo::<N>(rule, Some(rtl::params::EDGE_JUMP_LSB), rtl::depth_stage::DepthCamera::default()).expect("the default camera fits");
     let v = std::thread::Builder::new()
         .stack_size(1 << 30)
         .spawn(move || generate_verilog(&*uut))
