@@ -15,9 +15,10 @@
 //! The stages are a list ([`STAGES`]) in pipeline order: each gives its
 //! clocks per line (how long it is busy with one line, the throughput
 //! bound) and its latency (from the event that hands it a line to the
-//! event that hands the line on). The stages of `DESIGN.md` §3 not in rtl
-//! yet ([`NOT_YET_INCLUDED`]: the default mode's row check and vertical
-//! median, the depth stage) become more entries of the list.
+//! event that hands the line on). The stages that are in the line processor
+//! (`rtl::stereo_line_processor`) but not in this budget yet
+//! ([`NOT_YET_INCLUDED`]: the default mode's row check and vertical median,
+//! the depth stage) become more entries of the list.
 //!
 //! ## The matcher's worst line
 //! `line_cycles(n, m, s, k, K)` is `sweep_cycles(n, m, K)` =
@@ -278,10 +279,10 @@ pub type Stage = fn(&Sizes) -> StageBudget;
 /// after the other; the scanline's latency is the sum of theirs).
 pub const STAGES: [Stage; 3] = [detector_stage, matcher_stage, interpolator_stage];
 
-/// Stages of `DESIGN.md` §3 that are not in rtl yet, so not in the budget.
+/// Stages of the line processor whose cycles are not in the budget yet.
 pub const NOT_YET_INCLUDED: [&str; 2] = [
-    "the default mode's check of matches against the neighbouring rows and its vertical median (line buffers; issue 6): not yet included",
-    "depth stage (Z = f·b/(D·p) per pixel; DESIGN.md §3, issue 6): not yet included",
+    "row check (rtl::row_check: one line of delay) and vertical median (rtl::vertical_median: two lines of delay, MEDIAN_LAG): in the line processor, not yet included here",
+    "depth stage (rtl::depth_stage, Z = f·b/(D·p) per pixel, DEPTH_LAG clocks): in the line processor, not yet included here",
 ];
 
 /// Lines of one width run through [`line_starts`] to see the detector's
