@@ -189,12 +189,16 @@ in), stall_cycles (clocks a camera was not ready), latency_cycles (first pixel i
 disparity out), agree_quarter_px (share of pixels within 1/4 px of golden), sim_cycles_per_s, \
 seconds, lines_out, and the status counters records_dropped, lines_dropped, pixels_dropped, \
 lines_full, lines_wide. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one \
-scale) and disparity16_rtl.png (the output word: 16-bit, value = d x 16, 0 = none).")]
+scale), disparity16_rtl.png (the output word's disparity: 16-bit, value = d x 16, 0 = none) and \
+depth_mm_rtl.png (its depth, eq. 1 for the camera the processor is generated for: 16-bit \
+millimetres, 0 = none).")]
     Depth(RtlDepthArgs),
 }
 
+/// What `rtl match` and `rtl depth` both take: a rectified pair, eq. 6's
+/// bound, the output form.
 #[derive(Args, Debug)]
-struct RtlDepthArgs {
+struct RtlPairArgs {
     /// Left image of the rectified pair (the reference view).
     left: PathBuf,
     /// Right image of the rectified pair.
@@ -206,6 +210,12 @@ struct RtlDepthArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
+}
+
+#[derive(Args, Debug)]
+struct RtlDepthArgs {
+    #[command(flatten)]
+    pair: RtlPairArgs,
     /// Folder for the pictures [default: ./declivity-out/rtl-depth-LEFT_STEM].
     #[arg(long)]
     out: Option<PathBuf>,
@@ -219,17 +229,8 @@ struct RtlDepthArgs {
 
 #[derive(Args, Debug)]
 struct RtlMatchArgs {
-    /// Left image of the rectified pair (the reference view).
-    left: PathBuf,
-    /// Right image of the rectified pair.
-    right: PathBuf,
-    /// Search bound of eq. 6 in pixels: 0 < d < DISPMAX (greater than 1, at most W_MAX = 1024,
-    /// a multiple of 1/16 px: the matcher takes it in 1/16 px).
-    #[arg(long)]
-    dispmax: f64,
-    /// Print one JSON object instead of text.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    pair: RtlPairArgs,
     /// Folder for the picture [default: ./declivity-out/rtl-match-LEFT_STEM].
     #[arg(long)]
     out: Option<PathBuf>,
@@ -721,20 +722,27 @@ fn matcher_dispmax(v: f64) -> Result<u32, SimError> {
     Ok(sim::budget::dispmax_lsb(v)?)
 }
 
-fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
-    use sim::matcher::{dequantize, golden_mode, image_lines, match_image, Agreement, MatchLine};
-    let dispmax = matcher_dispmax(a.dispmax)?;
-    let left = load_grey(&a.left)?;
-    let right = load_grey(&a.right)?;
-    for (p, l) in [(&a.left, &left), (&a.right, &right)] {
-        if let Some(note) = &l.converted {
+/// The two images of a pair, grey (notes on conversions printed), of one
+/// size.
+fn load_pair_images(left: &std::path::Path, right: &std::path::Path) -> Result<(golden::GreyImage, golden::GreyImage), SimError> {
+    let (l, r) = (load_grey(left)?, load_grey(right)?);
+    for (p, img) in [(left, &l), (right, &r)] {
+        if let Some(note) = &img.converted {
             eprintln!("note: {}: {note}", p.display());
         }
     }
-    let (l, r) = (&left.image, &right.image);
+    let (l, r) = (l.image, r.image);
     if (l.width(), l.height()) != (r.width(), r.height()) {
         return Err(golden::GoldenError::SizeMismatch { left_w: l.width(), left_h: l.height(), right_w: r.width(), right_h: r.height() }.into());
     }
+    Ok((l, r))
+}
+
+fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
+    use sim::matcher::{dequantize, golden_mode, image_lines, match_image, Agreement, MatchLine};
+    let dispmax = matcher_dispmax(a.pair.dispmax)?;
+    let (left, right) = load_pair_images(&a.pair.left, &a.pair.right)?;
+    let (l, r) = (&left, &right);
     let height = l.height();
     let rows = a.rows.clone().unwrap_or(0..height);
     if rows.end > height {
@@ -742,7 +750,7 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
             "--rows {}..{}: outside the image ({} has {height} rows)",
             rows.start,
             rows.end,
-            a.left.display()
+            a.pair.left.display()
         )));
     }
     let graph_line = a.graph_line.unwrap_or(rows.start + (rows.end - rows.start) / 2);
@@ -757,8 +765,8 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
         first.0.sof = true;
     }
     let chunks = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let bar = lines_bar(pairs.len(), format!("rtl matcher x{}", chunks.min(pairs.len())), a.json);
-    let name = a.left.display().to_string();
+    let bar = lines_bar(pairs.len(), format!("rtl matcher x{}", chunks.min(pairs.len())), a.pair.json);
+    let name = a.pair.left.display().to_string();
     let rule = a.rule.rule();
     let t0 = std::time::Instant::now();
     let (mut report, outcomes) = match_image::<{ rtl::params::N_CELLS }>(&name, &pairs, rule, dispmax, chunks, &|| bar.inc(1));
@@ -768,7 +776,7 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
 
     // The matching graph of one line: golden's gains and path, the rtl path.
     let out = a.out.clone().unwrap_or_else(|| {
-        let stem = a.left.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
+        let stem = a.pair.left.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
         PathBuf::from("declivity-out").join(format!("rtl-match-{stem}"))
     });
     std::fs::create_dir_all(&out).map_err(|source| SimError::Io { path: out.clone(), source })?;
@@ -784,7 +792,7 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
     let picture = pictures::matching_graph_two_paths(&fr, &fo, &params, &line.golden.table, &line.golden.nodes, &line.rtl.pairs());
     pictures::save_png(&picture, &graph)?;
 
-    if a.json {
+    if a.pair.json {
         /// The report and what the command adds to it, as one object.
         #[derive(serde::Serialize)]
         struct Json<'a> {
@@ -855,17 +863,8 @@ fn eval_rtl(dirs: &[PathBuf], json: bool) -> Result<(), SimError> {
 }
 
 fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
-    let left = load_grey(&a.left)?;
-    let right = load_grey(&a.right)?;
-    for (p, l) in [(&a.left, &left), (&a.right, &right)] {
-        if let Some(note) = &l.converted {
-            eprintln!("note: {}: {note}", p.display());
-        }
-    }
-    let (l, r) = (&left.image, &right.image);
-    if (l.width(), l.height()) != (r.width(), r.height()) {
-        return Err(golden::GoldenError::SizeMismatch { left_w: l.width(), left_h: l.height(), right_w: r.width(), right_h: r.height() }.into());
-    }
+    let (left, right) = load_pair_images(&a.pair.left, &a.pair.right)?;
+    let (l, r) = (&left, &right);
     let height = l.height();
     let rows = a.rows.clone().unwrap_or(0..height);
     if rows.end > height || rows.is_empty() {
@@ -873,7 +872,7 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
             "--rows {}..{}: not a band of the image ({} has {height} rows)",
             rows.start,
             rows.end,
-            a.left.display()
+            a.pair.left.display()
         )));
     }
     let band = |img: &golden::GreyImage| {
@@ -881,13 +880,13 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
         golden::GreyImage::new(w, rows.len(), img.pixels()[rows.start * w..rows.end * w].to_vec())
     };
     let (l, r) = (band(l)?, band(r)?);
-    let bar = lines_bar(l.height(), "rtl line processor".into(), a.json);
-    let name = a.left.display().to_string();
-    let (report, rtl, gold) = sim::stereo::run_pair(&name, &l, &r, a.dispmax, a.hblank, |n| bar.set_position(n as u64))?;
+    let bar = lines_bar(l.height(), "rtl line processor".into(), a.pair.json);
+    let name = a.pair.left.display().to_string();
+    let (report, rtl, gold, depth) = sim::stereo::run_pair(&name, &l, &r, a.pair.dispmax, a.hblank, |n| bar.set_position(n as u64))?;
     bar.finish_and_clear();
 
     let out = a.out.clone().unwrap_or_else(|| {
-        let stem = a.left.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
+        let stem = a.pair.left.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
         PathBuf::from("declivity-out").join(format!("rtl-depth-{stem}"))
     });
     std::fs::create_dir_all(&out).map_err(|source| SimError::Io { path: out.clone(), source })?;
@@ -896,14 +895,17 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
         (out.join("disparity_rtl.png"), "rtl disparity, near is bright"),
         (out.join("disparity_golden.png"), "golden's disparity, same scale"),
         (out.join("disparity16_rtl.png"), "rtl output word, 16-bit, value = d x 16, 0 = none"),
+        (out.join("depth_mm_rtl.png"), "rtl depth (eq. 1, default camera), 16-bit millimetres, 0 = none"),
     ];
-    pictures::save_png(&pictures::disparity_visual_of(&rtl, w, h, a.dispmax), &files[0].0)?;
-    pictures::save_png(&pictures::disparity_visual_of(&gold, w, h, a.dispmax), &files[1].0)?;
+    pictures::save_png(&pictures::disparity_visual_of(&rtl, w, h, a.pair.dispmax), &files[0].0)?;
+    pictures::save_png(&pictures::disparity_visual_of(&gold, w, h, a.pair.dispmax), &files[1].0)?;
     let word: Vec<u16> = rtl.iter().map(|&d| (d * (1u32 << rtl::params::POS_FRAC_BITS) as f64).round() as u16).collect();
     let png16 = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(w as u32, h as u32, word).expect("one word per pixel");
     pictures::save_png(&png16, &files[2].0)?;
+    let depth16 = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(w as u32, h as u32, depth).expect("one depth per pixel");
+    pictures::save_png(&depth16, &files[3].0)?;
 
-    if a.json {
+    if a.pair.json {
         println!("{}", serde_json::to_string(&report).expect("the report serializes"));
     } else {
         let r = &report;

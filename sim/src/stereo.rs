@@ -337,8 +337,9 @@ pub struct StereoReport {
 }
 
 /// Runs a pair through the line processor (default mode: [`GainRule::Robust`],
-/// the edge jump) and compares with golden; returns the report, the rtl's
-/// map and golden's (px, row-major, 0 = none).
+/// the edge jump, the default camera) and compares with golden; returns the
+/// report, the rtl's map and golden's (px, row-major, 0 = none) and the
+/// rtl's depths (mm, row-major, 0 = none).
 pub fn run_pair(
     name: &str,
     left: &GreyImage,
@@ -346,7 +347,7 @@ pub fn run_pair(
     dispmax: f64,
     hblank: usize,
     progress: impl FnMut(usize),
-) -> Result<(StereoReport, Vec<f64>, Vec<f64>), crate::SimError> {
+) -> Result<(StereoReport, Vec<f64>, Vec<f64>, Vec<u16>), crate::SimError> {
     let lsb = crate::budget::dispmax_lsb(dispmax)?;
     if left.width() > rtl::params::W_MAX {
         return Err(crate::SimError::Argument(format!(
@@ -385,7 +386,11 @@ pub fn run_pair(
         lines_full: run.lines_full,
         lines_wide: run.lines_wide,
     };
-    Ok((report, rtl, gold))
+    let mut depth = vec![0u16; left.width() * left.height()];
+    for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
+        dst.iter_mut().zip(row).for_each(|(d, &z)| *d = z);
+    }
+    Ok((report, rtl, gold, depth))
 }
 
 /// One pair through the line processor, scored against its ground truth:
@@ -413,7 +418,7 @@ pub struct RtlEvalReport {
 /// truth.
 pub fn evaluate_pair_rtl(pair: &crate::io::PairData, hblank: usize, progress: impl FnMut(usize)) -> Result<RtlEvalReport, crate::SimError> {
     use crate::eval::dense_scores;
-    let (run, rtl, gold) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, progress)?;
+    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, progress)?;
     let gt = &pair.gt_left;
     let all = dense_scores(&rtl, gt, None);
     Ok(RtlEvalReport {
