@@ -1,5 +1,6 @@
-//! The whole line processor (`rtl::stereo_line_processor`) against golden
-//! on real pairs: two camera streams in, the disparity map out.
+//! The whole line processor (`rtl::stereo_line_processor`) on a band of a
+//! real pair: two camera streams in, the disparity and depth map out, equal
+//! to its blocks run one after the other and within 1/4 px of golden.
 
 use rtl::declivity_matcher::GainRule;
 use rtl::depth_stage::DepthCamera;
@@ -44,9 +45,10 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
         assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
     }
     assert_eq!(run.depth_rows, depth, "the depths differ from the depth stage's on the same map");
-    // A guard, not issue 6's target (0.995, not met: the detector's and the
-    // matcher's fixed-point tolerances change a few matches, and the row
-    // check and the median carry each change to the neighbouring rows).
-    assert!(agree >= 0.9, "{agree}");
+    // Issue 6's target, against golden's hardware parity (the detector's
+    // limits and the formats the matcher sees). (Before golden's parity
+    // took the formats, this band agreed on 0.958 of its pixels: a position
+    // moved by less than 1/16 px changes a near tie of eq. 9.)
+    assert!(agree >= 0.995, "{agree}");
 }
 

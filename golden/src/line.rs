@@ -23,14 +23,16 @@ pub struct LineFeatures {
 }
 
 /// [`line_features`], or with `Some(limits)` as the streaming detector of
-/// those sizes finds them (`crate::hardware::detect_line`; σ is then
-/// `d_t / 5.6`).
+/// those sizes finds them and sends them to the matcher
+/// (`crate::hardware::detect_line`, `crate::hardware::matcher_view`: σ is
+/// then the detector's `d_t / 5.6`, `d_t` and the positions the matcher's).
 pub fn line_features_with(line: &[u8], limits: Option<crate::hardware::HardwareLimits>) -> LineFeatures {
     match limits {
         None => line_features(line),
         Some(limits) => {
             let d = crate::hardware::detect_line(line, limits);
-            LineFeatures { sigma: d.dt / crate::noise::THRESHOLD_FACTOR, dt: d.dt, declivities: d.declivities }
+            let (dt, declivities) = crate::hardware::matcher_view(&d, limits);
+            LineFeatures { sigma: d.dt / crate::noise::THRESHOLD_FACTOR, dt, declivities }
         }
     }
 }

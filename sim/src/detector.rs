@@ -283,9 +283,15 @@ pub fn run_lines(
     Ok(run)
 }
 
-/// The hardware's limits as golden's parity mode takes them.
+/// The hardware's limits and formats as golden's parity mode takes them.
 pub fn hardware_limits() -> HardwareLimits {
-    HardwareLimits { w_max: W_MAX, n_max: N_MAX }
+    HardwareLimits {
+        w_max: W_MAX,
+        n_max: N_MAX,
+        pos_frac_bits: rtl::params::POS_FRAC_BITS as u32,
+        dt_frac_bits: rtl::params::DT_FRAC_BITS as u32,
+        match_dt_frac_bits: rtl::params::MATCH_DT_FRAC_BITS as u32,
+    }
 }
 
 /// How one line of rtl records compares with golden in parity mode.
