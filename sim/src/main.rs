@@ -322,9 +322,9 @@ struct MethodArgs {
     /// Interpolation before the first and after the last match of a line.
     #[arg(long, value_enum, default_value_t = CliEnds::Hold)]
     ends: CliEnds,
-    /// Detect declivities as the hardware detector does (W_MAX = 1024 pixels stored per
-    /// line, N_MAX = 128 declivities kept per line); the same as without it on lines within
-    /// those limits.
+    /// Run as the hardware does: declivities of the first W_MAX = 1024 pixels of a line, the
+    /// first N_MAX = 128 kept, and matched on the detector's fixed-point formats (positions
+    /// rounded down to 1/16 px, d_t to 1/2 grey level), as `rtl depth` compares with.
     #[arg(long)]
     hardware_parity: bool,
 }
