@@ -313,59 +313,11 @@ fn vertical_median_verilog_generates_and_matches_rust_under_icarus() {
     eprintln!("icarus: {} cycles, {} pixels, {} overflows, {:.2} s", trace.len(), count(valid), count(overflow), run.run.as_secs_f64());
 }
 
-/// Verilator `-Wall` warnings accepted in the vertical median's Verilog,
-/// with why.
-const ACCEPTED: &[(&str, &str)] = &[
-    (
-        "WIDTH",
-        "rust-hdl writes every literal as 32 or 64 bits; each arithmetic result goes through a signal of its own width (rtl crate doc)",
-    ),
-    (
-        "PINMISSING",
-        "rtl::block_ram's DP16KD instances leave the data outputs they do not use unconnected (port A's, and port B's above POS_BITS); checked below to be only those",
-    ),
-];
-
-/// The whole Verilator `-Wall` log of the design (`sim::cosim::lint_verilator`
-/// keeps only the log's last 8000 bytes, which here would hide most
-/// warnings), as `(code, message)` pairs.
-fn verilator_warnings(design: &str) -> Option<Vec<(String, String)>> {
-    let dir = std::env::temp_dir().join(format!("rtl_vertical_median_lint_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("a lint directory");
-    std::fs::write(dir.join("top.v"), design).expect("top.v");
-    std::fs::write(dir.join("models.v"), sim::primitives::models_for(design)).expect("models.v");
-    let out = std::process::Command::new("verilator")
-        .args(["--lint-only", "-Wall", "-Wno-fatal", "-Wno-DECLFILENAME", "--top-module", "top", "top.v", "models.v"])
-        .current_dir(&dir)
-        .output()
-        .ok()?;
-    let log = String::from_utf8_lossy(&out.stderr).into_owned() + &String::from_utf8_lossy(&out.stdout);
-    std::fs::remove_dir_all(&dir).ok();
-    assert!(out.status.success() && !log.lines().any(|l| l.starts_with("%Error")), "verilator errors:\n{log}");
-    Some(
-        log.lines()
-            .filter_map(|l| l.strip_prefix("%Warning-"))
-            .filter_map(|l| l.split_once(':'))
-            .map(|(code, rest)| (code.to_string(), rest.to_string()))
-            .collect(),
-    )
-}
-
 #[test]
 fn vertical_median_verilog_lints_clean_but_for_the_accepted_warnings() {
-    let Some(warnings) = verilator_warnings(&median_verilog()) else {
-        eprintln!("verilator not installed: lint skipped");
-        return;
-    };
-    let mut counts = std::collections::BTreeMap::new();
-    for (code, msg) in &warnings {
-        assert!(ACCEPTED.iter().any(|(c, _)| c == code), "not accepted: %Warning-{code}:{msg}");
-        if code == "PINMISSING" {
-            let pin = msg.rsplit("missing pin: ").next().unwrap_or("");
-            assert!(pin.starts_with("'DOA") || pin.starts_with("'DOB"), "a missing pin other than a DP16KD data output: {msg}");
-        }
-        *counts.entry(code.clone()).or_insert(0) += 1;
-    }
+    let warnings = cosim::lint_verilator(&median_verilog()).unwrap_or_else(|e| panic!("{e}"));
+    // (PINMISSING is accepted on DP16KD data outputs only: check_accepted.)
+    let counts = cosim::check_accepted(&warnings, cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     // Each DP16KD: port A's 18 outputs and port B's 4 above POS_BITS.
     assert_eq!(counts.get("PINMISSING"), Some(&(MEDIAN_LINE_BUFFERS * (18 + 18 - POS_BITS))));
     eprintln!("accepted lint warnings: {counts:?}");
