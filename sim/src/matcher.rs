@@ -453,15 +453,18 @@ pub fn check_line(reference: &MatchLine, other: &MatchLine, got: &MatchedLine, g
 /// ([`quantize_line`]); the first row carries the start of frame.
 pub fn image_lines(left: &golden::GreyImage, right: &golden::GreyImage) -> Vec<(MatchLine, MatchLine)> {
     use rayon::prelude::*;
-    let limits = Some(golden::hardware::HardwareLimits::default());
+    let limits = golden::hardware::HardwareLimits::default();
     (0..left.height())
         .into_par_iter()
         .map(|y| {
             // A line wider than W_MAX is its first W_MAX pixels, flagged
             // wide, as the detector sends it.
-            let f = |img: &golden::GreyImage| MatchLine {
-                wide: img.width() > W_MAX,
-                ..quantize_line(&golden::line::line_features_with(img.row(y), limits))
+            // (The detector's own outputs, `d_t` at its 1/32 grey level:
+            // `line_features_with` would give the matcher's 1/2.)
+            let f = |img: &golden::GreyImage| {
+                let d = golden::hardware::detect_line(img.row(y), limits);
+                let features = LineFeatures { sigma: d.dt / golden::noise::THRESHOLD_FACTOR, dt: d.dt, declivities: d.declivities };
+                MatchLine { wide: img.width() > W_MAX, ..quantize_line(&features) }
             };
             let (mut l, r) = (f(left), f(right));
             l.sof = y == 0;
