@@ -147,15 +147,8 @@ impl DetectorSim {
 const SETTLE_LOW: usize = 3;
 const SETTLE_HIGH: usize = 5;
 
-/// Settles the logic: `passes` evaluations of every block without asking
-/// whether anything changed (rust-hdl's `simulate` asks after each, a walk
-/// over the whole design), then `simulate` until nothing changes. Extra
-/// passes over settled logic change nothing, so the result is the same.
 fn settle(u: &mut DeclivityDetector, passes: usize) {
-    for _ in 0..passes {
-        u.update_all();
-    }
-    assert!(simulate(u, 200), "the detector's logic did not settle");
+    crate::settle_block(u, passes, 200, "the detector");
 }
 
 fn read_beat(u: &DeclivityDetector) -> RecordBeat {

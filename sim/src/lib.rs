@@ -32,3 +32,31 @@ pub mod vertical_median;
 pub mod workdir;
 
 pub use error::SimError;
+
+/// Stack of the threads that build and generate the large blocks: rust-hdl
+/// builds a block by value, and 64 cells of signals do not fit on a default
+/// stack.
+const BIG_STACK: usize = 1 << 30;
+
+/// Runs `f` on a thread with [`BIG_STACK`] of stack and returns its result;
+/// `what` names the work if it panics.
+pub(crate) fn on_big_stack<T: Send + 'static>(what: &str, f: impl FnOnce() -> T + Send + 'static) -> T {
+    std::thread::Builder::new()
+        .stack_size(BIG_STACK)
+        .spawn(f)
+        .and_then(|h| h.join().map_err(|_| std::io::Error::other(format!("{what} panicked"))))
+        .unwrap_or_else(|e| panic!("{what}: {e}"))
+}
+
+/// Settles a block under direct drive: `passes` evaluations of every block
+/// without asking whether anything changed (rust-hdl's `simulate` asks
+/// after each, a walk over the whole design), then `simulate` for at most
+/// `limit` rounds until nothing changes. Extra passes over settled logic
+/// change nothing, so the result is the same. `what` names the block if it
+/// does not settle.
+pub(crate) fn settle_block<B: rust_hdl::prelude::Block>(u: &mut B, passes: usize, limit: usize, what: &str) {
+    for _ in 0..passes {
+        u.update_all();
+    }
+    assert!(rust_hdl::prelude::simulate(u, limit), "{what}'s logic did not settle");
+}

@@ -221,34 +221,20 @@ impl<const N: usize> MatcherSim<N> {
 const SETTLE_LOW: usize = 4;
 const SETTLE_HIGH: usize = 8;
 
-/// Settles the logic: `passes` evaluations of every block without asking
-/// whether anything changed (rust-hdl's `simulate` asks after each, a walk
-/// over the whole design), then `simulate` until nothing changes. Extra
-/// passes over settled logic change nothing, so the result is the same.
 fn settle<const N: usize>(u: &mut DeclivityMatcher<N>, passes: usize) {
-    for _ in 0..passes {
-        u.update_all();
-    }
-    assert!(simulate(u, 200), "the matcher's logic did not settle");
+    crate::settle_block(u, passes, 200, "the matcher");
 }
 
 /// Builds and connects the matcher on a thread of its own: rust-hdl builds
 /// the block by value, and 64 cells of signals do not fit on a default
 /// stack.
 pub fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
-    std::thread::Builder::new()
-        .stack_size(BUILD_STACK)
-        .spawn(move || {
-            let mut uut = Box::new(DeclivityMatcher::<N>::new(rule));
-            uut.connect_all();
-            uut
-        })
-        .and_then(|h| h.join().map_err(|_| std::io::Error::other("building the matcher panicked")))
-        .expect("a thread to build the matcher")
+    crate::on_big_stack("building the matcher", move || {
+        let mut uut = Box::new(DeclivityMatcher::<N>::new(rule));
+        uut.connect_all();
+        uut
+    })
 }
-
-/// Stack of the thread that builds the matcher.
-const BUILD_STACK: usize = 1 << 30;
 
 /// Beat `k` of a line: its records, then its marker.
 fn side_beat(line: &MatchLine, k: usize) -> SideBeat {

@@ -81,24 +81,17 @@ const SETTLE_LOW: usize = 4;
 const SETTLE_HIGH: usize = 8;
 
 fn settle<const N: usize>(u: &mut StereoLineProcessor<N>, passes: usize) {
-    for _ in 0..passes {
-        u.update_all();
-    }
-    assert!(simulate(u, 300), "the line processor's logic did not settle");
+    crate::settle_block(u, passes, 300, "the line processor");
 }
 
 /// Builds and connects the line processor on a thread with a stack large
 /// enough for it (as [`crate::matcher::build_matcher`]).
 pub fn build_stereo<const N: usize>(rule: GainRule, jump: Option<u64>, camera: DepthCamera) -> Result<Box<StereoLineProcessor<N>>, rtl::depth_stage::DepthError> {
-    std::thread::Builder::new()
-        .stack_size(1 << 30)
-        .spawn(move || {
-            let mut uut = Box::new(StereoLineProcessor::<N>::new(rule, jump, camera)?);
-            uut.connect_all();
-            Ok(uut)
-        })
-        .and_then(|h| h.join().map_err(|_| std::io::Error::other("building the line processor panicked")))
-        .expect("a thread to build the line processor")
+    crate::on_big_stack("building the line processor", move || {
+        let mut uut = Box::new(StereoLineProcessor::<N>::new(rule, jump, camera)?);
+        uut.connect_all();
+        Ok(uut)
+    })
 }
 
 /// One camera's stream: the pixel offered, and where it is.

@@ -94,11 +94,7 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
 /// marked too.)
 fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
     let uut: Box<DeclivityMatcher<N>> = crate::matcher::build_matcher::<N>(rule);
-    let v = std::thread::Builder::new()
-        .stack_size(1 << 30)
-        .spawn(move || generate_verilog(&*uut))
-        .and_then(|h| h.join().map_err(|_| std::io::Error::other("generating the matcher's Verilog panicked")))
-        .expect("a thread to generate the Verilog");
+    let v = crate::on_big_stack("generating the matcher's Verilog", move || generate_verilog(&*uut));
     mark_memories_no_rw_check(&v)
 }
 
@@ -106,11 +102,7 @@ fn matcher_verilog<const N: usize>(rule: GainRule) -> String {
 /// edge jump), built as [`matcher_verilog`] builds the matcher's.
 fn stereo_verilog<const N: usize>(rule: GainRule) -> String {
     let uut = crate::stereo::build_stereo::<N>(rule, Some(rtl::params::EDGE_JUMP_LSB), rtl::depth_stage::DepthCamera::default()).expect("the default camera fits");
-    let v = std::thread::Builder::new()
-        .stack_size(1 << 30)
-        .spawn(move || generate_verilog(&*uut))
-        .and_then(|h| h.join().map_err(|_| std::io::Error::other("generating the line processor's Verilog panicked")))
-        .expect("a thread to generate the Verilog");
+    let v = crate::on_big_stack("generating the line processor's Verilog", move || generate_verilog(&*uut));
     mark_memories_no_rw_check(&v)
 }
 
