@@ -186,7 +186,7 @@ pub enum CosimError {
     Committed { path: PathBuf, msg: String },
 }
 
-fn io_err(path: &Path) -> impl FnOnce(io::Error) -> CosimError + '_ {
+pub(crate) fn io_err(path: &Path) -> impl FnOnce(io::Error) -> CosimError + '_ {
     move |source| CosimError::Io {
         path: path.to_path_buf(),
         source,
@@ -1316,26 +1316,26 @@ pub struct Run {
 }
 
 /// A unique work directory; removed on drop unless `keep` was set.
-struct WorkDir {
-    path: PathBuf,
-    keep: bool,
+pub(crate) struct WorkDir {
+    pub(crate) path: PathBuf,
+    pub(crate) keep: bool,
 }
 
 impl WorkDir {
-    fn new(root: Option<&Path>, tag: &str) -> Result<WorkDir, CosimError> {
+    pub(crate) fn new(root: Option<&Path>, tag: &str) -> Result<WorkDir, CosimError> {
         let root = root.map(Path::to_path_buf).unwrap_or_else(std::env::temp_dir);
         let path = crate::workdir::unique_dir(&root, &format!("cosim-{tag}")).map_err(io_err(&root))?;
         Ok(WorkDir { path, keep: false })
     }
 
-    fn write(&self, name: &str, text: &str) -> Result<(), CosimError> {
+    pub(crate) fn write(&self, name: &str, text: &str) -> Result<(), CosimError> {
         let p = self.path.join(name);
         std::fs::write(&p, text).map_err(io_err(&p))
     }
 
     /// The design as `top.v`, and beside it, as [`MODELS_FILE`], the models
     /// of the vendor primitives it instantiates (every tool here reads both).
-    fn write_design(&self, design: &str) -> Result<(), CosimError> {
+    pub(crate) fn write_design(&self, design: &str) -> Result<(), CosimError> {
         self.write("top.v", design)?;
         self.write(MODELS_FILE, &models_for(design))
     }
@@ -1365,7 +1365,7 @@ fn spawn(tool: &str, cmd: &mut Command) -> Result<Output, CosimError> {
     })
 }
 
-fn log_of(out: &Output) -> String {
+pub(crate) fn log_of(out: &Output) -> String {
     const MAX: usize = 8000;
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     log.push_str(&String::from_utf8_lossy(&out.stderr));
@@ -1381,7 +1381,7 @@ fn log_of(out: &Output) -> String {
 
 /// Runs a tool in `dir`; a non-zero exit is [`CosimError::ToolFailed`]
 /// (the caller marks the work directory kept).
-fn run_tool(tool: &str, cmd: &mut Command, dir: &WorkDir) -> Result<Output, CosimError> {
+pub(crate) fn run_tool(tool: &str, cmd: &mut Command, dir: &WorkDir) -> Result<Output, CosimError> {
     let out = spawn(tool, cmd.current_dir(&dir.path))?;
     if out.status.success() {
         Ok(out)
@@ -1532,7 +1532,7 @@ const VERILATOR_RUNTIME: [&str; 3] = ["verilated.o", "verilated_threads.o", "ver
 /// `verilator --binary` split in two: Verilate (`--cc --exe --main
 /// --timing`, what `--binary` implies), then `make` with the runtime
 /// objects taken from the cache when present.
-fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), CosimError> {
+pub(crate) fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), CosimError> {
     let opt = &opts.verilator_cxx_opt;
     run_tool(
         &opts.verilator,
@@ -1585,7 +1585,7 @@ fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), CosimError> {
 
 /// The cache directory of Verilator's runtime objects for this Verilator
 /// (its `--version` and command), C++ compiler (`CXX`) and `-O` flag.
-fn verilator_cache_dir(opts: &Options) -> Option<PathBuf> {
+pub(crate) fn verilator_cache_dir(opts: &Options) -> Option<PathBuf> {
     use std::hash::{Hash, Hasher};
     let version = Command::new(&opts.verilator)
         .arg("--version")

@@ -45,4 +45,7 @@ pub enum SimError {
     /// A latency budget was asked for sizes the hardware does not take.
     #[error(transparent)]
     Budget(#[from] crate::budget::BudgetError),
+    /// A Verilog simulator failed or disagreed.
+    #[error(transparent)]
+    Cosim(#[from] crate::cosim::CosimError),
 }

@@ -26,6 +26,7 @@ pub mod pictures;
 pub mod primitives;
 pub mod row_check;
 pub mod stereo;
+pub mod stereo_cosim;
 pub mod synth;
 pub mod verilog;
 pub mod vertical_median;

@@ -179,15 +179,20 @@ detectors, a record queue per side, the matcher of N_CELLS = 64 cells in the def
 the row check against the neighbouring rows, the interpolator with the default mode's edge jump, \
 the vertical median of five rows, the depth stage for the default camera), the two cameras \
 streaming one pixel per clock from the same clock with --hblank idle clocks after each line, and \
-compare the disparity map with golden's default mode in hardware parity. About 1-2 thousand \
-clocks per second: a 384x288 pair takes one to two minutes; --rows runs a band (as a frame of its \
-own).
+compare the disparity map with golden's default mode in hardware parity. --engine rust-hdl (the \
+default) runs the rust-hdl model itself, about 1-2 thousand clocks per second: a 384x288 pair takes \
+one to two minutes. --engine verilator runs the processor's generated Verilog under Verilator with \
+the same camera model in a Verilog testbench (the cosim_stereo tests check that it gives the \
+model's run clock for clock): about 100 thousand clocks per second or more, a pair in a second or \
+two, after a build of one to two minutes that is kept (in the temporary directory, keyed by the \
+design) for later runs; --engine icarus does the same under Icarus Verilog, slowly. --rows runs a \
+band (as a frame of its own).
 
 Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels (left \
 pixels taken), cycles (clocks simulated), px_per_clk (left pixels per clock while the frame came \
 in), stall_cycles (clocks a camera was not ready), latency_cycles (first pixel in to first \
 disparity out), agree_quarter_px (share of pixels within 1/4 px of golden), sim_cycles_per_s, \
-seconds, lines_out, and the status counters records_dropped, lines_dropped, pixels_dropped, \
+seconds, engine, build_seconds (the simulator's build; 0 when cached), lines_out, and the status counters records_dropped, lines_dropped, pixels_dropped, \
 lines_full, lines_wide. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one \
 scale), disparity16_rtl.png (the output word's disparity: 16-bit, value = d x 16, 0 = none) and \
 depth_mm_rtl.png (its depth, eq. 1 for the camera the processor is generated for: 16-bit \
@@ -225,6 +230,9 @@ struct RtlDepthArgs {
     /// Rows to run, as A..B (rows A to B-1, a frame of their own) [default: all].
     #[arg(long, value_parser = parse_range)]
     rows: Option<std::ops::Range<usize>>,
+    /// What simulates the line processor clock by clock.
+    #[arg(long, value_enum, default_value_t = sim::stereo::Engine::RustHdl)]
+    engine: sim::stereo::Engine,
 }
 
 #[derive(Args, Debug)]
@@ -384,6 +392,10 @@ struct EvalArgs {
     /// stall_cycles, latency_cycles, bad2, nonocc_bad2 and golden's bad2 with the same stages.
     #[arg(long)]
     rtl: bool,
+    /// With --rtl: what simulates the line processor (verilator: its Verilog, seconds per
+    /// pair after one build of a few minutes).
+    #[arg(long, value_enum, default_value_t = sim::stereo::Engine::RustHdl, requires = "rtl")]
+    engine: sim::stereo::Engine,
     #[command(flatten)]
     method: MethodArgs,
 }
@@ -598,7 +610,7 @@ fn eval_cmd(a: EvalArgs) -> Result<(), SimError> {
     let params = a.method.params(2.0)?;
     let dirs = expand_pair_dirs(&a.pairs)?;
     if a.rtl {
-        return eval_rtl(&dirs, a.json);
+        return eval_rtl(&dirs, a.engine, a.json);
     }
     let bar = ProgressBar::new(dirs.len() as u64).with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -841,7 +853,7 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
 }
 
 /// `eval --rtl`: each pair through the line processor.
-fn eval_rtl(dirs: &[PathBuf], json: bool) -> Result<(), SimError> {
+fn eval_rtl(dirs: &[PathBuf], engine: sim::stereo::Engine, json: bool) -> Result<(), SimError> {
     let mut reports = Vec::new();
     for dir in dirs {
         let pair = load_pair_dir(dir)?;
@@ -849,7 +861,7 @@ fn eval_rtl(dirs: &[PathBuf], json: bool) -> Result<(), SimError> {
             eprintln!("note: {n}");
         }
         let bar = lines_bar(pair.left.height(), format!("{} rtl", pair.name), json);
-        let report = sim::stereo::evaluate_pair_rtl(&pair, 0, |n| bar.set_position(n as u64))?;
+        let report = sim::stereo::evaluate_pair_rtl(&pair, 0, engine, |n| bar.set_position(n as u64))?;
         bar.finish_and_clear();
         if json {
             println!("{}", serde_json::to_string(&report).expect("the report serializes"));
@@ -882,7 +894,7 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
     let (l, r) = (band(l)?, band(r)?);
     let bar = lines_bar(l.height(), "rtl line processor".into(), a.pair.json);
     let name = a.pair.left.display().to_string();
-    let (report, rtl, gold, depth) = sim::stereo::run_pair(&name, &l, &r, a.pair.dispmax, a.hblank, |n| bar.set_position(n as u64))?;
+    let (report, rtl, gold, depth) = sim::stereo::run_pair(&name, &l, &r, a.pair.dispmax, a.hblank, a.engine, |n| bar.set_position(n as u64))?;
     bar.finish_and_clear();
 
     let out = a.out.clone().unwrap_or_else(|| {
@@ -920,7 +932,7 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
             "  status              {} lines out, {} records dropped, {} lines dropped, {} pixels dropped, {} lines full, {} lines wide",
             r.lines_out, r.records_dropped, r.lines_dropped, r.pixels_dropped, r.lines_full, r.lines_wide
         );
-        println!("  simulation          {} clocks in {:.1} s, {:.0} clocks/s", r.cycles, r.seconds, r.sim_cycles_per_s);
+        println!("  simulation          {} clocks in {:.1} s, {:.0} clocks/s ({}; build {:.1} s)", r.cycles, r.seconds, r.sim_cycles_per_s, r.engine, r.build_seconds);
         for (p, what) in &files {
             println!("  {:<44} {what}", p.display());
         }

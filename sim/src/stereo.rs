@@ -21,6 +21,8 @@ pub struct StereoRun {
     /// Whether each output line started a frame (`m_tuser` on its first
     /// pixel).
     pub sof: Vec<bool>,
+    /// Clock of each output line's first and last beat.
+    pub line_cycles: Vec<(u64, u64)>,
     /// Clocks simulated.
     pub cycles: u64,
     /// Clocks on which a camera offered a pixel and was not ready (either
@@ -65,6 +67,10 @@ impl StereoRun {
         out
     }
 }
+
+/// A run ends when nothing has come in or out for this many clocks after
+/// the last pixel in (or when every line is out).
+pub const QUIET_CLOCKS: u64 = 20_000;
 
 /// The line processor under direct drive.
 pub struct StereoSim<const N: usize> {
@@ -149,7 +155,7 @@ impl<const N: usize> StereoSim<N> {
     /// has left for `quiet` clocks after the last pixel in. `progress` is
     /// called with the number of lines out after each.
     pub fn run(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, mut progress: impl FnMut(usize)) -> StereoRun {
-        let quiet = 20_000u64;
+        let quiet = QUIET_CLOCKS;
         let mut run = StereoRun { width: left.width().min(rtl::params::W_MAX), ..StereoRun::default() };
         let mut cams = [Camera { image: left, x: 0, y: 0, idle: 0 }, Camera { image: right, x: 0, y: 0, idle: 0 }];
         let mut row: Vec<u32> = Vec::with_capacity(run.width);
@@ -192,6 +198,10 @@ impl<const N: usize> StereoSim<N> {
                 last_activity = self.cycle;
                 if row.is_empty() {
                     run.sof.push(u.m_tuser.val());
+                    run.line_cycles.push((self.cycle, self.cycle));
+                }
+                if let Some(l) = run.line_cycles.last_mut() {
+                    l.1 = self.cycle;
                 }
                 let word = u.m_tdata.val().to_u64();
                 row.push((word & ((1 << DEPTH_BITS) - 1)) as u32);
@@ -317,9 +327,15 @@ pub struct StereoReport {
     /// Share of pixels within 1/4 px of golden (hardware parity, the same
     /// stages).
     pub agree_quarter_px: f64,
-    /// Clocks simulated per second of wall time.
+    /// Clocks simulated per second of wall time (the build excluded).
     pub sim_cycles_per_s: f64,
     pub seconds: f64,
+    /// What simulated the line processor: `rust-hdl` (the model itself),
+    /// `verilator` or `icarus` (its generated Verilog).
+    pub engine: &'static str,
+    /// Building the simulator (Verilator's build or Icarus's compile; 0 for
+    /// the model, and for a cached Verilator build).
+    pub build_seconds: f64,
     /// Lines that came out.
     pub lines_out: usize,
     pub records_dropped: u64,
@@ -329,8 +345,35 @@ pub struct StereoReport {
     pub lines_wide: u64,
 }
 
+/// What runs the line processor clock by clock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Engine {
+    /// The rust-hdl model under direct drive (about a thousand clocks per
+    /// second with the 64-cell matcher).
+    #[default]
+    #[value(name = "rust-hdl")]
+    RustHdl,
+    /// Its generated Verilog under Verilator, the cameras driven by the same
+    /// model in the testbench (`sim::stereo_cosim`): hundreds of thousands of
+    /// clocks per second after a build of a few minutes, kept for later runs.
+    Verilator,
+    /// Its generated Verilog under Icarus Verilog (slow; a few lines).
+    Icarus,
+}
+
+impl Engine {
+    /// The engine's name in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Engine::RustHdl => "rust-hdl",
+            Engine::Verilator => "verilator",
+            Engine::Icarus => "icarus",
+        }
+    }
+}
+
 /// Runs a pair through the line processor (default mode: [`GainRule::Robust`],
-/// the edge jump, the default camera) and compares with golden; returns the
+/// the edge jump, the default camera) on `engine` and compares with golden; returns the
 /// report, the rtl's map and golden's (px, row-major, 0 = none) and the
 /// rtl's depths (mm, row-major, 0 = none).
 pub fn run_pair(
@@ -339,6 +382,7 @@ pub fn run_pair(
     right: &GreyImage,
     dispmax: f64,
     hblank: usize,
+    engine: Engine,
     progress: impl FnMut(usize),
 ) -> Result<(StereoReport, Vec<f64>, Vec<f64>, Vec<u16>), crate::SimError> {
     let lsb = crate::budget::dispmax_lsb(dispmax)?;
@@ -352,10 +396,20 @@ pub fn run_pair(
     if (left.width(), left.height()) != (right.width(), right.height()) {
         return Err(golden::GoldenError::SizeMismatch { left_w: left.width(), left_h: left.height(), right_w: right.width(), right_h: right.height() }.into());
     }
-    let mut sim = StereoSim::<{ rtl::params::N_CELLS }>::robust(lsb);
-    let t0 = std::time::Instant::now();
-    let run = sim.run(left, right, hblank, progress);
-    let seconds = t0.elapsed().as_secs_f64();
+    let (run, seconds, build_seconds) = match engine {
+        Engine::RustHdl => {
+            let mut sim = StereoSim::<{ rtl::params::N_CELLS }>::robust(lsb);
+            let t0 = std::time::Instant::now();
+            let run = sim.run(left, right, hblank, progress);
+            (run, t0.elapsed().as_secs_f64(), 0.0)
+        }
+        Engine::Verilator | Engine::Icarus => {
+            let simulator = if engine == Engine::Verilator { crate::cosim::Simulator::Verilator } else { crate::cosim::Simulator::Icarus };
+            let design = crate::verilog::generate(crate::verilog::Top::Stereo);
+            let frame = crate::stereo_cosim::run_frame(simulator, &design, left, right, hblank, lsb, &crate::cosim::Options::default())?;
+            (frame.run, frame.sim.as_secs_f64(), frame.compile.as_secs_f64())
+        }
+    };
     let rtl = run.disparity_px(left.height());
     let gold = golden_map(left, right, dispmax)?;
     let report = StereoReport {
@@ -372,6 +426,8 @@ pub fn run_pair(
         agree_quarter_px: agree_quarter_px(&rtl, &gold),
         sim_cycles_per_s: run.cycles as f64 / seconds.max(1e-9),
         seconds,
+        engine: engine.name(),
+        build_seconds,
         lines_out: run.rows.len(),
         records_dropped: run.records_dropped,
         lines_dropped: run.lines_dropped,
@@ -409,9 +465,9 @@ pub struct RtlEvalReport {
 /// Runs a pair folder through the line processor with the search bound
 /// `dispmax + 1` (as `eval`) and scores the map against the left ground
 /// truth.
-pub fn evaluate_pair_rtl(pair: &crate::io::PairData, hblank: usize, progress: impl FnMut(usize)) -> Result<RtlEvalReport, crate::SimError> {
+pub fn evaluate_pair_rtl(pair: &crate::io::PairData, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, crate::SimError> {
     use crate::eval::dense_scores;
-    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, progress)?;
+    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, progress)?;
     let gt = &pair.gt_left;
     let all = dense_scores(&rtl, gt, None);
     Ok(RtlEvalReport {

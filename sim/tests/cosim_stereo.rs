@@ -61,3 +61,68 @@ fn stereo_synthesizes_in_yosys_without_latches() {
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
     assert!(check.cells > 3000, "the line processor is not empty: {} cells", check.cells);
 }
+
+// ---------------------------------------------------------------------------
+// The top's Verilog on real frames, against the rust-hdl model.
+
+mod frames {
+    use golden::GreyImage;
+    use rtl::params::N_CELLS;
+    use sim::cosim::{Options, Simulator};
+    use sim::stereo::{StereoRun, StereoSim};
+    use sim::stereo_cosim::{differences, run_frame};
+
+    /// Rows `rows` of `img`.
+    fn crop(img: &GreyImage, rows: std::ops::Range<usize>) -> GreyImage {
+        let w = img.width();
+        GreyImage::new(w, rows.len(), img.pixels()[rows.start * w..rows.end * w].to_vec()).expect("a crop")
+    }
+
+    fn pair(name: &str) -> (GreyImage, GreyImage, u32) {
+        let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(name)).expect("the pair loads");
+        (data.left, data.right, sim::budget::dispmax_lsb(data.dispmax + 1.0).expect("dispmax"))
+    }
+
+    fn model<const N: usize>(left: &GreyImage, right: &GreyImage, hblank: usize, dispmax: u32) -> (StereoRun, f64) {
+        let mut sim = StereoSim::<N>::robust(dispmax);
+        let t = std::time::Instant::now();
+        let run = sim.run(left, right, hblank, |_| {});
+        let rate = run.cycles as f64 / t.elapsed().as_secs_f64();
+        (run, rate)
+    }
+
+    /// The model with `N` cells against its Verilog under `simulator` on
+    /// the frame: every field of the run equal.
+    fn check<const N: usize>(simulator: Simulator, left: &GreyImage, right: &GreyImage, hblank: usize, dispmax: u32, what: &str) {
+        let design = sim::verilog::generate_with(sim::verilog::Top::Stereo, N, rtl::declivity_matcher::GainRule::Robust).expect("a supported size");
+        let (want, model_rate) = model::<N>(left, right, hblank, dispmax);
+        assert!(want.rows.len() == left.height() && want.pixels_in > 0, "{what}: the model ran the frame");
+        let got = run_frame(simulator, &design, left, right, hblank, dispmax, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+        eprintln!(
+            "{what}: {} clocks; rust-hdl {model_rate:.0} clocks/s, {} {:.0} clocks/s (build {:.1} s{})",
+            want.cycles,
+            simulator.name(),
+            got.cycles_per_s(),
+            got.compile.as_secs_f64(),
+            if got.cached { ", cached" } else { "" }
+        );
+        let diff = differences(&want, &got.run);
+        assert!(diff.is_empty(), "{what}: {} differs from the rust-hdl model: {diff:#?}", simulator.name());
+    }
+
+    /// Icarus simulates the 64-cell processor at a few clocks a second; a
+    /// few lines with the 16 cells of the lint test keep it to a minute.
+    /// (The lines have more declivities than 16 cells hold: `lines_full`
+    /// counts them, and the Verilog must count them alike.)
+    #[test]
+    fn cosim_icarus_runs_four_lines_of_tsukuba_exactly_as_the_model() {
+        let (left, right, dispmax) = pair("tsukuba");
+        check::<{ super::CELLS }>(Simulator::Icarus, &crop(&left, 100..104), &crop(&right, 100..104), 16, dispmax, "tsukuba rows 100..104");
+    }
+
+    #[test]
+    fn cosim_verilator_runs_the_whole_map_pair_exactly_as_the_model() {
+        let (left, right, dispmax) = pair("map");
+        check::<N_CELLS>(Simulator::Verilator, &left, &right, 0, dispmax, "map");
+    }
+}
