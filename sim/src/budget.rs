@@ -1,24 +1,80 @@
 //! The latency budget of the hardware line processor (`DESIGN.md` §3,
-//! "Latency budget"): for each stage that exists in rtl, its clocks per line
-//! as a formula of the line width `W`, the declivity counts `n`, `m` and
-//! the σ scan, the line period, the latency of a scanline, frame time and
-//! frames per second at a given clock, and the memories and processing
-//! elements the blocks are generated with.
+//! "Latency budget"; `rtl::stereo_line_processor`): for each of its
+//! stages, its clocks per line as a formula of the line width `W`, the
+//! declivity counts `n`, `m` and the σ scan, the line period, the latency
+//! of a scanline, the frame's flush and vertical blanking, frame time and
+//! frames per second at a given clock, and the memories, DSP blocks and
+//! processing elements the blocks are generated with.
 //!
-//! Every number comes from rtl's own formulas (`marker_latency`,
-//! `line_starts`, `sweep_cycles`, `traceback_cycles`, `line_cycles`, their
-//! constants) and from the widths in `rtl::params`; nothing here re-derives
-//! a clock count that rtl exports. `sim/tests/budget.rs` checks the numbers
-//! against clocks measured by simulating the rtl blocks and the memory
-//! sizes against the generated Verilog.
+//! Every number comes from rtl's own formulas and named constants
+//! (`marker_latency`, `line_starts`, `RECORD_FIFO_LAG`, `sweep_cycles`,
+//! `traceback_cycles`, `line_cycles`, `row_check_cycles`, `ROW_START_LAG`,
+//! `SEGMENT_LAG`, `PIXEL_LAG`, `MEDIAN_LAG`, `DEPTH_LAG`) and from the
+//! widths in `rtl::params`; nothing here re-derives a clock count that rtl
+//! exports. `sim/tests/budget.rs` checks the numbers against clocks
+//! measured by simulating the rtl blocks and the whole line processor, and
+//! the memory sizes against the generated Verilog.
 //!
-//! The stages are a list ([`STAGES`]) in pipeline order: each gives its
-//! clocks per line (how long it is busy with one line, the throughput
-//! bound) and its latency (from the event that hands it a line to the
-//! event that hands the line on). The stages that are in the line processor
-//! (`rtl::stereo_line_processor`) but not in this budget yet
-//! ([`NOT_YET_INCLUDED`]: the default mode's row check and vertical median,
-//! the depth stage) become more entries of the list.
+//! The stages are a list ([`STAGES`]) in pipeline order: detectors → record
+//! queues → matcher → row check → interpolator → vertical median → depth
+//! stage. Each gives its clocks per line (how long it is busy with one
+//! line, the throughput bound) and its latency (from the event that hands
+//! it a row to the event that hands the row on).
+//!
+//! ## A scanline's latency
+//! Output row `y` is the median of rows `y − 2 … y + 2`, and row `y + 2`
+//! leaves the row check only once row `y + 3`'s marker has left the
+//! matcher: row `y`'s first disparity waits for row `y + 3`'s pixels,
+//! three line periods `P` after its own. From row `y`'s first pixel in
+//! (rows every `P` clocks, every row the same work):
+//!
+//! - detector: `(W − 1) + marker_latency(W')` to the row's marker;
+//! - record queue: `RECORD_FIFO_LAG` to the matcher's ports;
+//! - matcher: `TAKE_AFTER_MARKER + line_cycles(n, m, s, k, K)` to the
+//!   pair's marker;
+//! - row check: `P` (it waits for row `y + 1`'s marker) `+ ROW_START_LAG +
+//!   c + 1` to the row's marker out, `c ≤ row_check_cycles(n_above, n,
+//!   n_below)` the engine's clocks for the row;
+//! - interpolator: `SEGMENT_LAG + PIXEL_LAG` to the row's first pixel (the
+//!   pixels start from the row's marker, not its first match, so
+//!   `ROW_FIRST_LAG` is in no path);
+//! - vertical median: `2·P` (it waits for row `y + 2`) `+ MEDIAN_LAG`;
+//! - depth stage: `DEPTH_LAG`.
+//!
+//! The sum is the latency from a row's first pixel in to its first
+//! disparity out; its last disparity leaves `W' − 1` clocks later. Measured
+//! on the whole line processor it is exact for the frame's first row
+//! (`StereoRun::latency_cycles`): the detector's markers follow its σ scans
+//! back to back from the first row on even when lines shorter than
+//! `MIN_LINE_PERIOD` are taken early. With the worst line everywhere
+//! ([`RowLoad::worst`]) it bounds every row's latency as long as no stage
+//! is slower than `P` (each term grows with the row's work; a lighter row
+//! never delays a later one by more than a line period).
+//!
+//! ## The frame's end: flush and vertical blanking
+//! The frame's last row `H − 1` is checked right after row `H − 2` (the
+//! row check does not wait for a row below it) and reaches the interpolator
+//! `max(c_last + 1, W')` clocks after row `H − 2` (`c_last` its check's
+//! clocks; the interpolator is still busy with row `H − 2` for `W'`). The
+//! median then sends output row `H − 3` in the last row's slot and flushes
+//! rows `H − 2` and `H − 1`, one pixel per clock, back to back. So the
+//! frame's output rows `0 … H − 4` leave one per line period from the
+//! first disparity on, and the last disparity leaves `(H − 4)·P +
+//! max(c_last + 1, W') + 3·W' − 1` clocks after the first.
+//!
+//! The median takes the next frame's pixels only after its flush (the
+//! pixels that come during it are dropped, `pixels_dropped`). The next
+//! frame's row 0 reaches the interpolator once its row 1's marker has left
+//! the matcher, `(V + 2)·P` after this frame's row `H − 1`'s (`V` lines of
+//! vertical blanking), so with the same work per row it needs
+//! `(V + 2)·P + c_first − c ≥ max(c_last + 1, W') + 3·W'`: `c_first` the
+//! first row's check clocks (no row above), `c` a row's inside the frame
+//! (row `H − 2`'s). The least such `V` is the budget's vertical blanking,
+//! and a frame takes `(H + V)·P` clocks. A next frame whose first rows are
+//! lighter than this frame's last (an empty row checked in 1 clock,
+//! matched in `line_cycles(0, 0, 0, 0, K)`) reaches the median earlier by
+//! the difference: the blanking that covers any rows of at most `N`
+//! declivities is given too.
 //!
 //! ## The matcher's worst line
 //! `line_cycles(n, m, s, k, K)` is `sweep_cycles(n, m, K)` =
@@ -33,18 +89,29 @@
 //! off — a node moves the walk down two anti-diagonals, so `k` pairs need
 //! `s ≤ n + m − 2k` — but `s = 0` with `k = N = n = m` meets that bound, so
 //! the trade-off does not bind at the worst; the unit tests search every
-//! feasible `(n, m, s, k)` of small lines to confirm it.)
+//! feasible `(n, m, s, k)` of small lines to confirm it.) Its `k = N`
+//! matches are the row check's rows: `row_check_cycles` grows with each of
+//! its three counts, so the worst row inside the frame is
+//! `row_check_cycles(N, N, N)`, the first `row_check_cycles(0, N, N)`, the
+//! last `row_check_cycles(N, N, 0)` — bounds, loose on real rows (the row
+//! check's doc: real rows take about `n + 5`).
 
 use rtl::adaptive_threshold::THRESHOLD_LATENCY;
+use rtl::block_ram::{DP16KD_ADDR_BITS, DP16KD_WIDTH};
 use rtl::declivity_detector::{line_starts, MIN_LINE_PERIOD};
 use rtl::declivity_matcher::{line_cycles, sweep_cycles, ENGINE_LAG, OUTPUT_LAG, TAKE_AFTER_MARKER};
-use rtl::params::{
-    CELLS_PER_CHOICE_WORD, CHOICE_WORDS, CHOICE_WORD_BITS, DIAG_BITS, DISPMAX_BITS, HIST_ADDR_BITS, HIST_COUNT_BITS,
-    INDEX_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, N_CELLS, N_MAX, PIXEL_BITS, POS_BITS, POS_FRAC_BITS, RECIP_BITS, RECIP_INDEX_BITS,
-    ROWS_PER_CELL, SEG_ADDR_BITS, W_MAX,
-};
+use rtl::depth_stage::DEPTH_LAG;
 use rtl::interpolator::{LINE_BITS, LINE_QUEUE, PIXEL_LAG, SEGMENT_BITS, SEGMENT_LAG};
+use rtl::params::{
+    CELLS_PER_CHOICE_WORD, CHOICE_WORDS, CHOICE_WORD_BITS, DEPTH_INDEX_BITS, DEPTH_WORD_BITS, DIAG_BITS, DISPMAX_BITS,
+    HIST_ADDR_BITS, HIST_COUNT_BITS, INDEX_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, N_CELLS,
+    N_MAX, PIXEL_BITS, POS_BITS, POS_FRAC_BITS, RECIP_BITS, RECIP_INDEX_BITS, ROWS_PER_CELL, ROW_ADDR_BITS, ROW_BANK_BITS,
+    ROW_ENTRY_BITS, SEG_ADDR_BITS, WIDTH_BITS, W_MAX,
+};
+use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
+use rtl::row_check::{row_check_cycles, row_check_period, ROW_START_LAG};
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
+use rtl::vertical_median::MEDIAN_LAG;
 use serde::Serialize;
 
 use crate::detector::marker_latency_estimate;
@@ -87,6 +154,14 @@ pub enum BudgetError {
     /// `H = 0`.
     #[error("--height 0: a frame needs at least one line")]
     ZeroHeight,
+    /// `0 < H < MIN_HEIGHT`.
+    #[error(
+        "--height {height}: the budget models frames of at least {MIN_HEIGHT} rows (a row's output waits for the three rows below it; the rows of shorter frames all leave through the vertical median's flush)"
+    )]
+    TooFewRows {
+        /// The rows asked for.
+        height: usize,
+    },
     /// `N = 0`.
     #[error("--n-max 0: budget the matcher for at least one declivity per line (a line without one costs it a clock)")]
     NoDeclivities,
@@ -155,7 +230,8 @@ impl Term {
     }
 }
 
-/// The sum of `terms` and its formula, `a + b − c = 1 + 2 − 3`.
+/// The sum of `terms` and its formula, `a + b − c = 1 + 2 − 3` (a single
+/// named term `a = 1`).
 fn render(terms: &[Term]) -> (u64, String) {
     let join = |f: &dyn Fn(&Term) -> String| {
         let mut s = String::new();
@@ -171,7 +247,9 @@ fn render(terms: &[Term]) -> (u64, String) {
         s
     };
     let sum: i64 = terms.iter().map(|t| t.value).sum();
-    let text = if terms.len() == 1 {
+    let text = if terms.len() == 1 && terms[0].text.parse::<i64>().is_err() {
+        format!("{} = {}", terms[0].text, terms[0].value)
+    } else if terms.len() == 1 {
         terms[0].text.clone()
     } else {
         format!("{} = {}", join(&|t| t.text.clone()), join(&|t| t.value.unsigned_abs().to_string()))
@@ -183,10 +261,31 @@ fn render(terms: &[Term]) -> (u64, String) {
 pub const LINE_BUFFER: &str = "line buffer";
 /// The detector's |ΔI| histogram.
 pub const HISTOGRAM: &str = "|ΔI| histogram";
+/// The record queues between the detectors and the matcher.
+pub const RECORD_QUEUE: &str = "record queue";
 /// The matcher's record memories.
 pub const RECORD_MEMORY: &str = "record memory";
 /// The matcher's choice memory.
 pub const CHOICE_MEMORY: &str = "choice memory";
+/// The row check's memories of matches.
+pub const ROW_MEMORY: &str = "row memory";
+/// The vertical median's line buffers.
+pub const MEDIAN_LINE_BUFFER: &str = "median line buffer";
+/// The depth stage's table.
+pub const DEPTH_TABLE: &str = "depth table";
+
+/// The fewest rows of a frame the budget models: row `y`'s output waits for
+/// rows `y + 1` (the row check) and `y + 2` (the vertical median), and row
+/// `y + 2`'s check for row `y + 3`; the first output row leaves on that
+/// path only if row 3 exists.
+pub const MIN_HEIGHT: usize = 4;
+
+/// `DP16KD`s of one `rtl::block_ram::BlockRam` of `words` words of
+/// `word_bits` bits: one per [`DP16KD_WIDTH`] bits of width and
+/// `2^DP16KD_ADDR_BITS` words (`rtl::block_ram`).
+pub const fn dp16kd_of(word_bits: usize, words: usize) -> usize {
+    word_bits.div_ceil(DP16KD_WIDTH) * words.div_ceil(1 << DP16KD_ADDR_BITS)
+}
 
 /// One memory of a block, as rtl declares it.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -197,7 +296,8 @@ pub struct Memory {
     pub name: &'static str,
     /// Copies in the whole design (one per camera, one per view, ...).
     pub copies: usize,
-    /// Banks per copy (ping-pong halves, low and high rows).
+    /// Banks per copy (ping-pong halves, low and high rows, lanes, line
+    /// buffers).
     pub banks: usize,
     /// Words per bank.
     pub words_per_bank: usize,
@@ -205,11 +305,16 @@ pub struct Memory {
     pub word_bits: usize,
     /// `copies × banks × words_per_bank × word_bits`.
     pub bits: usize,
+    /// `DP16KD` block RAMs the block instantiates for it (all copies;
+    /// `rtl::block_ram::BlockRam`), `None` where Yosys infers the memory
+    /// from a rust-hdl `RAM` or `SyncROM` (and chooses block or LUT RAM).
+    pub dp16kd: Option<usize>,
     /// Where rtl declares it and how its word is made up.
     pub rtl: &'static str,
 }
 
 impl Memory {
+    #[allow(clippy::too_many_arguments)]
     fn new(
         stage: &'static str,
         name: &'static str,
@@ -217,9 +322,10 @@ impl Memory {
         banks: usize,
         words_per_bank: usize,
         word_bits: usize,
+        dp16kd: Option<usize>,
         rtl: &'static str,
     ) -> Self {
-        Memory { stage, name, copies, banks, words_per_bank, word_bits, bits: copies * banks * words_per_bank * word_bits, rtl }
+        Memory { stage, name, copies, banks, words_per_bank, word_bits, bits: copies * banks * words_per_bank * word_bits, dp16kd, rtl }
     }
 }
 
@@ -229,15 +335,16 @@ pub struct StageBudget {
     /// The stage.
     pub name: &'static str,
     /// Copies of the block working side by side (the two cameras'
-    /// detectors); the budget is per copy.
+    /// detectors and record queues); the budget is per copy.
     pub instances: usize,
     /// Clocks the stage is busy with one line (worst case): the line
     /// period it can sustain.
     pub cycles_per_line: u64,
     /// `cycles_per_line` as a formula with its values.
     pub formula: String,
-    /// Clocks from the event that hands the stage a line to the event that
-    /// hands it on (see `latency_span`), the stage otherwise idle.
+    /// Clocks from the event that hands the stage a row to the event that
+    /// hands it on (see `latency_span`), the stage otherwise idle, rows
+    /// every line period.
     pub latency_cycles: u64,
     /// `latency_cycles` as a formula with its values.
     pub latency_formula: String,
@@ -248,15 +355,70 @@ pub struct StageBudget {
     /// The two events `latency_cycles` lies between.
     pub latency_span: &'static str,
     /// `W + hblank − cycles_per_line`: clocks to spare per line against
-    /// the input; negative when the stage holds the input (it stalls by
+    /// the input; negative when the stage is slower than the input (by
     /// that much per worst line).
     pub spare_cycles: i64,
     /// Processing elements (gain cells) of the stage, if it has an array.
     pub pe_count: Option<usize>,
     /// Reference rows per processing element.
     pub rows_per_pe: Option<usize>,
+    /// DSP blocks (`MULT18X18D`) of the stage, all copies, as its doc or
+    /// `declivity synth` gives them.
+    pub dsp_blocks: Option<usize>,
     /// The stage's memories, generation-time sizes.
     pub memories: Vec<Memory>,
+}
+
+/// What the rows of a frame cost the two stages whose clocks depend on the
+/// data, the matcher and the row check: every row's line pair, and the row
+/// check's clocks (start → finish) of a row inside the frame, of its first
+/// row and of its last.
+///
+/// In the latency, `(n, m, stop_diag, k)` is row `y + 3`'s line and `check`
+/// row `y + 2`'s clocks; in the frame's end, the last row's line, row
+/// `H − 2`'s `check` and row `H − 1`'s `last_check`; in the vertical
+/// blanking, the next frame's row 0's `first_check`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct RowLoad {
+    /// Reference declivities of a row (`n`).
+    pub n: usize,
+    /// Declivities of the other view's row (`m`).
+    pub m: usize,
+    /// The anti-diagonal the matcher's path stops on (`s`).
+    pub stop_diag: usize,
+    /// Matches of the row (`k`).
+    pub k: usize,
+    /// Row-check clocks of a row with rows above and below (`c`).
+    pub check: usize,
+    /// Of the frame's first row, checked against the row below only
+    /// (`c_first`).
+    pub first_check: usize,
+    /// Of the frame's last row, checked against the row above only
+    /// (`c_last`).
+    pub last_check: usize,
+}
+
+impl RowLoad {
+    /// Every row the worst for `n` declivities per side: the matcher's
+    /// worst line ([`worst_matcher_line`]) and its `n` matches checked
+    /// against rows of `n` matches, at the bound `row_check_cycles`.
+    pub const fn worst(n: usize) -> Self {
+        let (n, m, stop_diag, k) = worst_matcher_line(n);
+        RowLoad {
+            n,
+            m,
+            stop_diag,
+            k,
+            check: row_check_cycles(k, k, k),
+            first_check: row_check_cycles(0, k, k),
+            last_check: row_check_cycles(k, k, 0),
+        }
+    }
+
+    /// `line_cycles(n, m, s, k, cells)`.
+    pub const fn line_cycles(&self, cells: usize) -> usize {
+        line_cycles(self.n, self.m, self.stop_diag, self.k, cells)
+    }
 }
 
 /// The sizes a budget is made for, validated.
@@ -266,24 +428,49 @@ pub struct Sizes {
     pub width: usize,
     /// Pixels stored per line, `W' = min(W, W_MAX)`.
     pub stored_width: usize,
-    /// Declivities per line on each side (`N`).
+    /// Declivities per line on each side budgeted for (`N`).
     pub n: usize,
     /// Gain cells (`K`).
     pub cells: usize,
+    /// The rows' work.
+    pub load: RowLoad,
+    /// `load` is [`RowLoad::worst`]`(n)` (the formulas then name `N`).
+    pub worst: bool,
+    /// The line period `P` (0 until the stages' clocks per line give it:
+    /// only the latencies use it).
+    pub line_period: u64,
+}
+
+impl Sizes {
+    /// The matcher's line as formula arguments: `N, N, 0, N` for the
+    /// worst, else the numbers.
+    fn line_args(&self) -> String {
+        let l = &self.load;
+        if self.worst {
+            "N, N, 0, N".to_string()
+        } else {
+            format!("{}, {}, {}, {}", l.n, l.m, l.stop_diag, l.k)
+        }
+    }
+
+    /// A row-check count as text: `row_check_cycles(N, N, N)` for the
+    /// worst, else `c`.
+    fn check_text(&self, worst: &str, measured: &str) -> String {
+        if self.worst {
+            worst.to_string()
+        } else {
+            measured.to_string()
+        }
+    }
 }
 
 /// A stage of the pipeline: its budget for the given sizes.
 pub type Stage = fn(&Sizes) -> StageBudget;
 
-/// The stages in rtl today, in pipeline order (a line passes them one
+/// The line processor's stages in pipeline order (a row passes them one
 /// after the other; the scanline's latency is the sum of theirs).
-pub const STAGES: [Stage; 3] = [detector_stage, matcher_stage, interpolator_stage];
-
-/// Stages of the line processor whose cycles are not in the budget yet.
-pub const NOT_YET_INCLUDED: [&str; 2] = [
-    "row check (rtl::row_check: one line of delay) and vertical median (rtl::vertical_median: two lines of delay, MEDIAN_LAG): in the line processor, not yet included here",
-    "depth stage (rtl::depth_stage, Z = f·b/(D·p) per pixel, DEPTH_LAG clocks): in the line processor, not yet included here",
-];
+pub const STAGES: [Stage; 7] =
+    [detector_stage, record_queue_stage, matcher_stage, row_check_stage, interpolator_stage, vertical_median_stage, depth_stage];
 
 /// Lines of one width run through [`line_starts`] to see the detector's
 /// steady state (it settles after two lines and alternates with period two
@@ -354,10 +541,11 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
         latency_cycles,
         latency_formula,
         latency_terms,
-        latency_span: "a line's first pixel accepted → its marker out",
+        latency_span: "a row's first pixel accepted → its marker out",
         spare_cycles: 0,
         pe_count: None,
         rows_per_pe: None,
+        dsp_blocks: Some(2 * 3),
         memories: vec![
             Memory::new(
                 NAME,
@@ -366,6 +554,7 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
                 2,
                 (1 << LINE_BUF_ADDR_BITS) / 2,
                 PIXEL_BITS,
+                None,
                 "DeclivityDetector::line_buf (ping-pong), one per camera",
             ),
             Memory::new(
@@ -375,30 +564,72 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
                 2,
                 1 << HIST_ADDR_BITS,
                 HIST_COUNT_BITS,
+                None,
                 "AdaptiveThreshold::hist0, hist1, one pair per camera",
             ),
         ],
     }
 }
 
+/// The record queues, one per camera (`rtl::record_fifo`): a line's
+/// records wait there while the matcher is busy with a heavier line.
+pub fn record_queue_stage(s: &Sizes) -> StageBudget {
+    const NAME: &str = "record queues";
+    let beats = s.load.n.max(s.load.m) + 1;
+    let formula = if s.worst {
+        format!("N + 1 (one beat a clock: a line's N records and its marker) = {beats}")
+    } else {
+        format!("max(n, m) + 1 (one beat a clock: a line's records and its marker) = {beats}")
+    };
+    let latency_terms = vec![Term::new("RECORD_FIFO_LAG", RECORD_FIFO_LAG)];
+    let (latency_cycles, latency_formula) = render(&latency_terms);
+    StageBudget {
+        name: NAME,
+        instances: 2,
+        cycles_per_line: beats as u64,
+        formula,
+        latency_cycles,
+        latency_formula,
+        latency_terms,
+        latency_span: "the row's marker out of the detectors → on the matcher's ports (the queue empty)",
+        spare_cycles: 0,
+        pe_count: None,
+        rows_per_pe: None,
+        dsp_blocks: Some(0),
+        memories: vec![Memory::new(
+            NAME,
+            RECORD_QUEUE,
+            2,
+            RECORD_FIFO_LANES,
+            RECORD_FIFO_DEPTH,
+            DP16KD_WIDTH,
+            Some(2 * RECORD_FIFO_LANES * dp16kd_of(DP16KD_WIDTH, RECORD_FIFO_DEPTH)),
+            "RecordFifo::mem0..mem4 (a record's fields and a marker's flags in five DP16KD lanes), one queue per camera",
+        )],
+    }
+}
+
 /// The matcher: systolic array, traceback, record and choice memories.
 pub fn matcher_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "matcher";
-    let (n, m, stop, k) = worst_matcher_line(s.n);
+    let l = &s.load;
+    let (n, m, stop, k) = (l.n, l.m, l.stop_diag, l.k);
+    let args = s.line_args();
+    let nm_args = if s.worst { "N, N".to_string() } else { format!("{n}, {m}") };
     let (cycles, formula) = render(&[
-        Term::new("sweep_cycles(N, N, K)", sweep_cycles(n, m, s.cells)),
-        Term::new("traceback_cycles(N, N, 0, N)", traceback_cycles(n, m, stop, k)),
+        Term::new(format!("sweep_cycles({nm_args}, K)"), sweep_cycles(n, m, s.cells)),
+        Term::new(format!("traceback_cycles({args})"), traceback_cycles(n, m, stop, k)),
         Term::new("OUTPUT_LAG output registers", line_cycles(n, m, stop, k, s.cells) - sweep_cycles(n, m, s.cells) - traceback_cycles(n, m, stop, k)),
         Term::minus("(OUTPUT_LAG − 1) (the next pair is taken the clock after the traceback ends)", MARKER_AFTER_NEXT_TAKE),
     ]);
     debug_assert_eq!(cycles, matcher_cycles_per_line(n, m, stop, k, s.cells) as u64);
     let latency_terms = vec![
         Term::new("TAKE_AFTER_MARKER", TAKE_AFTER_MARKER as usize),
-        Term::new("line_cycles(N, N, 0, N, K)", line_cycles(n, m, stop, k, s.cells)),
-        Term::minus("1 (the last match leaves the clock before the marker)", 1),
+        Term::new(format!("line_cycles({args}, K)"), line_cycles(n, m, stop, k, s.cells)),
     ];
     let (latency_cycles, latency_formula) = render(&latency_terms);
     let record_bits = (POS_BITS + 1) + 6 * LEVEL_BITS;
+    let record_rams = dp16kd_of(POS_BITS + 1, 1 << DIAG_BITS) + 6 * dp16kd_of(LEVEL_BITS, 1 << DIAG_BITS);
     StageBudget {
         name: NAME,
         instances: 1,
@@ -407,10 +638,11 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
         latency_cycles,
         latency_formula,
         latency_terms,
-        latency_span: "the pair's second marker taken → its last match out",
+        latency_span: "the pair's second marker on the matcher's ports → the pair's marker out",
         spare_cycles: 0,
         pe_count: Some(s.cells),
         rows_per_pe: Some(ROWS_PER_CELL),
+        dsp_blocks: Some(0),
         memories: vec![
             Memory::new(
                 NAME,
@@ -419,6 +651,7 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
                 2,
                 (1 << DIAG_BITS) / 2,
                 record_bits,
+                Some(2 * record_rams),
                 "RecordMemory::pos_mem, lev0_mem..lev5_mem (position and polarity, six levels), one per view",
             ),
             Memory::new(
@@ -428,18 +661,59 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
                 2,
                 1 << DIAG_BITS,
                 CHOICE_WORDS * CHOICE_WORD_BITS,
+                Some(2 * CHOICE_WORDS * dp16kd_of(CHOICE_WORD_BITS, 1 << DIAG_BITS)),
                 "SystolicMatcher::lo_ram, hi_ram (low, high rows), one word of 2-bit choices per anti-diagonal",
             ),
-            Memory::new(
-                NAME,
-                "traceback stack",
-                1,
-                1,
-                1 << INDEX_BITS,
-                2 * INDEX_BITS,
-                "Traceback::stack_i, stack_j",
-            ),
+            Memory::new(NAME, "traceback stack", 1, 1, 1 << INDEX_BITS, 2 * INDEX_BITS, None, "Traceback::stack_i, stack_j"),
         ],
+    }
+}
+
+/// The row check (`rtl::row_check`, the default mode's consistency check
+/// against the rows above and below): one line of delay.
+pub fn row_check_stage(s: &Sizes) -> StageBudget {
+    const NAME: &str = "row check";
+    let c = s.load.check;
+    let check = s.check_text("row_check_cycles(N, N, N)", "c (the row's measured clocks)");
+    let (cycles, formula) = render(&[
+        Term::new(check.clone(), c),
+        Term::new("1 (the engine takes the next row the clock after it finished)", 1),
+    ]);
+    let formula = if s.worst {
+        format!("{formula} (a bound; row_check_period() = {} for N = N_MAX)", row_check_period())
+    } else {
+        formula
+    };
+    let latency_terms = vec![
+        Term::new("P (it waits for row y + 1's marker, a line period later)", s.line_period as usize),
+        Term::new("ROW_START_LAG", ROW_START_LAG),
+        Term::new(check, c),
+        Term::new("1 (the marker leaves the clock after the finish)", 1),
+    ];
+    let (latency_cycles, latency_formula) = render(&latency_terms);
+    StageBudget {
+        name: NAME,
+        instances: 1,
+        cycles_per_line: cycles,
+        formula,
+        latency_cycles,
+        latency_formula,
+        latency_terms,
+        latency_span: "row y's marker out of the matcher → row y's marker out of the row check",
+        spare_cycles: 0,
+        pe_count: None,
+        rows_per_pe: None,
+        dsp_blocks: Some(0),
+        memories: vec![Memory::new(
+            NAME,
+            ROW_MEMORY,
+            3,
+            1 << ROW_BANK_BITS,
+            1 << INDEX_BITS,
+            ROW_ENTRY_BITS,
+            Some(3 * dp16kd_of(ROW_ENTRY_BITS, 1 << ROW_ADDR_BITS)),
+            "RowCheck::cur_mem, a_mem, b_mem (the checked row, the rows above and below: three read ports), four banks of N_MAX matches (X, d)",
+        )],
     }
 }
 
@@ -447,13 +721,11 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
 /// (`rtl::interpolator`).
 pub fn interpolator_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "interpolator";
-    let latency_terms = vec![
-        Term::new("1 (the matcher's marker, the clock after its last match)", 1),
-        Term::new("SEGMENT_LAG", SEGMENT_LAG),
-        Term::new("PIXEL_LAG", PIXEL_LAG),
-        Term::new("(W' − 1) (the line's pixels)", s.stored_width - 1),
-    ];
+    let latency_terms = vec![Term::new("SEGMENT_LAG", SEGMENT_LAG), Term::new("PIXEL_LAG", PIXEL_LAG)];
     let (latency_cycles, latency_formula) = render(&latency_terms);
+    // The segment memory's fields (`Interpolator::seg_*`), one BlockRam each.
+    let shape_bits = SEGMENT_BITS - WIDTH_BITS - 3 * POS_BITS - RECIP_BITS;
+    let seg_rams = [WIDTH_BITS, POS_BITS, POS_BITS, POS_BITS, shape_bits, RECIP_BITS].iter().map(|&b| dp16kd_of(b, 1 << SEG_ADDR_BITS)).sum();
     StageBudget {
         name: NAME,
         instances: 1,
@@ -462,19 +734,87 @@ pub fn interpolator_stage(s: &Sizes) -> StageBudget {
         latency_cycles,
         latency_formula,
         latency_terms,
-        latency_span: "the matcher's last match out → the line's last disparity out",
+        latency_span: "the row check's marker out → the row's first disparity out (its pixels start from the marker)",
         spare_cycles: 0,
         pe_count: None,
         rows_per_pe: None,
+        dsp_blocks: Some(2),
         memories: vec![
-            Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, "Interpolator::seg_* (one block RAM per field)"),
-            Memory::new(NAME, "reciprocal table", 1, 1, 1 << RECIP_INDEX_BITS, RECIP_BITS, "Interpolator::recip (ROM)"),
-            Memory::new(NAME, "line queue", 1, 1, LINE_QUEUE, LINE_BITS, "Interpolator::q_* (LUT RAM)"),
+            Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, Some(seg_rams), "Interpolator::seg_* (one block RAM per field)"),
+            Memory::new(NAME, "reciprocal table", 1, 1, 1 << RECIP_INDEX_BITS, RECIP_BITS, None, "Interpolator::recip (ROM)"),
+            Memory::new(NAME, "line queue", 1, 1, LINE_QUEUE, LINE_BITS, None, "Interpolator::q_* (LUT RAM)"),
         ],
     }
 }
 
-/// Memories and processing elements of the stages, summed.
+/// The vertical median of five rows (`rtl::vertical_median`): two lines of
+/// delay.
+pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
+    const NAME: &str = "vertical median";
+    let latency_terms = vec![
+        Term::new("2·P (the median of rows y − 2 … y + 2 waits for row y + 2, two line periods later)", 2 * s.line_period as usize),
+        Term::new("MEDIAN_LAG", MEDIAN_LAG),
+    ];
+    let (latency_cycles, latency_formula) = render(&latency_terms);
+    StageBudget {
+        name: NAME,
+        instances: 1,
+        cycles_per_line: s.stored_width as u64,
+        formula: "W' (one pixel per clock)".to_string(),
+        latency_cycles,
+        latency_formula,
+        latency_terms,
+        latency_span: "row y's first disparity into the median → output row y's first median out",
+        spare_cycles: 0,
+        pe_count: None,
+        rows_per_pe: None,
+        dsp_blocks: Some(0),
+        memories: vec![Memory::new(
+            NAME,
+            MEDIAN_LINE_BUFFER,
+            1,
+            MEDIAN_LINE_BUFFERS,
+            W_MAX,
+            POS_BITS,
+            Some(MEDIAN_LINE_BUFFERS * dp16kd_of(POS_BITS, W_MAX)),
+            "VerticalMedian::line0..line3 (rows k − 4 … k − 1 of the MEDIAN_TAPS = 5 taps, one DP16KD each)",
+        )],
+    }
+}
+
+/// The depth stage (`rtl::depth_stage`, eq. 1): one depth per disparity per
+/// clock.
+pub fn depth_stage(s: &Sizes) -> StageBudget {
+    const NAME: &str = "depth stage";
+    let latency_terms = vec![Term::new("DEPTH_LAG", DEPTH_LAG)];
+    let (latency_cycles, latency_formula) = render(&latency_terms);
+    StageBudget {
+        name: NAME,
+        instances: 1,
+        cycles_per_line: s.stored_width as u64,
+        formula: "W' (one pixel per clock)".to_string(),
+        latency_cycles,
+        latency_formula,
+        latency_terms,
+        latency_span: "a median out → its depth on the output",
+        spare_cycles: 0,
+        pe_count: None,
+        rows_per_pe: None,
+        dsp_blocks: Some(1),
+        memories: vec![Memory::new(
+            NAME,
+            DEPTH_TABLE,
+            1,
+            1,
+            1 << DEPTH_INDEX_BITS,
+            DEPTH_WORD_BITS,
+            None,
+            "DepthStage::depth_rom (SyncROM: each entry K/m_i above its slope)",
+        )],
+    }
+}
+
+/// Memories, DSP blocks and processing elements of the stages, summed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Resources {
     /// Every memory of every stage.
@@ -491,6 +831,20 @@ pub struct Resources {
     pub rows_per_cell: usize,
     pub choice_memory_bits: usize,
     pub record_memory_bits: usize,
+    /// The record queues' bits (both cameras).
+    pub record_queue_bits: usize,
+    /// The row check's memories' bits.
+    pub row_memory_bits: usize,
+    /// The vertical median's line buffers and their bits.
+    pub median_line_buffers: usize,
+    pub median_line_buffer_bits: usize,
+    /// The depth stage's table bits.
+    pub depth_table_bits: usize,
+    /// `DP16KD`s the blocks instantiate (`rtl::block_ram::BlockRam`); Yosys
+    /// adds what it infers for the other memories.
+    pub dp16kd_instances: usize,
+    /// DSP blocks (`MULT18X18D`) of all stages.
+    pub dsp_blocks: usize,
     /// All memories.
     pub memory_bits: usize,
 }
@@ -508,6 +862,13 @@ impl Resources {
             rows_per_cell: stages.iter().filter_map(|s| s.rows_per_pe).max().unwrap_or(0),
             choice_memory_bits: sum(CHOICE_MEMORY, |m| m.bits),
             record_memory_bits: sum(RECORD_MEMORY, |m| m.bits),
+            record_queue_bits: sum(RECORD_QUEUE, |m| m.bits),
+            row_memory_bits: sum(ROW_MEMORY, |m| m.bits),
+            median_line_buffers: sum(MEDIAN_LINE_BUFFER, |m| m.copies * m.banks),
+            median_line_buffer_bits: sum(MEDIAN_LINE_BUFFER, |m| m.bits),
+            depth_table_bits: sum(DEPTH_TABLE, |m| m.bits),
+            dp16kd_instances: memories.iter().filter_map(|m| m.dp16kd).sum(),
+            dsp_blocks: stages.iter().filter_map(|s| s.dsp_blocks).sum(),
             memory_bits: memories.iter().map(|m| m.bits).sum(),
             memories,
         }
@@ -529,29 +890,56 @@ pub struct Budget {
     pub clock_mhz: f64,
     pub hblank: usize,
     pub cells: usize,
+    /// The rows' work the numbers are for ([`RowLoad::worst`] unless
+    /// [`budget_with_load`] was given another).
+    pub load: RowLoad,
     /// The stages in pipeline order.
     pub stages: Vec<StageBudget>,
-    /// Stages not in the budget yet.
-    pub not_included: Vec<&'static str>,
     /// Clocks per line the input offers, `W + hblank`.
     pub input_cycles_per_line: u64,
     /// The stage with the most clocks per line.
     pub slowest_stage: &'static str,
     /// Its clocks per line.
     pub slowest_stage_cycles: u64,
-    /// `max(W + hblank, slowest stage)`.
+    /// `P = max(W + hblank, slowest stage)`.
     pub line_period_cycles: u64,
-    /// Clocks per line the input is held (`s_tready` low) when every line
-    /// is the worst: `line_period − (W + hblank)`.
+    /// Clocks per worst line by which the slowest stage exceeds `W + hblank`,
+    /// `P − (W + hblank)`: the detector holds the input (`tready` low) that
+    /// long; a slower matcher falls behind by that much, which the record
+    /// queues absorb for a while before records are dropped; a slower row
+    /// check drops rows. The numbers below assume the input paced to `P`.
     pub stall_cycles_per_line: u64,
-    /// The least hblank with which the input never stalls.
+    /// The least hblank with which no stage is slower than the input.
     pub min_hblank_cycles: u64,
-    /// A scanline's first pixel accepted → its last disparity out: the sum of
-    /// the stages' latencies.
+    /// A scanline's latency: a row's first pixel accepted → its first
+    /// disparity out, the sum of the stages' latencies.
     pub latency_cycles: u64,
     pub latency_formula: String,
     pub latency_us: f64,
-    /// `H × line period`.
+    /// A row's first pixel accepted → its last disparity out,
+    /// `latency + (W' − 1)`.
+    pub latency_last_pixel_cycles: u64,
+    /// The frame's first disparity out → its last,
+    /// `(H − 4)·P + max(c_last + 1, W') + 3·W' − 1`.
+    pub output_span_cycles: u64,
+    pub output_span_formula: String,
+    /// The frame's first pixel accepted → its last disparity out,
+    /// `latency + output span`.
+    pub last_out_cycles: u64,
+    /// The clock of the frame's last pixel accepted, from its first: rows
+    /// every `P` (`line_starts` for back-to-back lines the detector holds).
+    pub last_in_cycle: u64,
+    /// The frame's last pixel accepted → its last disparity out (the
+    /// pipeline's and the median's flush).
+    pub flush_cycles: u64,
+    /// The least vertical blanking, in lines of `P`, before the next frame
+    /// of rows of the same work (see the module's doc).
+    pub vblank_lines: u64,
+    pub vblank_formula: String,
+    /// The least vertical blanking whatever the next frame's rows (its
+    /// first rows empty).
+    pub vblank_lines_any_rows: u64,
+    /// `(H + vblank_lines) × P`.
     pub frame_cycles: u64,
     pub frame_time_ms: f64,
     pub fps: f64,
@@ -583,13 +971,17 @@ pub fn dispmax_lsb(dispmax: f64) -> Result<u32, BudgetError> {
     Ok((lsb as u32).min((1u32 << DISPMAX_BITS) - 1))
 }
 
-/// Checks a request and gives the sizes its budget is made for.
+/// Checks a request and gives the sizes its budget is made for (every row
+/// the worst).
 pub fn validate(r: &BudgetRequest) -> Result<Sizes, BudgetError> {
     if r.width == 0 {
         return Err(BudgetError::ZeroWidth);
     }
     if r.height == 0 {
         return Err(BudgetError::ZeroHeight);
+    }
+    if r.height < MIN_HEIGHT {
+        return Err(BudgetError::TooFewRows { height: r.height });
     }
     if r.n_max == 0 {
         return Err(BudgetError::NoDeclivities);
@@ -612,23 +1004,97 @@ pub fn validate(r: &BudgetRequest) -> Result<Sizes, BudgetError> {
         return Err(BudgetError::Clock { mhz: r.clock_mhz });
     }
     dispmax_lsb(r.dispmax)?;
-    Ok(Sizes { width: r.width, stored_width: r.width.min(W_MAX), n: r.n_max, cells: r.cells })
+    Ok(Sizes {
+        width: r.width,
+        stored_width: r.width.min(W_MAX),
+        n: r.n_max,
+        cells: r.cells,
+        load: RowLoad::worst(r.n_max),
+        worst: true,
+        line_period: 0,
+    })
 }
 
-/// The budget of `r` (see the module's doc).
+/// The budget of `r` with every row the worst for `N = r.n_max` (see the
+/// module's doc).
 pub fn budget(r: &BudgetRequest) -> Result<Budget, BudgetError> {
-    let sizes = validate(r)?;
+    budget_with_load(r, &RowLoad::worst(r.n_max))
+}
+
+/// The budget of `r` for a frame whose rows take `load` (each row's line
+/// pair at most `r.n_max` declivities a side): the numbers a simulation of
+/// such a frame measures.
+pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, BudgetError> {
+    let mut sizes = validate(r)?;
+    assert!(
+        load.n <= r.n_max && load.m <= r.n_max && load.k <= load.n.min(load.m),
+        "a row load of {load:?} for N = {}",
+        r.n_max
+    );
+    sizes.worst = *load == RowLoad::worst(r.n_max);
+    sizes.load = *load;
     let input = (r.width + r.hblank) as u64;
+    // The clocks per line do not depend on the line period; the latencies
+    // do: a first pass gives the period, the second the latencies.
+    let period_of = |stages: &[StageBudget]| stages.iter().map(|s| s.cycles_per_line).max().unwrap_or(0).max(input);
+    let first: Vec<StageBudget> = STAGES.iter().map(|stage| stage(&sizes)).collect();
+    sizes.line_period = period_of(&first);
     let mut stages: Vec<StageBudget> = STAGES.iter().map(|stage| stage(&sizes)).collect();
     for s in &mut stages {
         s.spare_cycles = input as i64 - s.cycles_per_line as i64;
     }
-    let slowest = stages.iter().max_by_key(|s| s.cycles_per_line).expect("at least one stage");
-    let line_period = input.max(slowest.cycles_per_line);
+    // The first of the slowest (the detector when it ties with the stages
+    // that also take a pixel a clock).
+    let slowest = stages.iter().rev().max_by_key(|s| s.cycles_per_line).expect("at least one stage");
+    let line_period = sizes.line_period;
+    debug_assert_eq!(line_period, period_of(&stages));
+    let (w, wp, h, p) = (r.width, sizes.stored_width, r.height, line_period as usize);
+
+    // A scanline: its first pixel in → its first disparity out.
     let latency_terms: Vec<Term> = stages.iter().flat_map(|s| s.latency_terms.iter().cloned()).collect();
     let (latency_cycles, latency_formula) = render(&latency_terms);
-    let frame_cycles = r.height as u64 * line_period;
+
+    // The frame's end (module doc, "The frame's end").
+    let last_check = if sizes.worst { "max(row_check_cycles(N, N, 0) + 1, W')" } else { "max(c_last + 1, W')" };
+    let (output_span_cycles, output_span_formula) = render(&[
+        Term::new("(H − 4)·P (output rows 0 … H − 4, one a line period)", (h - MIN_HEIGHT) * p),
+        Term::new(format!("{last_check} (the last row, checked right after row H − 2, follows it into the interpolator)"), (load.last_check + 1).max(wp)),
+        Term::new("3·W' (output row H − 3 in the last row's slot, then the median's flush of rows H − 2 and H − 1, back to back)", 3 * wp),
+        Term::minus("1", 1),
+    ]);
+    let last_out_cycles = latency_cycles + output_span_cycles;
+    let det_cycles = stages[0].cycles_per_line;
+    let last_in_cycle = if r.hblank == 0 && line_period == det_cycles {
+        line_starts(&vec![w; h])[h - 1] + w as u64 - 1
+    } else {
+        ((h - 1) * p + w - 1) as u64
+    };
+    let flush_cycles = last_out_cycles - last_in_cycle;
+
+    // Vertical blanking.
+    let need = |terms: &[Term]| -> (u64, String) {
+        let (sum, text) = render(terms);
+        let lines = (sum.div_ceil(line_period)).saturating_sub(2);
+        (lines, format!("⌈({text}) / P⌉ − 2, at least 0"))
+    };
+    let end = |first: Term| -> Vec<Term> {
+        vec![
+            Term::new(last_check, (load.last_check + 1).max(wp)),
+            Term::new("3·W' (the last row and the median's flush)", 3 * wp),
+            Term::new(if sizes.worst { "row_check_cycles(N, N, N)" } else { "c" }, load.check),
+            first,
+        ]
+    };
+    let (vblank_lines, vblank_formula) =
+        need(&end(Term::minus(if sizes.worst { "row_check_cycles(0, N, N)" } else { "c_first" }, load.first_check)));
+    let empty_line = line_cycles(0, 0, 0, 0, r.cells);
+    let mut any = end(Term::minus("1 (an empty first row)", 1));
+    any.push(Term::new(format!("line_cycles({}, K)", sizes.line_args()), load.line_cycles(r.cells)));
+    any.push(Term::minus("line_cycles(0, 0, 0, 0, K) (an empty line)", empty_line));
+    let (vblank_lines_any_rows, _) = need(&any);
+    let frame_cycles = (r.height as u64 + vblank_lines) * line_period;
     let frame_time_ms = frame_cycles as f64 / (r.clock_mhz * 1e3);
+
     let mut notes = Vec::new();
     if r.width > W_MAX {
         notes.push(format!(
@@ -642,22 +1108,54 @@ pub fn budget(r: &BudgetRequest) -> Result<Budget, BudgetError> {
             r.n_max, r.width
         ));
     }
+    if slowest.name != stages[0].name && line_period > input {
+        let queue_lines = RECORD_FIFO_DEPTH / (r.n_max + 1);
+        notes.push(format!(
+            "the {} is slower than W + hblank: the numbers assume the input paced to P = {line_period} (hblank ≥ {}); with a faster input the matcher falls behind and the record queues ({RECORD_FIFO_DEPTH} beats a camera, {queue_lines} lines of N records) absorb a run of such lines before records are dropped (records_dropped), and a row check behind drops rows (lines_dropped)",
+            slowest.name,
+            slowest.cycles_per_line.saturating_sub(r.width as u64)
+        ));
+    }
+    if r.width < MIN_LINE_PERIOD && r.hblank == 0 {
+        let starts = line_starts(&[r.width; STEADY_LINES]);
+        let y = STEADY_LINES - 1;
+        let late = (y as u64 * line_period).saturating_sub(starts[y]);
+        notes.push(format!(
+            "W < MIN_LINE_PERIOD: the detector takes rows 0 and 1 back to back and then holds the input, so a row inside the frame was accepted y·P − line_starts[y] = {late} clocks earlier than the first row's latency assumes: its latency is {} clocks (from line_starts; not measured on the whole line processor)",
+            latency_cycles + late
+        ));
+    } else if r.width < MIN_LINE_PERIOD {
+        notes.push("W < MIN_LINE_PERIOD with hblank: the line starts are not modelled (line_starts takes back-to-back lines); the frame's end assumes rows every P".to_string());
+    }
     let marker_latency = marker_latency_estimate(r.width) as usize;
     notes.push(format!(
         "marker_latency(W') = W' + {} clocks, of which THRESHOLD_LATENCY = {THRESHOLD_LATENCY} are the σ scan (the |ΔI| histogram's median and d_t)",
         marker_latency - sizes.stored_width
     ));
-    let (n, _, stop, k) = worst_matcher_line(r.n_max);
-    notes.push(format!(
-        "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles grows with n, m and k and falls with the stop diagonal; the path of every diagonal pair reaches all bounds at once)"
-    ));
+    if sizes.worst {
+        let (n, _, stop, k) = worst_matcher_line(r.n_max);
+        notes.push(format!(
+            "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles grows with n, m and k and falls with the stop diagonal; the path of every diagonal pair reaches all bounds at once); its k = N matches checked against rows of N: row_check_cycles(N, N, N) = {} inside the frame, row_check_cycles(0, N, N) = {} for the first row, row_check_cycles(N, N, 0) = {} for the last — bounds, loose on real rows (about n + 5 clocks, rtl::row_check)",
+            load.check, load.first_check, load.last_check
+        ));
+    } else {
+        notes.push(format!(
+            "the rows' work as given: the matcher's line (n, m, s, k) = ({}, {}, {}, {}), the row check's c = {} inside the frame, c_first = {}, c_last = {}",
+            load.n, load.m, load.stop_diag, load.k, load.check, load.first_check, load.last_check
+        ));
+    }
     notes.push(format!("{SWEEP_FORMULA} with ENGINE_LAG = {ENGINE_LAG}; {TRACEBACK_FORMULA} with WALK_LEAD = {WALK_LEAD}"));
     notes.push(format!(
         "dispmax = {} px changes no clock count: eq. 6 only removes nodes, the sweep covers the whole table",
         r.dispmax
     ));
     notes.push(format!(
-        "latency with the engines idle (as they are when the line period holds), each stage's output wired to the next; memory sizes are those the blocks are generated with (W_MAX = {W_MAX}, N_MAX = {N_MAX}, choice words of {CELLS_PER_CHOICE_WORD} cells for N_CELLS = {N_CELLS}), whatever W, N and --cells"
+        "vertical blanking: the median (MEDIAN_TAPS = {MEDIAN_TAPS} rows) flushes the frame's last two rows after it and drops the pixels that come meanwhile (pixels_dropped); {} of P with rows of the same work, {} whatever the next frame's rows",
+        lines(vblank_lines),
+        lines(vblank_lines_any_rows)
+    ));
+    notes.push(format!(
+        "latencies with the stages idle, as they are when the line period holds, each stage's output wired to the next; memory sizes are those the blocks are generated with (W_MAX = {W_MAX}, N_MAX = {N_MAX}, choice words of {CELLS_PER_CHOICE_WORD} cells for N_CELLS = {N_CELLS}), whatever W, N and --cells"
     ));
     Ok(Budget {
         width: r.width,
@@ -669,7 +1167,7 @@ pub fn budget(r: &BudgetRequest) -> Result<Budget, BudgetError> {
         clock_mhz: r.clock_mhz,
         hblank: r.hblank,
         cells: r.cells,
-        not_included: NOT_YET_INCLUDED.to_vec(),
+        load: *load,
         input_cycles_per_line: input,
         slowest_stage: slowest.name,
         slowest_stage_cycles: slowest.cycles_per_line,
@@ -679,6 +1177,15 @@ pub fn budget(r: &BudgetRequest) -> Result<Budget, BudgetError> {
         latency_cycles,
         latency_formula,
         latency_us: latency_cycles as f64 / r.clock_mhz,
+        latency_last_pixel_cycles: latency_cycles + wp as u64 - 1,
+        output_span_cycles,
+        output_span_formula,
+        last_out_cycles,
+        last_in_cycle,
+        flush_cycles,
+        vblank_lines,
+        vblank_formula,
+        vblank_lines_any_rows,
         frame_cycles,
         frame_time_ms,
         fps: 1e3 / frame_time_ms,
@@ -686,6 +1193,15 @@ pub fn budget(r: &BudgetRequest) -> Result<Budget, BudgetError> {
         stages,
         notes,
     })
+}
+
+/// `n lines` (`1 line`).
+fn lines(n: u64) -> String {
+    if n == 1 {
+        "1 line".to_string()
+    } else {
+        format!("{n} lines")
+    }
 }
 
 /// `n` with thin spaces between groups of three digits (`65 536`).
@@ -716,35 +1232,64 @@ pub fn report_text(b: &Budget) -> String {
         let fits = if s.spare_cycles >= 0 {
             format!("fits W + hblank, {} to spare", s.spare_cycles)
         } else {
-            format!("STALLS the input {} per line", -s.spare_cycles)
+            format!("{} OVER W + hblank", -s.spare_cycles)
         };
         let _ = writeln!(o, "  {:<22} {:>6}   [{fits}]   {}", format!("{}{copies}", s.name), s.cycles_per_line, s.formula);
     }
-    for s in &b.not_included {
-        let _ = writeln!(o, "  {s}");
-    }
     let _ = writeln!(
         o,
-        "\nline period        {} clocks = max(input W + hblank = {}, slowest stage: {} {})",
+        "\nline period P      {} clocks = max(input W + hblank = {}, slowest stage: {} {})",
         b.line_period_cycles, b.input_cycles_per_line, b.slowest_stage, b.slowest_stage_cycles
     );
     if b.stall_cycles_per_line > 0 {
-        let _ = writeln!(
-            o,
-            "  the {} takes longer than W + hblank: the input stalls {} clocks per worst line; hblank ≥ {} avoids it",
-            b.slowest_stage, b.stall_cycles_per_line, b.min_hblank_cycles
-        );
+        if b.slowest_stage == b.stages[0].name {
+            let _ = writeln!(
+                o,
+                "  the {} takes longer than W + hblank: it holds the input (tready low) {} clocks per line",
+                b.slowest_stage, b.stall_cycles_per_line
+            );
+        } else {
+            let _ = writeln!(
+                o,
+                "  the {} takes {} clocks per worst line more than W + hblank: hblank ≥ {} paces the input to it (else the record queues absorb a run of such lines, then records or rows are dropped)",
+                b.slowest_stage, b.stall_cycles_per_line, b.min_hblank_cycles
+            );
+        }
     } else {
-        let _ = writeln!(o, "  no stage is slower than the input's W + hblank: the input never stalls");
+        let _ = writeln!(o, "  no stage is slower than the input's W + hblank: nothing holds the input or falls behind");
     }
-    let _ = writeln!(o, "latency            {} clocks = {:.2} µs per scanline (first pixel in → last disparity out)", b.latency_cycles, b.latency_us);
+    let _ = writeln!(
+        o,
+        "latency            {} clocks = {:.2} µs per scanline (a row's first pixel in → its first disparity out; its last {} clocks after the first pixel in)",
+        b.latency_cycles,
+        b.latency_us,
+        b.latency_last_pixel_cycles
+    );
     for s in &b.stages {
         let _ = writeln!(o, "  {:<22} {:>6}   {}: {}", s.name, s.latency_cycles, s.latency_span, s.latency_formula);
     }
     let _ = writeln!(
         o,
-        "frame              {} lines × {} clocks = {} clocks = {:.3} ms at {} MHz, {:.1} frames/s",
+        "frame out          {} clocks from the first disparity out to the last: {}",
+        b.output_span_cycles, b.output_span_formula
+    );
+    let _ = writeln!(
+        o,
+        "flush              {} clocks from the frame's last pixel in (clock {}) to its last disparity out (clock {})",
+        b.flush_cycles, b.last_in_cycle, b.last_out_cycles
+    );
+    let _ = writeln!(
+        o,
+        "vertical blanking  {} (rows of the same work: {}); {} whatever the next frame's rows",
+        lines(b.vblank_lines),
+        b.vblank_formula,
+        lines(b.vblank_lines_any_rows)
+    );
+    let _ = writeln!(
+        o,
+        "frame              ({} lines + {} of vertical blanking) × {} clocks = {} clocks = {:.3} ms at {} MHz, {:.1} frames/s",
         b.height,
+        b.vblank_lines,
         b.line_period_cycles,
         grouped(b.frame_cycles),
         b.frame_time_ms,
@@ -754,10 +1299,11 @@ pub fn report_text(b: &Budget) -> String {
     let r = &b.resources;
     let _ = writeln!(o, "resources (as generated; memories: copies × banks × words × bits)");
     let _ = writeln!(o, "  gain cells (PEs)   {}, {} reference rows each ({} rows)", r.pe_count, r.rows_per_cell, r.pe_count * r.rows_per_cell);
-    for m in &r.memories {
+    for m in &b.resources.memories {
+        let rams = m.dp16kd.map_or("inferred".to_string(), |n| format!("{n} DP16KD"));
         let _ = writeln!(
             o,
-            "  {:<18} {} × {} × {} words × {} bit = {} bit ({})",
+            "  {:<18} {} × {} × {} words × {} bit = {} bit, {rams} ({})",
             m.name,
             m.copies,
             m.banks,
@@ -767,7 +1313,9 @@ pub fn report_text(b: &Budget) -> String {
             m.rtl
         );
     }
-    let _ = writeln!(o, "  all memories       {} bit", grouped(r.memory_bits as u64));
+    let _ = writeln!(o, "  all memories       {} bit; {} DP16KD instantiated (Yosys adds what it infers)", grouped(r.memory_bits as u64), r.dp16kd_instances);
+    let dsp: Vec<String> = b.stages.iter().filter_map(|s| s.dsp_blocks.filter(|&d| d > 0).map(|d| format!("{} {d}", s.name))).collect();
+    let _ = writeln!(o, "  DSP (MULT18X18D)   {} ({})", r.dsp_blocks, dsp.join(", "));
     for n in &b.notes {
         let _ = writeln!(o, "note: {n}");
     }
@@ -843,36 +1391,96 @@ mod tests {
         }
     }
 
+    /// The value part of a rendered formula (`a + b − c = 1 + 2 − 3`).
+    fn sum_of(f: &str) -> i64 {
+        let values = f.rsplit(" = ").next().unwrap();
+        let mut total = 0i64;
+        let mut sign = 1;
+        for tok in values.split_whitespace() {
+            match tok {
+                "+" => sign = 1,
+                "−" => sign = -1,
+                v => total += sign * v.parse::<i64>().unwrap(),
+            }
+        }
+        total
+    }
+
     #[test]
     fn formulas_add_up_to_their_values() {
-        let b = budget(&request(512, N_MAX, N_CELLS)).unwrap();
-        let sum_of = |f: &str| -> u64 {
-            let values = f.rsplit(" = ").next().unwrap();
-            let mut total = 0i64;
-            let mut sign = 1;
-            for tok in values.split_whitespace() {
-                match tok {
-                    "+" => sign = 1,
-                    "−" => sign = -1,
-                    v => total += sign * v.parse::<i64>().unwrap(),
+        for (w, hblank) in [(512, 0), (1024, 320), (64, 0)] {
+            let b = budget(&BudgetRequest { hblank, ..request(w, N_MAX, N_CELLS) }).unwrap();
+            for s in &b.stages {
+                assert_eq!(sum_of(&s.latency_formula), s.latency_cycles as i64, "{}: {}", s.name, s.latency_formula);
+            }
+            for name in ["matcher", "row check"] {
+                let s = b.stages.iter().find(|s| s.name == name).unwrap();
+                assert_eq!(sum_of(s.formula.split(" (a bound").next().unwrap()), s.cycles_per_line as i64, "{}", s.formula);
+            }
+            assert_eq!(sum_of(&b.latency_formula), b.latency_cycles as i64);
+            assert_eq!(b.latency_cycles, b.stages.iter().map(|s| s.latency_cycles).sum::<u64>());
+            assert_eq!(sum_of(&b.output_span_formula), b.output_span_cycles as i64);
+            assert_eq!(b.last_out_cycles, b.latency_cycles + b.output_span_cycles);
+            assert_eq!(b.latency_last_pixel_cycles, b.latency_cycles + b.stored_width as u64 - 1);
+            // Three line periods: one in the row check, two in the median.
+            let p = b.line_period_cycles;
+            let lines: u64 = b.stages.iter().flat_map(|s| &s.latency_terms).filter(|t| t.text.starts_with("P ") || t.text.starts_with("2·P ")).map(|t| t.value as u64).sum();
+            assert_eq!(lines, 3 * p);
+        }
+    }
+
+    /// The worst row load takes rtl's bounds by name: the matcher's worst
+    /// line and `row_check_cycles` of `N` matches with rows of `N` around,
+    /// which no smaller row exceeds; at `N = N_MAX` the row check's clocks
+    /// per line are `row_check_period()`.
+    #[test]
+    fn the_worst_row_load_is_rtls_bounds() {
+        let w = RowLoad::worst(N_MAX);
+        assert_eq!((w.n, w.m, w.stop_diag, w.k), worst_matcher_line(N_MAX));
+        assert_eq!(w.check + 1, row_check_period());
+        let b = budget(&request(1024, N_MAX, N_CELLS)).unwrap();
+        let rc = b.stages.iter().find(|s| s.name == "row check").unwrap();
+        assert_eq!(rc.cycles_per_line, row_check_period() as u64);
+        for big in [1, 5, 16] {
+            let w = RowLoad::worst(big);
+            for a in 0..=big {
+                for n in 0..=big {
+                    for c in 0..=big {
+                        assert!(row_check_cycles(a, n, c) <= w.check, "{a} {n} {c}");
+                        assert!(row_check_cycles(0, n, c) <= w.first_check);
+                        assert!(row_check_cycles(a, n, 0) <= w.last_check);
+                    }
                 }
             }
-            total as u64
-        };
-        let m = &b.stages[1];
-        assert_eq!(sum_of(&m.formula), m.cycles_per_line);
-        assert_eq!(sum_of(&m.latency_formula), m.latency_cycles);
-        assert_eq!(sum_of(&b.stages[0].latency_formula), b.stages[0].latency_cycles);
-        assert_eq!(b.latency_cycles, b.stages.iter().map(|s| s.latency_cycles).sum::<u64>());
+        }
+    }
+
+    /// Rows of the same work everywhere (the first row no lighter than the
+    /// others) need at most the two lines of vertical blanking the median's
+    /// doc asks for, whatever the line period; lighter first rows need more.
+    #[test]
+    fn vertical_blanking_is_two_lines_at_most_for_rows_of_equal_work() {
+        for (w, hblank, n) in [(512, 0, 16), (1024, 0, 16), (300, 37, 8), (64, 0, 4), (1024, 0, N_MAX)] {
+            let r = BudgetRequest { hblank, cells: N_CELLS, ..BudgetRequest::new(w, 100, n, 64.0, 125.0) };
+            let worst = RowLoad::worst(n);
+            let even = RowLoad { first_check: worst.check, last_check: worst.check, ..worst };
+            let b = budget_with_load(&r, &even).unwrap();
+            assert!(b.vblank_lines <= 2, "W {w} N {n}: {} ({})", b.vblank_lines, b.vblank_formula);
+            assert!(b.vblank_lines_any_rows >= b.vblank_lines);
+            let bw = budget(&r).unwrap();
+            assert!(bw.vblank_lines >= b.vblank_lines && bw.vblank_lines_any_rows >= bw.vblank_lines);
+            assert_eq!(bw.frame_cycles, (100 + bw.vblank_lines) * bw.line_period_cycles);
+        }
     }
 
     #[test]
     fn bad_requests_are_refused_with_their_reason() {
         let ok = request(512, 64, 32);
         assert!(budget(&ok).is_ok());
-        let cases: [(BudgetRequest, fn(&BudgetError) -> bool); 9] = [
+        let cases: [(BudgetRequest, fn(&BudgetError) -> bool); 10] = [
             (BudgetRequest { width: 0, ..ok }, |e| matches!(e, BudgetError::ZeroWidth)),
             (BudgetRequest { height: 0, ..ok }, |e| matches!(e, BudgetError::ZeroHeight)),
+            (BudgetRequest { height: MIN_HEIGHT - 1, ..ok }, |e| matches!(e, BudgetError::TooFewRows { height: 3 })),
             (BudgetRequest { n_max: 0, ..ok }, |e| matches!(e, BudgetError::NoDeclivities)),
             (BudgetRequest { n_max: N_MAX + 1, cells: 64, ..ok }, |e| matches!(e, BudgetError::TooManyDeclivities { .. })),
             (BudgetRequest { cells: 5, ..ok }, |e| matches!(e, BudgetError::UnsupportedCells { cells: 5 })),

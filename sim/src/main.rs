@@ -76,25 +76,35 @@ with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both fr
 critical path, or one JSON object with --json. Takes a few minutes for the detector.")]
     Synth(SynthArgs),
     /// Latency budget of the hardware: clocks per line per stage, line period, latency, frame rate, resources.
-    #[command(long_about = "Latency budget of the hardware line processor (DESIGN.md section 3), from \
-the rtl blocks' own cycle formulas (rtl::declivity_detector::marker_latency and line_starts, \
-rtl::declivity_matcher::line_cycles, sweep_cycles, rtl::traceback::traceback_cycles), which the tests \
-check against clocks measured in simulation.
+    #[command(long_about = "Latency budget of the hardware line processor (DESIGN.md section 3, \
+rtl::stereo_line_processor), from the rtl blocks' own cycle formulas and named constants \
+(rtl::declivity_detector::marker_latency and line_starts, rtl::record_fifo::RECORD_FIFO_LAG, \
+rtl::declivity_matcher::line_cycles, sweep_cycles, rtl::traceback::traceback_cycles, \
+rtl::row_check::row_check_cycles and ROW_START_LAG, the interpolator's SEGMENT_LAG and PIXEL_LAG, \
+MEDIAN_LAG, DEPTH_LAG), which the tests check against clocks measured by simulating the blocks and \
+the whole line processor.
 
-Per stage that exists in rtl today (the two declivity detectors, one per camera, the matcher and the \
-interpolator; the default mode's row check and vertical median and the depth stage are not yet included): its clocks per line for the worst line, as a formula \
-with its values. The detector takes W clocks per line (one pixel per clock) from W >= MIN_LINE_PERIOD \
-= 283 on; the matcher's worst line has n = m = N declivities and a path of k = N pairs stopping on \
-anti-diagonal 0, which maximises line_cycles (every term grows with n, m, k and falls with the stop \
-diagonal). Then: the line period, max(W + hblank, slowest stage), and if a stage is slower than the \
-input, the clocks per line the input stalls and the least hblank that avoids it; the latency of a \
-scanline, from its first pixel accepted to its last disparity out, stage by stage; the frame time, H x line \
-period / clock, and frames per second; the resources as the rtl blocks declare them (line buffers, \
-|dI| histogram banks, gain cells (PEs) and rows per cell, record, choice and traceback memories, the interpolator's segment memory, reciprocal table and line queue, in \
-bits; generation-time sizes for W_MAX = 1024, N_MAX = 128). --json prints the same as one JSON object \
-(line_period_cycles, stall_cycles_per_line, min_hblank_cycles, latency_cycles, latency_us, \
-frame_time_ms, fps, stages[] with cycles_per_line, formula, latency_cycles, latency_formula, \
-resources, notes).")]
+Per stage, in pipeline order (the two declivity detectors, the two record queues, the matcher, the \
+row check, the interpolator, the vertical median, the depth stage): its clocks per line for the worst \
+line, as a formula with its values. The detector takes W clocks per line (one pixel per clock) from \
+W >= MIN_LINE_PERIOD = 283 on; the matcher's worst line has n = m = N declivities and a path of \
+k = N pairs stopping on anti-diagonal 0, which maximises line_cycles (every term grows with n, m, k \
+and falls with the stop diagonal); the row check's worst row is row_check_cycles(N, N, N), a bound. \
+Then: the line period P = max(W + hblank, slowest stage), and if a stage is slower than the input, \
+by how much per line and the least hblank that paces the input to it (the detector holds the input; \
+behind a slower matcher the record queues fill and then drop records); the latency of a scanline, \
+from a row's first pixel accepted to its first disparity out, stage by stage (three line periods of \
+it: the row check waits for the row below, the vertical median for the two rows below); the frame's \
+end (first to last disparity out, the flush after the last pixel in) and the vertical blanking the \
+median's flush of the last two rows needs; the frame time, (H + vertical blanking) x P / clock, and \
+frames per second; the resources as the rtl blocks declare them (line buffers, |dI| histogram banks, \
+record queues, gain cells (PEs) and rows per cell, record, choice and traceback memories, the row \
+check's memories, the interpolator's segment memory, reciprocal table and line queue, the median's \
+line buffers, the depth table, in bits, with the DP16KD block RAMs the blocks instantiate, and the \
+DSP blocks; generation-time sizes for W_MAX = 1024, N_MAX = 128). --json prints the same as one \
+JSON object (line_period_cycles, stall_cycles_per_line, min_hblank_cycles, latency_cycles, \
+latency_us, output_span_cycles, flush_cycles, vblank_lines, frame_cycles, frame_time_ms, fps, \
+stages[] with cycles_per_line, formula, latency_cycles, latency_formula, resources, notes).")]
     Budget(BudgetArgs),
 }
 
@@ -106,7 +116,7 @@ struct BudgetArgs {
     /// their first 1024 pixels and flagged wide (the budget says so); the input still takes W clocks.
     #[arg(long)]
     width: usize,
-    /// Lines per frame H.
+    /// Lines per frame H (at least 4: a row's output waits for the three rows below it).
     #[arg(long)]
     height: usize,
     /// Characteristic declivities per line N to budget the matcher for, on both views: 1 to N_MAX
@@ -121,7 +131,7 @@ struct BudgetArgs {
     #[arg(long)]
     clock_mhz: f64,
     /// Horizontal blanking: idle clocks after each line on the inputs. A stage slower than
-    /// W + hblank stalls the input.
+    /// W + hblank sets the line period: the input must be paced to it.
     #[arg(long, default_value_t = 0)]
     hblank: usize,
     /// Gain cells of the matcher's systolic array K (2, 4, 8, 16, 32 or 64 = N_CELLS, the

@@ -1,16 +1,22 @@
 //! `declivity budget` against the hardware: the per-stage clock numbers of
-//! `sim::budget` equal the clocks measured by simulating the rtl detector
-//! and matcher for several sizes (the matcher's worst line included, on the
-//! sensor's 64-cell array); its memory sizes equal the memories of the
-//! generated Verilog; its frame arithmetic equals numbers worked out by
-//! hand; and the CLI refuses bad sizes with a message that names them.
+//! `sim::budget` equal the clocks measured by simulating the rtl detector,
+//! matcher and interpolator for several sizes (the matcher's worst line
+//! included, on the sensor's 64-cell array); the whole line processor's
+//! latency (first pixel in → first disparity out), its output's span
+//! (first → last disparity out: the output rows a line period apart, then
+//! the frame's end) and its flush equal the budget's formulas on frames of
+//! several sizes whose rows' work is known; its memory sizes and `DP16KD`s
+//! equal those of the generated Verilog; its frame arithmetic equals
+//! numbers worked out by hand; and the CLI refuses bad sizes with a message
+//! that names them.
 
 use std::process::{Command, Output};
 use std::sync::{Arc, Mutex};
 
 use rtl::declivity_matcher::{DeclivityMatcher, GainRule, TAKE_AFTER_MARKER};
 use rtl::params::{DT_FRAC_BITS, N_CELLS, N_MAX, POS_FRAC_BITS, W_MAX};
-use sim::budget::{budget, matcher_cycles_per_line, Budget, BudgetRequest, StageBudget, MARKER_AFTER_NEXT_TAKE};
+use rtl::depth_stage::DepthCamera;
+use sim::budget::{budget, budget_with_load, matcher_cycles_per_line, Budget, BudgetRequest, RowLoad, StageBudget, MARKER_AFTER_NEXT_TAKE};
 use sim::cosim::VectorRng;
 use sim::detector::{run_lines, DetectorSim};
 use sim::matcher::{golden_match, MatchLine, MatchRecord, MatcherSim};
@@ -188,8 +194,9 @@ fn check_worst_line<const N: usize>(n: usize) -> Budget {
     assert!(second.input_done + TAKE_AFTER_MARKER < first.marker - 2, "the second pair waits for the engine");
     let b = budget(&request(W_MAX, n, N)).expect("a valid request");
     let m = stage(&b, "matcher");
-    let latency = first.last_match.expect("matches") - first.input_done;
-    assert_eq!(latency, m.latency_cycles, "{N} cells, N = {n}: second marker → last match ({})", m.latency_formula);
+    let latency = first.marker - first.input_done;
+    assert_eq!(latency, m.latency_cycles, "{N} cells, N = {n}: second marker → the pair's marker ({})", m.latency_formula);
+    assert_eq!(first.last_match.expect("matches") + 1, first.marker, "the last match leaves the clock before the marker");
     assert_eq!(second.marker - first.marker, m.cycles_per_line, "{N} cells, N = {n}: back-to-back markers ({})", m.formula);
     assert_eq!(m.pe_count, Some(N));
     b
@@ -244,16 +251,15 @@ fn matcher_clocks_of_random_pairs_follow_the_per_line_formula_and_stay_within_th
 }
 
 // ===========================================================================
-// The scanline's latency, resources
+// The stages' latencies on their blocks
 // ===========================================================================
 
-/// The budget's latency of a scanline is the detector's measured first
-/// pixel → marker plus the matcher's measured second marker → last match
-/// plus the interpolator's measured marker → last pixel and the clock from
-/// the matcher's last match to its marker (the stages wired directly,
-/// engines idle).
+/// The detector's, matcher's and interpolator's latencies in the budget are
+/// the clocks measured on their blocks: first pixel → marker, the pair's
+/// second marker → its marker, and the marker → the line's first pixel (the
+/// row check's marker, as the interpolator takes the row check's stream).
 #[test]
-fn scanline_latency_is_the_sum_of_the_measured_stage_latencies() {
+fn stage_latencies_equal_the_clocks_measured_on_their_blocks() {
     const CELLS: usize = 8;
     let (width, n) = (700, 16);
     let mut rng = VectorRng(0x5eed_0003);
@@ -263,7 +269,7 @@ fn scanline_latency_is_the_sum_of_the_measured_stage_latencies() {
     let run = run_lines(&mut sim, &[line.as_slice()], |_| false, |_| {}).expect("the detector runs");
     let detector = run.lines[0].marker_cycle - run.first_pixel_cycle[0];
     let pair = &measure::<CELLS>(&[worst_pair(n)], WORST_DISPMAX)[0];
-    let matcher = pair.last_match.expect("matches") - pair.input_done;
+    let matcher = pair.marker - pair.input_done;
     let line = sim::interpolator::AnchorLine {
         anchors: vec![sim::interpolator::FixedAnchor { x: 100, d: 40 }, sim::interpolator::FixedAnchor { x: 5000, d: 90 }],
         width,
@@ -271,9 +277,170 @@ fn scanline_latency_is_the_sum_of_the_measured_stage_latencies() {
     };
     let mut interp = sim::interpolator::InterpolatorSim::robust();
     let (lines, markers) = interp.run(&[line], 0);
-    let interpolator = lines[0].last_cycle - markers[0];
-    let b = budget(&request(width, n, CELLS)).expect("valid");
-    assert_eq!(b.latency_cycles, detector + matcher + 1 + interpolator, "{}", b.latency_formula);
+    let interpolator = lines[0].first_cycle - markers[0];
+    assert_eq!(lines[0].last_cycle - lines[0].first_cycle, width as u64 - 1, "one pixel a clock");
+    let b = budget(&BudgetRequest { height: 100, ..request(width, n, CELLS) }).expect("valid");
+    for (name, measured) in [("declivity detector", detector), ("matcher", matcher), ("interpolator", interpolator)] {
+        let s = stage(&b, name);
+        assert_eq!(measured, s.latency_cycles, "{name}: {} ({})", s.latency_span, s.latency_formula);
+    }
+}
+
+// ===========================================================================
+// The whole line processor
+// ===========================================================================
+
+/// The line processor's array for these tests (16 reference rows).
+const TOP_CELLS: usize = 8;
+/// Their search bound: 16 px.
+const TOP_DISPMAX: u32 = 16 * PX;
+/// Their disparity: the right view is the left shifted by 3 px.
+const TOP_SHIFT: usize = 3;
+
+/// Which rows of a test frame carry steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Rows {
+    /// Every row the same `steps` steps.
+    All,
+    /// The odd rows; the even rows flat (no declivity, so no match).
+    Odd,
+}
+
+/// A `w × h` pair whose textured rows (`rows`) are flat with `steps`
+/// vertical edges of 110 grey levels, alternately up and down, evenly
+/// spaced: `steps` declivities per textured line in each view, the right
+/// view the left shifted by [`TOP_SHIFT`] px.
+fn stepped_pair(w: usize, h: usize, steps: usize, rows: Rows) -> (golden::GreyImage, golden::GreyImage) {
+    let gap = (w - TOP_SHIFT - 8) / (steps + 1);
+    let (mut left, mut right) = (Vec::with_capacity(w * h), Vec::with_capacity(w * h));
+    for y in 0..h {
+        let textured = rows == Rows::All || y % 2 == 1;
+        let scene: Vec<u8> = (0..w + TOP_SHIFT)
+            .map(|x| {
+                let edges = if textured && x >= 4 { ((x - 4) / gap).min(steps) } else { 0 };
+                if edges % 2 == 0 {
+                    70
+                } else {
+                    180
+                }
+            })
+            .collect();
+        left.extend_from_slice(&scene[..w]);
+        right.extend_from_slice(&scene[TOP_SHIFT..]);
+    }
+    (golden::GreyImage::new(w, h, left).expect("a pair"), golden::GreyImage::new(w, h, right).expect("a pair"))
+}
+
+/// What a frame's rows cost the matcher and the row check, from the blocks'
+/// own models: each row's line pair as the detectors send it
+/// (`sim::matcher::image_lines`), golden's path through it (the matcher's,
+/// by `matcher_*` tests above), and the row check's clocks for each row,
+/// measured by simulating the rtl row check on the frame's matches. Also
+/// the declivities per textured line in each view.
+fn frame_load(left: &golden::GreyImage, right: &golden::GreyImage) -> (RowLoad, Vec<(usize, usize)>) {
+    let h = left.height();
+    let lines = sim::matcher::image_lines(left, right);
+    let paths: Vec<_> = lines.iter().map(|(r, o)| golden_match(r, o, TOP_DISPMAX, GainRule::Robust)).collect();
+    let counts: Vec<(usize, usize)> = lines.iter().map(|(r, o)| (r.records.len(), o.records.len())).collect();
+    let line_of = |y: usize| (counts[y].0, counts[y].1, paths[y].stop_diag, paths[y].nodes.len());
+    // The latency takes row 3's line, the frame's end row H - 1's: one load
+    // holds both only if they are alike.
+    assert_eq!(line_of(3), line_of(h - 1), "rows 3 and H - 1 match alike");
+    let frame: Vec<Vec<sim::row_check::FixedMatch>> = lines
+        .iter()
+        .zip(&paths)
+        .map(|((r, o), g)| g.nodes.iter().map(|&(i, j)| (r.records[i].pos as u64, (r.records[i].pos - o.records[j].pos) as u64)).collect())
+        .collect();
+    // Rows a line period of the widest apart: each row is checked alone.
+    let run = sim::row_check::RowCheckSim::new().run(&frame, rtl::row_check::row_check_period());
+    assert_eq!(run.rows.len(), h, "every row checked");
+    // Row y < H - 1 starts ROW_START_LAG after row y + 1's marker in, the
+    // last right after row H - 2 finished; each marker leaves the clock
+    // after its row's finish.
+    let start_lag = rtl::row_check::ROW_START_LAG as u64;
+    let check = |y: usize| (run.rows[y].marker_cycle - run.markers[y + 1] - start_lag - 1) as usize;
+    let last_check = (run.rows[h - 1].marker_cycle - run.rows[h - 2].marker_cycle - 1) as usize;
+    assert_eq!(check(2), check(h - 2), "rows 2 and H - 2 checked alike");
+    let (n, m, stop_diag, k) = line_of(3);
+    (RowLoad { n, m, stop_diag, k, check: check(2), first_check: check(0), last_check }, counts)
+}
+
+/// One frame through the line processor against the budget for its rows:
+/// returns (measured, budgeted) first pixel in → first disparity out.
+fn check_frame(w: usize, h: usize, steps: usize, rows: Rows, hblank: usize) -> (u64, u64) {
+    let (left, right) = stepped_pair(w, h, steps, rows);
+    let (load, counts) = frame_load(&left, &right);
+    for (y, &(n, m)) in counts.iter().enumerate() {
+        let want = if rows == Rows::All || y % 2 == 1 { steps } else { 0 };
+        assert_eq!((n, m), (want, want), "W {w}: row {y}'s declivities");
+    }
+    assert_eq!((load.k, load.stop_diag), (steps, 0), "W {w}: every step matched, the path down to (0, 0)");
+    let mut sim = sim::stereo::StereoSim::<TOP_CELLS>::new(GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), DepthCamera::default(), TOP_DISPMAX)
+        .expect("the default camera");
+    let run = sim.run(&left, &right, hblank, |_| {});
+    let what = format!("W {w} H {h} {rows:?} hblank {hblank}, {load:?}");
+    assert_eq!(run.rows.len(), h, "{what}: every row out");
+    assert!(run.rows.iter().all(|r| r.len() == w), "{what}: rows of W pixels");
+    assert_eq!(
+        (run.records_dropped, run.lines_dropped, run.pixels_dropped, run.lines_full, run.lines_wide),
+        (0, 0, 0, 0, 0),
+        "{what}: nothing dropped"
+    );
+    let r = BudgetRequest { hblank, cells: TOP_CELLS, ..BudgetRequest::new(w, h, steps.max(1), TOP_DISPMAX as f64 / PX as f64, 125.0) };
+    let b = budget_with_load(&r, &load).expect("valid");
+    // The rows come every P: the input's, or the detector's for short lines.
+    let det = stage(&b, "declivity detector").cycles_per_line;
+    assert_eq!(b.line_period_cycles, det.max((w + hblank) as u64), "{what}: no stage slower than the input");
+    let latency = run.latency_cycles().expect("a disparity out");
+    assert_eq!(latency, b.latency_cycles, "{what}: first pixel in → first disparity out ({})", b.latency_formula);
+    // Output rows 0 … H − 4 one a line period, then the frame's end.
+    let (first_out, last_out) = (run.first_out.expect("out"), run.last_out.expect("out"));
+    assert_eq!(last_out - first_out, b.output_span_cycles, "{what}: first → last disparity out ({})", b.output_span_formula);
+    assert_eq!(run.last_in - run.first_in, b.last_in_cycle, "{what}: the frame's last pixel in");
+    assert_eq!(last_out - run.last_in, b.flush_cycles, "{what}: last pixel in → last disparity out");
+    // The input is held only by the detector, for short lines.
+    assert_eq!(run.stall_cycles, b.last_in_cycle - ((h - 1) * (w + hblank) + w - 1) as u64, "{what}: input stalls");
+    eprintln!(
+        "{what}: latency {latency} (budget {}), first → last out {} (budget {}), flush {} (budget {}), P {}",
+        b.latency_cycles,
+        last_out - first_out,
+        b.output_span_cycles,
+        last_out - run.last_in,
+        b.flush_cycles,
+        b.line_period_cycles
+    );
+    // The budget for the worst rows of as many declivities bounds it.
+    let worst = budget(&r).expect("valid");
+    assert!(latency <= worst.latency_cycles && last_out - first_out <= worst.output_span_cycles, "{what}: within the worst");
+    (latency, b.latency_cycles)
+}
+
+/// Frames of odd rows with steps, even rows flat: the row check's clocks
+/// are the doc's exact ones (1 for an empty row, `n + 4` for a row whose
+/// neighbours have no match), so every term is rtl's by name. Widths below
+/// `MIN_LINE_PERIOD` (the detector sets the line period and holds the
+/// input) and above.
+#[test]
+fn line_processor_latency_and_frame_end_equal_the_budget_for_rows_with_flat_neighbours() {
+    for (w, steps) in [(64, 3), (128, 5), (300, 6)] {
+        let (left, right) = stepped_pair(w, 6, steps, Rows::Odd);
+        let (load, _) = frame_load(&left, &right);
+        assert_eq!((load.check, load.last_check), (1, steps + 4), "W {w}: the row check's exact clocks");
+        check_frame(w, 6, steps, Rows::Odd, 0);
+    }
+}
+
+/// Frames whose rows are all alike (the row check's clocks within
+/// `row_check_cycles`, measured on the block), with and without hblank.
+#[test]
+fn line_processor_latency_and_frame_end_equal_the_budget_for_rows_alike() {
+    for (w, h, steps, hblank) in [(64, 5, 4, 0), (128, 8, 7, 0), (300, 6, 16, 0), (300, 7, 9, 37)] {
+        let (left, right) = stepped_pair(w, h, steps, Rows::All);
+        let (load, _) = frame_load(&left, &right);
+        let bound = rtl::row_check::row_check_cycles(steps, steps, steps);
+        assert!(load.check <= bound && load.last_check <= rtl::row_check::row_check_cycles(steps, steps, 0), "W {w}: {load:?}");
+        check_frame(w, h, steps, Rows::All, hblank);
+    }
 }
 
 /// `reg[A:0] mem[B:0];` declarations of a Verilog text (RAMs; ROMs write
@@ -290,71 +457,107 @@ fn verilog_memory_bits(v: &str) -> usize {
         .sum()
 }
 
+/// `DP16KD` instances of a Verilog text (`rtl::block_ram::BlockRam`).
+fn verilog_dp16kd(v: &str) -> usize {
+    v.matches("DP16KD #(").count()
+}
+
 /// The budget's memories are those of the generated Verilog: two
-/// detectors, the sensor's matcher and the interpolator.
+/// detectors, the sensor's matcher and the interpolator, each alone; and
+/// the line processor's (on 8 cells, beside the 8-cell matcher) beyond
+/// those blocks are the record queues', the row check's, the median's and
+/// the depth stage's. The same for the `DP16KD`s the blocks instantiate.
 #[test]
 fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
-    use sim::verilog::{generate, Top};
+    use sim::verilog::{generate, generate_with, Top};
     let b = budget(&request(512, N_MAX, N_CELLS)).expect("valid");
-    let detector = verilog_memory_bits(&generate(Top::Detector));
-    let matcher = verilog_memory_bits(&generate(Top::Matcher));
-    let interpolator = verilog_memory_bits(&generate(Top::Interpolator));
+    let (det_v, mat_v, int_v) = (generate(Top::Detector), generate(Top::Matcher), generate(Top::Interpolator));
+    let (detector, matcher, interpolator) = (verilog_memory_bits(&det_v), verilog_memory_bits(&mat_v), verilog_memory_bits(&int_v));
     assert!(detector > 0 && matcher > 0 && interpolator > 0, "memories found");
     let r = &b.resources;
-    let stage_bits = |stage: &str| r.memories.iter().filter(|m| m.stage == stage).map(|m| m.bits).sum::<usize>();
+    let of = |stages: &[&str], f: fn(&sim::budget::Memory) -> usize| {
+        r.memories.iter().filter(|m| stages.contains(&m.stage)).map(f).sum::<usize>()
+    };
+    let bits = |m: &sim::budget::Memory| m.bits;
+    let rams = |m: &sim::budget::Memory| m.dp16kd.unwrap_or(0);
     assert_eq!(2 * detector, r.line_buffer_bits + r.histogram_bits, "two detectors");
-    assert_eq!(2 * detector + matcher + interpolator, r.memory_bits, "{:#?}", r.memories);
-    assert_eq!(matcher, stage_bits("matcher"));
-    assert_eq!(interpolator, stage_bits("interpolator"));
-    assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell), (2, 4, 64, 2));
+    assert_eq!(matcher, of(&["matcher"], bits));
+    assert_eq!(interpolator, of(&["interpolator"], bits));
+    assert_eq!(verilog_dp16kd(&det_v), of(&["declivity detector"], rams));
+    assert_eq!(verilog_dp16kd(&mat_v), of(&["matcher"], rams));
+    assert_eq!(verilog_dp16kd(&int_v), of(&["interpolator"], rams));
+    let new_stages = ["record queues", "row check", "vertical median", "depth stage"];
+    let rule = GainRule::default();
+    let top = generate_with(Top::Stereo, 8, rule).expect("8 cells");
+    let matcher8 = generate_with(Top::Matcher, 8, rule).expect("8 cells");
+    let beyond = |f: fn(&str) -> usize| f(&top) - f(&matcher8) - 2 * f(&det_v) - f(&int_v);
+    assert_eq!(beyond(verilog_memory_bits), of(&new_stages, bits), "{:#?}", r.memories);
+    assert_eq!(beyond(verilog_dp16kd), of(&new_stages, rams));
+    assert_eq!(r.memory_bits, 2 * detector + matcher + interpolator + beyond(verilog_memory_bits));
+    assert_eq!(r.dp16kd_instances, 2 * verilog_dp16kd(&det_v) + verilog_dp16kd(&mat_v) + verilog_dp16kd(&int_v) + beyond(verilog_dp16kd));
+    assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell, r.median_line_buffers), (2, 4, 64, 2, 4));
 }
 
 // ===========================================================================
 // Frame arithmetic, worked out by hand
 // ===========================================================================
 
-/// 512×512 at 125 MHz, hblank 88, N = 16 on 8 cells: the matcher's worst
-/// line is far below 600 clocks, so the line period is the input's
-/// 512 + 88 = 600 clocks and a frame 512 × 600 = 307 200 clocks =
-/// 2.4576 ms, 406.9 frames/s.
+/// 512×512 at 125 MHz, hblank 88, N = 16 on 8 cells: every stage's worst
+/// line is below 600 clocks, so the line period is the input's
+/// 512 + 88 = 600 clocks. The vertical blanking: the last row's check
+/// (row_check_cycles(16, 16, 0) = 68) and the median's flush take
+/// max(69, 512) + 3·512 = 2048 clocks, and the first row's check is 48
+/// clocks faster than a row's inside (116 − 68): ⌈2096 / 600⌉ − 2 = 2
+/// lines. A frame is (512 + 2) × 600 = 308 400 clocks = 2.4672 ms,
+/// 405.3 frames/s.
 #[test]
 fn frame_time_of_512_by_512_at_125_mhz_with_an_input_bound_line_period() {
     let b = budget(&BudgetRequest { hblank: 88, cells: 8, ..BudgetRequest::new(512, 512, 16, 64.0, 125.0) }).expect("valid");
     assert!(b.stages.iter().all(|s| s.cycles_per_line < 600), "{:?}", b.stages);
     assert_eq!(b.line_period_cycles, 600);
     assert_eq!(b.stall_cycles_per_line, 0);
-    assert_eq!(b.frame_cycles, 307_200);
-    assert!((b.frame_time_ms - 2.4576).abs() < 1e-9, "{}", b.frame_time_ms);
-    assert!((b.fps - 406.901_041_666).abs() < 1e-6, "{}", b.fps);
+    assert_eq!((b.load.check, b.load.first_check, b.load.last_check), (116, 68, 68));
+    assert_eq!(b.vblank_lines, 2, "{}", b.vblank_formula);
+    assert_eq!(b.frame_cycles, 308_400);
+    assert!((b.frame_time_ms - 2.4672).abs() < 1e-9, "{}", b.frame_time_ms);
+    assert!((b.fps - 1000.0 / 2.4672).abs() < 1e-9, "{}", b.fps);
+    // Three line periods of the latency, and the frame's end.
+    assert_eq!(b.output_span_cycles, 508 * 600 + 512 + 3 * 512 - 1);
+    assert_eq!(b.last_in_cycle, 511 * 600 + 511);
+    assert_eq!(b.flush_cycles, b.latency_cycles + b.output_span_cycles - b.last_in_cycle);
 }
 
 /// 1024×768 at 125 MHz with the 320 clocks of blanking of XGA timing
 /// (1344 clocks per line): the sensor's matcher fits, the period is 1344
-/// clocks and a frame 768 × 1344 = 1 032 192 clocks = 8.257 536 ms.
+/// clocks; the vertical blanking ⌈(1024 + 3·1024 + 900 − 516) / 1344⌉ − 2
+/// = 2 lines, a frame (768 + 2) × 1344 = 1 034 880 clocks = 8.279 04 ms.
 #[test]
 fn frame_time_of_1024_by_768_at_125_mhz_with_xga_blanking() {
     let b = budget(&BudgetRequest { hblank: 320, ..BudgetRequest::new(1024, 768, N_MAX, 64.0, 125.0) }).expect("valid");
     assert_eq!(b.line_period_cycles, 1344);
-    assert_eq!(b.frame_cycles, 1_032_192);
-    assert!((b.frame_time_ms - 8.257_536).abs() < 1e-9, "{}", b.frame_time_ms);
-    assert!((b.fps - 1000.0 / 8.257_536).abs() < 1e-9);
+    assert_eq!(b.vblank_lines, 2, "{}", b.vblank_formula);
+    assert_eq!(b.frame_cycles, 1_034_880);
+    assert!((b.frame_time_ms - 8.279_04).abs() < 1e-9, "{}", b.frame_time_ms);
+    assert!((b.fps - 1000.0 / 8.279_04).abs() < 1e-9);
     assert!((b.latency_us - b.latency_cycles as f64 / 125.0).abs() < 1e-12);
 }
 
-/// A stage slower than the input sets the period; the input stalls by the
-/// difference, which the least hblank removes, and one clock less leaves a
-/// one-clock stall.
+/// A stage slower than the input sets the period: the input must be paced
+/// by the difference, which the least hblank gives, and one clock less
+/// leaves the stage a clock behind per line.
 #[test]
-fn a_stage_slower_than_the_input_stalls_it_by_the_difference() {
+fn a_stage_slower_than_the_input_sets_the_period() {
     let base = BudgetRequest::new(512, 512, N_MAX, 64.0, 125.0);
     let b = budget(&base).expect("valid");
     let slowest = b.stages.iter().map(|s| s.cycles_per_line).max().expect("stages");
     assert!(slowest > 512, "the sensor's worst line is longer than a 512-pixel line");
+    assert_eq!(b.slowest_stage, "matcher");
     assert_eq!(b.line_period_cycles, slowest);
     assert_eq!(b.stall_cycles_per_line, slowest - 512);
     assert_eq!(b.min_hblank_cycles, slowest - 512);
     assert!(b.stages.iter().all(|s| s.spare_cycles == 512 - s.cycles_per_line as i64));
-    let want_ms = 512.0 * slowest as f64 / 125e6 * 1e3;
+    assert!(b.notes.iter().any(|n| n.contains("record queues") && n.contains("records_dropped")), "{:?}", b.notes);
+    let want_ms = (512 + b.vblank_lines) as f64 * slowest as f64 / 125e6 * 1e3;
     assert!((b.frame_time_ms - want_ms).abs() < 1e-9);
     let h = b.min_hblank_cycles as usize;
     let fits = budget(&BudgetRequest { hblank: h, ..base }).expect("valid");
@@ -389,6 +592,7 @@ fn cli_bad_sizes_exit_non_zero_with_a_message_naming_the_problem() {
     let cases = [
         ("--width", "0", "--width 0"),
         ("--height", "0", "--height 0"),
+        ("--height", "3", "at least 4 rows"),
         ("--n-max", "0", "--n-max 0"),
         ("--n-max", "129", "N_MAX = 128"),
         ("--cells", "5", "--cells 5"),
@@ -428,37 +632,80 @@ fn cli_json_is_one_object_with_the_budget_keys() {
         "latency_us",
         "frame_time_ms",
         "fps",
+        "latency_last_pixel_cycles",
+        "output_span_cycles",
+        "last_out_cycles",
+        "flush_cycles",
+        "vblank_lines",
+        "vblank_lines_any_rows",
+        "frame_cycles",
+        "load",
         "stages",
         "resources",
-        "not_included",
     ] {
         assert!(v.get(key).is_some(), "no key {key} in {v}");
     }
     let stages = v["stages"].as_array().expect("stages");
-    assert_eq!(stages.len(), 3);
+    let names: Vec<&str> = stages.iter().filter_map(|s| s["name"].as_str()).collect();
+    assert_eq!(
+        names,
+        ["declivity detector", "record queues", "matcher", "row check", "interpolator", "vertical median", "depth stage"]
+    );
     for s in stages {
-        for key in ["name", "cycles_per_line", "formula", "latency_cycles", "latency_formula", "memories"] {
+        for key in ["name", "cycles_per_line", "formula", "latency_cycles", "latency_formula", "dsp_blocks", "memories"] {
             assert!(s.get(key).is_some(), "no key {key} in {s}");
         }
     }
-    for key in ["line_buffer_bits", "histogram_banks", "pe_count", "rows_per_cell", "choice_memory_bits", "record_memory_bits"] {
+    for key in [
+        "line_buffer_bits",
+        "histogram_banks",
+        "pe_count",
+        "rows_per_cell",
+        "choice_memory_bits",
+        "record_memory_bits",
+        "record_queue_bits",
+        "row_memory_bits",
+        "median_line_buffers",
+        "depth_table_bits",
+        "dp16kd_instances",
+        "dsp_blocks",
+    ] {
         assert!(v["resources"].get(key).is_some(), "no resources.{key}");
     }
-    // The frame time is H × period / F, by the numbers the object gives.
+    // The frame time is (H + vertical blanking) × period / F, and the
+    // latency the sum of the stages', by the numbers the object gives.
     let (h, p, f) = (v["height"].as_f64().unwrap(), v["line_period_cycles"].as_f64().unwrap(), v["clock_mhz"].as_f64().unwrap());
-    assert!((v["frame_time_ms"].as_f64().unwrap() - h * p / (f * 1e3)).abs() < 1e-9);
+    let vb = v["vblank_lines"].as_f64().unwrap();
+    assert!((v["frame_time_ms"].as_f64().unwrap() - (h + vb) * p / (f * 1e3)).abs() < 1e-9);
+    let sum: u64 = stages.iter().map(|s| s["latency_cycles"].as_u64().unwrap()).sum();
+    assert_eq!(v["latency_cycles"].as_u64(), Some(sum));
     assert_eq!(v["hblank"].as_u64(), Some(100));
-    let missing: Vec<&str> = v["not_included"].as_array().expect("a list").iter().filter_map(|m| m.as_str()).collect();
-    assert!(missing.iter().any(|m| m.contains("depth stage")) && missing.iter().all(|m| !m.starts_with("interpolator")), "{missing:?}");
-    assert_eq!(v["stages"][2]["name"].as_str(), Some("interpolator"));
+    assert!(v.get("not_included").is_none(), "every stage is in");
 }
 
 #[test]
-fn cli_text_names_the_stages_the_missing_ones_and_a_wide_line() {
+fn cli_text_names_every_stage_the_frame_end_and_a_wide_line() {
     let o = declivity(&with("--width", "1500").iter().map(|s| s.as_str()).collect::<Vec<_>>());
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for says in ["declivity detector", "matcher", "interpolator", "depth stage", "not yet included", "line period", "latency", "frames/s", "wide", "W_MAX = 1024"] {
+    for says in [
+        "declivity detector",
+        "record queues",
+        "matcher",
+        "row check",
+        "interpolator",
+        "vertical median",
+        "depth stage",
+        "line period",
+        "latency",
+        "flush",
+        "vertical blanking",
+        "frames/s",
+        "DP16KD",
+        "MULT18X18D",
+        "wide",
+        "W_MAX = 1024",
+    ] {
         assert!(out.contains(says), "does not say `{says}`:\n{out}");
     }
 }
@@ -471,7 +718,8 @@ fn cli_help_explains_every_option() {
     for opt in ["--width", "--height", "--n-max", "--dispmax", "--clock-mhz", "--hblank", "--cells", "--json"] {
         assert!(out.contains(opt), "--help does not explain {opt}");
     }
-    for says in ["line period", "latency", "stall", "interpolator", "worst line"] {
+    for says in ["line period", "latency", "record queues", "row check", "interpolator", "vertical median", "depth stage", "vertical blanking", "worst line"] {
         assert!(out.contains(says), "--help does not say `{says}`");
     }
 }
+
