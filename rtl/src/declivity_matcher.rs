@@ -51,7 +51,7 @@
 
 use crate::params::*;
 use crate::record_input::RecordInput;
-use crate::record_memory::RecordMemory;
+use crate::record_memory::{RecordMemory, WRITE_LAG};
 use crate::systolic_matcher::{SystolicMatcher, CHOICE_LAG};
 use crate::traceback::{traceback_cycles, Traceback};
 use rust_hdl::prelude::*;
@@ -117,6 +117,17 @@ pub const OUTPUT_LAG: usize = 4;
 /// engine taking the pair, when the engine is idle: the input register,
 /// the marker's flag (`done`), the waiting slot.
 pub const TAKE_AFTER_MARKER: u64 = 3;
+
+// A pair's last record, taken on the ports at clock `p`, is on the record
+// memory's write ports at `p + 1` and on its RAMs' at `p + 1 +`
+// [`WRITE_LAG`] (written at that clock's end); its marker is taken at
+// `p + 1` at the earliest, the engine takes the pair `TAKE_AFTER_MARKER`
+// clocks later and its first read (which may be of that record: index 0)
+// is on the RAMs' read ports two clocks after that (the sweep's first
+// clock, the address register). The write must come first, on an earlier
+// clock (the RAMs' reads of an address written on the same clock are left
+// undefined).
+const _: () = assert!(WRITE_LAG < TAKE_AFTER_MARKER as usize + 2);
 
 /// Bits of `d_t,ref + d_t,other` (each [`MATCH_DT_BITS`]).
 const DT_SUM_BITS: usize = MATCH_DT_BITS + 1;

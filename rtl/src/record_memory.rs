@@ -15,20 +15,31 @@
 //!
 //! ## Timing
 //! One write and one read per clock (block RAMs with their output
-//! registers, [`BlockRam`]: a read takes two clocks). A
-//! write reaches the RAM three clocks after it is on the ports: the record
-//! is registered as it comes, then with `LEVEL_OFFSET - e`, then in the
-//! RAM's format (on a full ECP5-85K the route from the matcher's input
-//! register through the level conversion's adders, the conversion's two
-//! adders in series, and the route from them to the block RAM's data
-//! inputs each took most of a clock). The matcher never reads an address on the
-//! clock it writes it (the loader writes one bank while the engine reads
-//! the other), and its Verilog tells the synthesis so (`no_rw_check`):
-//! what such a read returns is left undefined.
+//! registers, [`BlockRam`]: a read takes two clocks). A write reaches the
+//! RAM [`WRITE_LAG`] = 4 clocks after it is on the ports: the record is
+//! registered as it comes, then with the end-level sum `e` (one adder),
+//! then each level `(2·I + LEVEL_OFFSET) - e` (one subtractor: `2·I` is
+//! below `LEVEL_OFFSET`, a power of two, so `2·I + LEVEL_OFFSET` is wiring),
+//! then once more as it is, beside the RAM (on a full ECP5-85K the route
+//! from the matcher's input register through the level conversion, the
+//! conversion's two adders in series, the route from the record memory's
+//! first register into them, and the route from them to the block RAM's
+//! data inputs each took most of a clock). The matcher never reads an
+//! address on the clock it writes it (the loader writes one bank while the
+//! engine reads the other, and a pair's last record is in the RAM before
+//! the engine's first read of it: see
+//! [`crate::declivity_matcher::TAKE_AFTER_MARKER`]), and its Verilog tells
+//! the synthesis so (`no_rw_check`): what such a read returns is left
+//! undefined.
 
 use crate::block_ram::BlockRam;
 use crate::params::*;
 use rust_hdl::prelude::*;
+
+/// Clocks from a write on the ports (`w_enable` high) to the clock it is on
+/// the block RAMs' write ports (written at that clock's end): the record as
+/// it comes, the end-level sum, the levels, the register beside the RAMs.
+pub const WRITE_LAG: usize = 4;
 
 #[derive(LogicBlock)]
 pub struct RecordMemory {
@@ -73,17 +84,28 @@ pub struct RecordMemory {
     wi_right0: DFF<Bits<PIXEL_BITS>>,
     wi_right1: DFF<Bits<PIXEL_BITS>>,
     wi_right2: DFF<Bits<PIXEL_BITS>>,
-    // The write, in the RAMs' format.
+    // The write with the end-level sum `e`.
     wb_enable: DFF<Bit>,
     wb_addr: DFF<Bits<DIAG_BITS>>,
     wb_pos: DFF<Bits<{ POS_BITS + 1 }>>,
-    wb_base: DFF<Bits<LEVEL_BITS>>,
+    wb_ends: DFF<Bits<LEVEL_BITS>>,
     wb_left0: DFF<Bits<PIXEL_BITS>>,
     wb_left1: DFF<Bits<PIXEL_BITS>>,
     wb_left2: DFF<Bits<PIXEL_BITS>>,
     wb_right0: DFF<Bits<PIXEL_BITS>>,
     wb_right1: DFF<Bits<PIXEL_BITS>>,
     wb_right2: DFF<Bits<PIXEL_BITS>>,
+    // The write in the RAMs' format.
+    wc_enable: DFF<Bit>,
+    wc_addr: DFF<Bits<DIAG_BITS>>,
+    wc_pos: DFF<Bits<{ POS_BITS + 1 }>>,
+    wc_lev0: DFF<Bits<LEVEL_BITS>>,
+    wc_lev1: DFF<Bits<LEVEL_BITS>>,
+    wc_lev2: DFF<Bits<LEVEL_BITS>>,
+    wc_lev3: DFF<Bits<LEVEL_BITS>>,
+    wc_lev4: DFF<Bits<LEVEL_BITS>>,
+    wc_lev5: DFF<Bits<LEVEL_BITS>>,
+    // The same, beside the RAMs.
     wq_enable: DFF<Bit>,
     wq_addr: DFF<Bits<DIAG_BITS>>,
     wq_pos: DFF<Bits<{ POS_BITS + 1 }>>,
@@ -94,10 +116,17 @@ pub struct RecordMemory {
     wq_lev4: DFF<Bits<LEVEL_BITS>>,
     wq_lev5: DFF<Bits<LEVEL_BITS>>,
     ends: Signal<Local, Bits<LEVEL_BITS>>,
+    lev0_off: Signal<Local, Bits<LEVEL_BITS>>,
+    lev1_off: Signal<Local, Bits<LEVEL_BITS>>,
+    lev2_off: Signal<Local, Bits<LEVEL_BITS>>,
+    lev3_off: Signal<Local, Bits<LEVEL_BITS>>,
+    lev4_off: Signal<Local, Bits<LEVEL_BITS>>,
+    lev5_off: Signal<Local, Bits<LEVEL_BITS>>,
     level_offset: Constant<Bits<LEVEL_BITS>>,
     amp_msb: Constant<Bits<8>>,
     rise_bit: Constant<Bits<8>>,
     bit0: Constant<Bits<8>>,
+    one: Constant<Bits<LEVEL_BITS>>,
 }
 
 impl Default for RecordMemory {
@@ -144,13 +173,22 @@ impl Default for RecordMemory {
             wb_enable: Default::default(),
             wb_addr: Default::default(),
             wb_pos: Default::default(),
-            wb_base: Default::default(),
+            wb_ends: Default::default(),
             wb_left0: Default::default(),
             wb_left1: Default::default(),
             wb_left2: Default::default(),
             wb_right0: Default::default(),
             wb_right1: Default::default(),
             wb_right2: Default::default(),
+            wc_enable: Default::default(),
+            wc_addr: Default::default(),
+            wc_pos: Default::default(),
+            wc_lev0: Default::default(),
+            wc_lev1: Default::default(),
+            wc_lev2: Default::default(),
+            wc_lev3: Default::default(),
+            wc_lev4: Default::default(),
+            wc_lev5: Default::default(),
             wq_enable: Default::default(),
             wq_addr: Default::default(),
             wq_pos: Default::default(),
@@ -161,10 +199,17 @@ impl Default for RecordMemory {
             wq_lev4: Default::default(),
             wq_lev5: Default::default(),
             ends: Default::default(),
+            lev0_off: Default::default(),
+            lev1_off: Default::default(),
+            lev2_off: Default::default(),
+            lev3_off: Default::default(),
+            lev4_off: Default::default(),
+            lev5_off: Default::default(),
             level_offset: Constant::new(LEVEL_OFFSET.into()),
             amp_msb: Constant::new(((AMP_BITS - 1) as u64).into()),
             rise_bit: Constant::new((POS_BITS as u64).into()),
             bit0: Constant::new(0u64.into()),
+            one: Constant::new(1u64.into()),
         }
     }
 }
@@ -179,7 +224,7 @@ impl Logic for RecordMemory {
         self.lev3_mem.clock.next = self.clock.val();
         self.lev4_mem.clock.next = self.clock.val();
         self.lev5_mem.clock.next = self.clock.val();
-        dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wi_left0, wi_left1, wi_left2, wi_right0, wi_right1, wi_right2, wb_enable, wb_addr, wb_pos, wb_base, wb_left0, wb_left1, wb_left2, wb_right0, wb_right1, wb_right2, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
+        dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wi_left0, wi_left1, wi_left2, wi_right0, wi_right1, wi_right2, wb_enable, wb_addr, wb_pos, wb_ends, wb_left0, wb_left1, wb_left2, wb_right0, wb_right1, wb_right2, wc_enable, wc_addr, wc_pos, wc_lev0, wc_lev1, wc_lev2, wc_lev3, wc_lev4, wc_lev5, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
 
         self.wi_enable.d.next = self.w_enable.val();
         self.wi_addr.d.next = self.w_addr.val();
@@ -192,14 +237,14 @@ impl Logic for RecordMemory {
         self.wi_right1.d.next = self.w_right1.val();
         self.wi_right2.d.next = self.w_right2.val();
 
-        // Second stage: the end-level sum's part of the conversion,
-        // `LEVEL_OFFSET - e`, registered with the record.
+        // Second stage: the end-level sum `e` (0 in the paper's rule),
+        // registered with the record.
         self.ends.next = 0.into();
         if self.relative.val() {
             self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
                 + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val());
         }
-        self.wb_base.d.next = self.level_offset.val() - self.ends.val();
+        self.wb_ends.d.next = self.ends.val();
         self.wb_pos.d.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.wi_pos.q.val())
             .replace_bit(self.rise_bit.val().index(), !self.wi_falling.q.val());
         self.wb_left0.d.next = self.wi_left0.q.val();
@@ -210,30 +255,40 @@ impl Logic for RecordMemory {
         self.wb_right2.d.next = self.wi_right2.q.val();
         self.wb_enable.d.next = self.wi_enable.q.val();
         self.wb_addr.d.next = self.wi_addr.q.val();
-        // Third stage: each level `2·I + (LEVEL_OFFSET - e)`, in the RAMs'
-        // format.
-        self.wq_pos.d.next = self.wb_pos.q.val();
-        self.wq_lev0.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left0.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left0.q.val())
-            + self.wb_base.q.val();
-        self.wq_lev1.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left1.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left1.q.val())
-            + self.wb_base.q.val();
-        self.wq_lev2.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left2.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left2.q.val())
-            + self.wb_base.q.val();
-        self.wq_lev3.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right0.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right0.q.val())
-            + self.wb_base.q.val();
-        self.wq_lev4.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right1.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right1.q.val())
-            + self.wb_base.q.val();
-        self.wq_lev5.d.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right2.q.val())
-            + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right2.q.val())
-            + self.wb_base.q.val();
-
-        self.wq_enable.d.next = self.wb_enable.q.val();
-        self.wq_addr.d.next = self.wb_addr.q.val();
+        // Third stage: each level `(2·I + LEVEL_OFFSET) - e`, in the RAMs'
+        // format. `2·I < LEVEL_OFFSET`, a power of two: the sum is `I` one
+        // bit up with the offset's bit set, no adder.
+        self.lev0_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left0.q.val()) << self.one.val())
+            | self.level_offset.val();
+        self.wc_lev0.d.next = self.lev0_off.val() - self.wb_ends.q.val();
+        self.lev1_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left1.q.val()) << self.one.val())
+            | self.level_offset.val();
+        self.wc_lev1.d.next = self.lev1_off.val() - self.wb_ends.q.val();
+        self.lev2_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left2.q.val()) << self.one.val())
+            | self.level_offset.val();
+        self.wc_lev2.d.next = self.lev2_off.val() - self.wb_ends.q.val();
+        self.lev3_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right0.q.val()) << self.one.val())
+            | self.level_offset.val();
+        self.wc_lev3.d.next = self.lev3_off.val() - self.wb_ends.q.val();
+        self.lev4_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right1.q.val()) << self.one.val())
+            | self.level_offset.val();
+        self.wc_lev4.d.next = self.lev4_off.val() - self.wb_ends.q.val();
+        self.lev5_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right2.q.val()) << self.one.val())
+            | self.level_offset.val();
+        self.wc_lev5.d.next = self.lev5_off.val() - self.wb_ends.q.val();
+        self.wc_pos.d.next = self.wb_pos.q.val();
+        self.wc_enable.d.next = self.wb_enable.q.val();
+        self.wc_addr.d.next = self.wb_addr.q.val();
+        // Fourth stage: the same, beside the RAMs.
+        self.wq_pos.d.next = self.wc_pos.q.val();
+        self.wq_enable.d.next = self.wc_enable.q.val();
+        self.wq_addr.d.next = self.wc_addr.q.val();
+        self.wq_lev0.d.next = self.wc_lev0.q.val();
+        self.wq_lev1.d.next = self.wc_lev1.q.val();
+        self.wq_lev2.d.next = self.wc_lev2.q.val();
+        self.wq_lev3.d.next = self.wc_lev3.q.val();
+        self.wq_lev4.d.next = self.wc_lev4.q.val();
+        self.wq_lev5.d.next = self.wc_lev5.q.val();
         self.pos_mem.write_data.next = self.wq_pos.q.val();
         self.pos_mem.write_address.next = self.wq_addr.q.val();
         self.lev0_mem.write_data.next = self.wq_lev0.q.val();
