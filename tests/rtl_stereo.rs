@@ -52,3 +52,40 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
     assert!(agree >= 0.995, "{agree}");
 }
 
+
+/// Prints the probe's state on each dropped line and the lines' clocks
+/// through the stages around it (diagnostics).
+fn print_probe(what: &str, run: &sim::stereo::StereoRun, width: usize) {
+    let p = &run.probe;
+    eprintln!("{what}: peaks {:?} (interpolator's lines at clock {})", p.peak, p.peak_interp_cycle);
+    for d in &p.drops {
+        eprintln!("{what}: drop {d:?}");
+    }
+    // Each line's clocks relative to its last pixel in, in lines of `width`.
+    eprintln!("{what}: line, in, matched-in, checked-in, interpolated-in (clocks)");
+    for (k, &t) in p.line_in.iter().enumerate() {
+        let rel = |v: &Vec<u64>| v.get(k).map_or("-".to_string(), |&c| format!("{} ({:.2} W)", c as i64 - t as i64, (c as f64 - t as f64) / width as f64));
+        eprintln!("{what}: {k:4} {t:8} {} {} {}", rel(&p.matched), rel(&p.checked), rel(&p.interpolated));
+    }
+}
+
+/// The whole of venus through the line processor with the queues probed
+/// (about three minutes): `cargo test --release -p declivity-tests --test
+/// rtl_stereo -- --ignored --nocapture venus_probe`.
+#[test]
+#[ignore]
+fn venus_probe() {
+    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("venus")).expect("the pair loads");
+    let rows = std::env::var("PROBE_ROWS")
+        .ok()
+        .and_then(|s| s.split_once("..").map(|(a, b)| a.parse::<usize>().unwrap()..b.parse::<usize>().unwrap()))
+        .unwrap_or(0..data.left.height());
+    let (left, right) = (crop(&data.left, rows.clone()), crop(&data.right, rows.clone()));
+    let dispmax = data.dispmax + 1.0;
+    let mut sim = StereoSim::<N_CELLS>::robust(sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
+    let run = sim.run(&left, &right, 0, |_| {});
+    let golden = golden_map(&left, &right, dispmax).expect("golden runs");
+    let agree = agree_quarter_px(&run.disparity_px(left.height()), &golden);
+    eprintln!("venus rows {rows:?}: {} rows out, agree {agree:.4}, lines dropped {}", run.rows.len(), run.lines_dropped);
+    print_probe("venus", &run, left.width());
+}

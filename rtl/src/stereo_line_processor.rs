@@ -75,7 +75,7 @@ use crate::block_ram::DP16KD_WIDTH;
 use crate::declivity_detector::DeclivityDetector;
 use crate::declivity_matcher::{DeclivityMatcher, GainRule};
 use crate::depth_stage::{DepthCamera, DepthError, DepthStage};
-use crate::interpolator::Interpolator;
+use crate::interpolator::{Interpolator, LINE_QUEUE, SEG_RESERVE};
 use crate::params::*;
 use crate::record_fifo::RecordFifo;
 use crate::row_check::RowCheck;
@@ -88,6 +88,20 @@ pub const STATUS_BITS: usize = 16;
 pub const HEIGHT_BITS: usize = W_MAX_BITS + 1;
 /// Bits of an output beat: the depth above the disparity, 16 bits each.
 pub const OUT_BITS: usize = 2 * DEPTH_BITS;
+/// Lines allowed between the matcher's input and the interpolator's output
+/// (see "Lines in flight" above): the interpolator's line queue.
+pub const LINES_IN_FLIGHT: usize = LINE_QUEUE;
+/// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
+const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
+// The interpolator admits every line the limit lets through: at a line's
+// admission the other lines in flight, at most `LINES_IN_FLIGHT - 1`, hold
+// at most `N_MAX - 1` segments each, and a line is admitted with
+// `SEG_RESERVE` places free; no deadlock: the row check holds back at most
+// one row (for its successor's marker), so at least one line in flight
+// always moves.
+const _: () = assert!(LINES_IN_FLIGHT <= LINE_QUEUE && LINES_IN_FLIGHT >= 2);
+const _: () = assert!((LINES_IN_FLIGHT - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << SEG_ADDR_BITS);
+const _: () = assert!(LINES_IN_FLIGHT < 1 << FLIGHT_BITS);
 const _: () = assert!(POS_BITS <= DEPTH_BITS);
 
 /// Where a detector beat's fields sit in the record queue's lanes.
@@ -150,6 +164,13 @@ pub struct StereoLineProcessor<const N: usize> {
     n_pixels_dropped: DFF<Bits<STATUS_BITS>>,
     n_lines_full: DFF<Bits<STATUS_BITS>>,
     n_lines_wide: DFF<Bits<STATUS_BITS>>,
+    // Lines in flight: reference markers the matcher took, less the lines
+    // the interpolator sent (or the row check or the interpolator dropped);
+    // the reference queue held (public for the drivers' diagnostics).
+    pub in_flight: DFF<Bits<FLIGHT_BITS>>,
+    flight_now: Signal<Local, Bits<FLIGHT_BITS>>,
+    pub hold: Signal<Local, Bit>,
+    flight_max: Constant<Bits<FLIGHT_BITS>>,
     w_max: Constant<Bits<WIDTH_BITS>>,
     sh_level: Constant<Bits<8>>,
     sh_depth: Constant<Bits<8>>,
@@ -207,6 +228,10 @@ impl<const N: usize> StereoLineProcessor<N> {
             n_pixels_dropped: Default::default(),
             n_lines_full: Default::default(),
             n_lines_wide: Default::default(),
+            in_flight: Default::default(),
+            flight_now: Default::default(),
+            hold: Default::default(),
+            flight_max: Constant::new((LINES_IN_FLIGHT as u64).into()),
             w_max: Constant::new((W_MAX as u64).into()),
             sh_level: Constant::new((PIXEL_BITS as u64).into()),
             sh_depth: Constant::new((DEPTH_BITS as u64).into()),
@@ -227,7 +252,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide);
+        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight);
         self.left.clock.next = self.clock.val();
         self.right.clock.next = self.clock.val();
         self.l_queue.clock.next = self.clock.val();
@@ -316,10 +341,13 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.r_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right1.val());
 
-        // ---- The queues into the matcher.
+        // ---- The queues into the matcher, the reference side held while
+        // `LINES_IN_FLIGHT` lines are in flight (it can then rise only on the
+        // clock after a reference marker is taken, so lines are held whole).
+        self.hold.next = self.in_flight.q.val() >= self.flight_max.val();
         self.matcher.dispmax.next = self.dispmax.val();
-        self.matcher.r_valid.next = self.l_queue.r_valid.val();
-        self.l_queue.r_ready.next = self.matcher.r_ready.val();
+        self.matcher.r_valid.next = self.l_queue.r_valid.val() & !self.hold.val();
+        self.l_queue.r_ready.next = self.matcher.r_ready.val() & !self.hold.val();
         self.matcher.r_last.next = (self.l_queue.r_lane1.val() & self.marker_mask.val()).any();
         self.matcher.r_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.l_queue.r_lane0.val());
         self.matcher.r_sof.next = (self.l_queue.r_lane0.val() & self.sof_mask.val()).any();
@@ -397,6 +425,24 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.m_tdata.next = (bit_cast::<OUT_BITS, DEPTH_BITS>(self.depth.z_mm.val()) << self.sh_depth.val()) | bit_cast::<OUT_BITS, POS_BITS>(self.depth.z_d.val());
         self.m_tuser.next = self.depth.z_sof.val();
         self.m_tlast.next = self.depth.z_last.val();
+
+        // ---- Lines in flight: one more on a reference marker taken, one
+        // less on a line's last pixel out of the interpolator and on a line
+        // dropped (all three registered outputs or inputs: no loop).
+        self.flight_now.next = self.in_flight.q.val();
+        if self.l_queue.r_valid.val() & self.matcher.r_ready.val() & !self.hold.val() & self.matcher.r_last.val() {
+            self.flight_now.next = self.flight_now.val() + 1;
+        }
+        if self.interpolator.p_valid.val() & self.interpolator.p_last.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        if self.interpolator.overflow.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        if self.row_check.overflow.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        self.in_flight.d.next = self.flight_now.val();
 
         // ---- Status.
         if self.l_queue.dropped.val() | self.r_queue.dropped.val() {
