@@ -206,23 +206,20 @@ pub const RECIP_BITS: usize = 16;
 /// `2^RECIP_BITS`.
 pub const RECIP_SHIFT: usize = POS_BITS - 1 + RECIP_BITS;
 /// Address bits of the interpolator's segment memory (`2^SEG_ADDR_BITS`
-/// entries, 1024: a full line queue's lines of at most `N_MAX - 1`
-/// segments each, `8 · 127 = 1016` (the line processor admits a line when
-/// its other `LINE_QUEUE - 1` lines, `889` segments, leave the
-/// interpolator's reserve of `N_MAX - 1 + 3` free). A `DP16KD` per field
-/// in its 18-bit mode, 1024 words: the most one holds.
+/// = 1024 entries): with a full line queue, the other `LINE_QUEUE - 1`
+/// lines' segments, at most `N_MAX - 1` each (889), leave a line's reserve
+/// (`N_MAX - 1 + 3` = 130) free, so a line the queue has room for is never
+/// dropped for want of segments. Still one `DP16KD` per field (1024 words
+/// of 18 bits, the most one holds).
 pub const SEG_ADDR_BITS: usize = INDEX_BITS + 3;
 /// Address bits of the interpolator's line queue (8 lines). Lines reach the
-/// interpolator in bursts, up to one per matcher line (tens of clocks for a
-/// light line), while it sends one per `W` clocks: after a stretch of lines
-/// slower to match than their line time the record queues hold a backlog,
-/// and the interpolator's output, which can then never catch up (it sends
-/// lines at the cameras' rate), stays that far behind while the matcher
-/// catches up. On venus (434 px) the matcher fell 3.9 line periods behind
-/// (rows 240-250) and the interpolator's queue then had to hold 5 lines
-/// (row 305, where 4 dropped one). The line processor limits the lines in
-/// flight between the matcher's input and the interpolator's output to
-/// this queue (`rtl::stereo_line_processor`), so it never drops a line.
+/// interpolator in bursts when the matcher catches up on a backlog, while
+/// it sends one per `W` clocks and so never catches up itself: on venus
+/// (434 px) the matcher fell about three line times behind (rows 231-246)
+/// and at row 305 the queue had to hold five lines (four dropped one). The
+/// line processor keeps at most this many lines between the matcher's
+/// input and the interpolator's output (`rtl::stereo_line_processor`,
+/// "Lines in flight"), so the interpolator never drops one there.
 pub const LINE_QUEUE_BITS: usize = 3;
 
 /// Reference declivities per gain cell: cell `c` of `N` holds rows `c` and

@@ -43,8 +43,10 @@
 //!   (a line's last pixel).
 //!   A line has the width of the reference line (at most [`W_MAX`]).
 //! - Status, counters that wrap: `records_dropped` (detector beats that
-//!   found a record queue full), `lines_dropped` (lines the interpolator
-//!   or the row check had no room for: their pixels are not sent),
+//!   found a record queue full), `lines_dropped` (lines the row check
+//!   had no room for, its rows coming faster than it checks them, or the
+//!   interpolator, which the limit on lines in flight below rules out:
+//!   their pixels are not sent),
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
 //!   frame's last rows: the vertical blanking must last two lines),
 //!   `lines_full` (lines with
@@ -63,9 +65,47 @@
 //! next line's matches), the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
 //! line periods in the median (it waits for the row two below) and the
 //! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
-//! depth`: `latency_cycles`). After the frame's last line the row check
+//! depth`: `latency_cycles`, the frame's first line). A later line's
+//! latency is more by the largest backlog of the matcher so far in the
+//! frame (see "Lines in flight"). After the frame's last line the row check
 //! and the median flush their last rows by themselves; the next frame may
 //! start once they have (two lines of vertical blanking).
+//!
+//! ## Lines in flight
+//! The interpolator sends one line per `W` clocks, the cameras' rate, so
+//! once its output has fallen behind it never catches up within a frame:
+//! after the matcher has been late by `D` clocks (a stretch of lines slower
+//! to match than their line time, the backlog waiting in the record
+//! queues), the interpolator's output stays `D` later for the rest of the
+//! frame, and when the matcher has caught up its queue holds the lines of
+//! those `D` clocks besides its usual one or two. On venus (434 px) the
+//! matcher's marker left 5.75 line times after its line's last pixel at row
+//! 245 against 2.2–2.9 usually (the record queues then held 3 lines, 184
+//! beats), the interpolator's output stayed 7.9 line times behind from row
+//! 248 on, and at row 305 its queue had to hold five lines: with four it
+//! dropped one. A queue sized for every backlog the record queues allow is
+//! large: they hold 1024 beats per side, the matching of up to eight full
+//! lines (`line_cycles` 921 clocks per 129 beats, 18 for an empty line),
+//! and with the two pairs inside the matcher a backlog of about 9 k clocks,
+//! 21 lines of 434 px and more of narrower ones: a queue of 32 lines and
+//! their 4 k segments (24 `DP16KD` instead of 6).
+//!
+//! Instead the top keeps at most [`LINES_IN_FLIGHT`] = [`LINE_QUEUE`] (8)
+//! lines between the matcher's input and the interpolator's output: a line
+//! counts from its reference marker taken by the matcher to its last pixel
+//! out of the interpolator (or its drop), and while that many are in flight
+//! the reference record queue is held (its `r_valid` to the matcher low; the
+//! limit is reached only on a marker, so whole lines are held). The rest of
+//! a backlog waits in the record queues, where it came from (their
+//! overflow is `records_dropped`). The interpolator then never drops a
+//! line: when one starts, the other lines in its queue are in flight, at
+//! most `LINE_QUEUE - 1`, and their segments, at most `N_MAX - 1` each
+//! (889), leave its reserve free (`SEG_RESERVE` = 130 of 1024). Nothing
+//! waits on itself: the row check holds back only the last row it got (for
+//! the next marker), the matcher and the interpolator finish their lines
+//! by themselves, so with two or more lines allowed one always leaves. The
+//! limit costs no throughput while fewer than eight lines are in flight:
+//! on the eight pairs at most 7 (venus), it never held.
 //!
 //! The width given to the interpolator is the last reference line's
 //! (every line of a frame has one width): it is counted as the line comes
