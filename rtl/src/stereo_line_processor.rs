@@ -43,8 +43,10 @@
 //!   (a line's last pixel).
 //!   A line has the width of the reference line (at most [`W_MAX`]).
 //! - Status, counters that wrap: `records_dropped` (detector beats that
-//!   found a record queue full), `lines_dropped` (lines the interpolator
-//!   or the row check had no room for: their pixels are not sent),
+//!   found a record queue full), `lines_dropped` (lines the row check
+//!   had no room for, its rows coming faster than it checks them, or the
+//!   interpolator, which the limit on lines in flight below rules out:
+//!   their pixels are not sent),
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
 //!   frame's last rows: the vertical blanking must last two lines),
 //!   `lines_full` (lines with
@@ -63,9 +65,47 @@
 //! next line's matches), the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
 //! line periods in the median (it waits for the row two below) and the
 //! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
-//! depth`: `latency_cycles`). After the frame's last line the row check
+//! depth`: `latency_cycles`, the frame's first line). A later line's
+//! latency is more by the largest backlog of the matcher so far in the
+//! frame (see "Lines in flight"). After the frame's last line the row check
 //! and the median flush their last rows by themselves; the next frame may
 //! start once they have (two lines of vertical blanking).
+//!
+//! ## Lines in flight
+//! The interpolator sends one line per `W` clocks, the cameras' rate, so
+//! once its output has fallen behind it never catches up within a frame:
+//! after the matcher has been late by `D` clocks (a stretch of lines slower
+//! to match than their line time, the backlog waiting in the record
+//! queues), the interpolator's output stays `D` later for the rest of the
+//! frame, and when the matcher has caught up its queue holds the lines of
+//! those `D` clocks besides its usual one or two. On venus (434 px) the
+//! matcher's marker left 5.75 line times after its line's last pixel at row
+//! 245 against 2.2–2.9 usually (the record queues then held 3 lines, 184
+//! beats), the interpolator's output stayed 7.9 line times behind from row
+//! 248 on, and at row 305 its queue had to hold five lines: with four it
+//! dropped one. A queue sized for every backlog the record queues allow is
+//! large: they hold 1024 beats per side, the matching of up to eight full
+//! lines (`line_cycles` 921 clocks per 129 beats, 18 for an empty line),
+//! and with the two pairs inside the matcher a backlog of about 9 k clocks,
+//! 21 lines of 434 px and more of narrower ones: a queue of 32 lines and
+//! their 4 k segments (24 `DP16KD` instead of 6).
+//!
+//! Instead the top keeps at most [`LINES_IN_FLIGHT`] = [`LINE_QUEUE`] (8)
+//! lines between the matcher's input and the interpolator's output: a line
+//! counts from its reference marker taken by the matcher to its last pixel
+//! out of the interpolator (or its drop), and while that many are in flight
+//! the reference record queue is held (its `r_valid` to the matcher low; the
+//! limit is reached only on a marker, so whole lines are held). The rest of
+//! a backlog waits in the record queues, where it came from (their
+//! overflow is `records_dropped`). The interpolator then never drops a
+//! line: when one starts, the other lines in its queue are in flight, at
+//! most `LINE_QUEUE - 1`, and their segments, at most `N_MAX - 1` each
+//! (889), leave its reserve free (`SEG_RESERVE` = 130 of 1024). Nothing
+//! waits on itself: the row check holds back only the last row it got (for
+//! the next marker), the matcher and the interpolator finish their lines
+//! by themselves, so with two or more lines allowed one always leaves. The
+//! limit costs no throughput while fewer than eight lines are in flight:
+//! on the eight pairs at most 7 (venus), it never held.
 //!
 //! The width given to the interpolator is the last reference line's
 //! (every line of a frame has one width): it is counted as the line comes
@@ -75,7 +115,7 @@ use crate::block_ram::DP16KD_WIDTH;
 use crate::declivity_detector::DeclivityDetector;
 use crate::declivity_matcher::{DeclivityMatcher, GainRule};
 use crate::depth_stage::{DepthCamera, DepthError, DepthStage};
-use crate::interpolator::Interpolator;
+use crate::interpolator::{Interpolator, LINE_QUEUE, SEG_RESERVE};
 use crate::params::*;
 use crate::record_fifo::RecordFifo;
 use crate::row_check::RowCheck;
@@ -88,6 +128,20 @@ pub const STATUS_BITS: usize = 16;
 pub const HEIGHT_BITS: usize = W_MAX_BITS + 1;
 /// Bits of an output beat: the depth above the disparity, 16 bits each.
 pub const OUT_BITS: usize = 2 * DEPTH_BITS;
+/// Lines allowed between the matcher's input and the interpolator's output
+/// (see "Lines in flight" above): the interpolator's line queue.
+pub const LINES_IN_FLIGHT: usize = LINE_QUEUE;
+/// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
+const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
+// The interpolator admits every line the limit lets through: at a line's
+// admission the other lines in flight, at most `LINES_IN_FLIGHT - 1`, hold
+// at most `N_MAX - 1` segments each, and a line is admitted with
+// `SEG_RESERVE` places free; no deadlock: the row check holds back at most
+// one row (for its successor's marker), so at least one line in flight
+// always moves.
+const _: () = assert!(LINES_IN_FLIGHT <= LINE_QUEUE && LINES_IN_FLIGHT >= 2);
+const _: () = assert!((LINES_IN_FLIGHT - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << SEG_ADDR_BITS);
+const _: () = assert!(LINES_IN_FLIGHT < 1 << FLIGHT_BITS);
 const _: () = assert!(POS_BITS <= DEPTH_BITS);
 
 /// Where a detector beat's fields sit in the record queue's lanes.
@@ -150,6 +204,13 @@ pub struct StereoLineProcessor<const N: usize> {
     n_pixels_dropped: DFF<Bits<STATUS_BITS>>,
     n_lines_full: DFF<Bits<STATUS_BITS>>,
     n_lines_wide: DFF<Bits<STATUS_BITS>>,
+    // Lines in flight: reference markers the matcher took, less the lines
+    // the interpolator sent (or the row check or the interpolator dropped);
+    // the reference queue held (public for the drivers' diagnostics).
+    pub in_flight: DFF<Bits<FLIGHT_BITS>>,
+    flight_now: Signal<Local, Bits<FLIGHT_BITS>>,
+    pub hold: Signal<Local, Bit>,
+    flight_max: Constant<Bits<FLIGHT_BITS>>,
     w_max: Constant<Bits<WIDTH_BITS>>,
     sh_level: Constant<Bits<8>>,
     sh_depth: Constant<Bits<8>>,
@@ -207,6 +268,10 @@ impl<const N: usize> StereoLineProcessor<N> {
             n_pixels_dropped: Default::default(),
             n_lines_full: Default::default(),
             n_lines_wide: Default::default(),
+            in_flight: Default::default(),
+            flight_now: Default::default(),
+            hold: Default::default(),
+            flight_max: Constant::new((LINES_IN_FLIGHT as u64).into()),
             w_max: Constant::new((W_MAX as u64).into()),
             sh_level: Constant::new((PIXEL_BITS as u64).into()),
             sh_depth: Constant::new((DEPTH_BITS as u64).into()),
@@ -227,7 +292,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide);
+        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight);
         self.left.clock.next = self.clock.val();
         self.right.clock.next = self.clock.val();
         self.l_queue.clock.next = self.clock.val();
@@ -316,10 +381,13 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.r_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right1.val());
 
-        // ---- The queues into the matcher.
+        // ---- The queues into the matcher, the reference side held while
+        // `LINES_IN_FLIGHT` lines are in flight (it can then rise only on the
+        // clock after a reference marker is taken, so lines are held whole).
+        self.hold.next = self.in_flight.q.val() >= self.flight_max.val();
         self.matcher.dispmax.next = self.dispmax.val();
-        self.matcher.r_valid.next = self.l_queue.r_valid.val();
-        self.l_queue.r_ready.next = self.matcher.r_ready.val();
+        self.matcher.r_valid.next = self.l_queue.r_valid.val() & !self.hold.val();
+        self.l_queue.r_ready.next = self.matcher.r_ready.val() & !self.hold.val();
         self.matcher.r_last.next = (self.l_queue.r_lane1.val() & self.marker_mask.val()).any();
         self.matcher.r_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.l_queue.r_lane0.val());
         self.matcher.r_sof.next = (self.l_queue.r_lane0.val() & self.sof_mask.val()).any();
@@ -397,6 +465,24 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.m_tdata.next = (bit_cast::<OUT_BITS, DEPTH_BITS>(self.depth.z_mm.val()) << self.sh_depth.val()) | bit_cast::<OUT_BITS, POS_BITS>(self.depth.z_d.val());
         self.m_tuser.next = self.depth.z_sof.val();
         self.m_tlast.next = self.depth.z_last.val();
+
+        // ---- Lines in flight: one more on a reference marker taken, one
+        // less on a line's last pixel out of the interpolator and on a line
+        // dropped (all three registered outputs or inputs: no loop).
+        self.flight_now.next = self.in_flight.q.val();
+        if self.l_queue.r_valid.val() & self.matcher.r_ready.val() & !self.hold.val() & self.matcher.r_last.val() {
+            self.flight_now.next = self.flight_now.val() + 1;
+        }
+        if self.interpolator.p_valid.val() & self.interpolator.p_last.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        if self.interpolator.overflow.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        if self.row_check.overflow.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        self.in_flight.d.next = self.flight_now.val();
 
         // ---- Status.
         if self.l_queue.dropped.val() | self.r_queue.dropped.val() {

@@ -42,6 +42,147 @@ pub struct StereoRun {
     pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
+    /// The queues between the detectors and the pixels, as seen clock by
+    /// clock (diagnostics).
+    pub probe: QueueProbe,
+}
+
+/// The datapath's line queues as the driver saw them clock by clock, from
+/// the blocks' own signals: when each line passed each stage, the peaks of
+/// what each queue held, and the state of all of them on every dropped
+/// line (diagnostics: which buffer overflowed, and what was behind it).
+#[derive(Debug, Clone, Default)]
+pub struct QueueProbe {
+    /// Clock of each reference line's last pixel taken from the camera.
+    pub line_in: Vec<u64>,
+    /// Clock of each line's marker out of the matcher.
+    pub matched: Vec<u64>,
+    /// Clock of each row's marker out of the row check (into the
+    /// interpolator).
+    pub checked: Vec<u64>,
+    /// Clock of each line's last pixel out of the interpolator.
+    pub interpolated: Vec<u64>,
+    /// The peaks of the state below over the run.
+    pub peak: QueueState,
+    /// The clock (as [`QueueState::cycle`]) of the peak of the
+    /// interpolator's lines.
+    pub peak_interp_cycle: u64,
+    /// The state on each clock a line was dropped (the interpolator's or
+    /// the row check's `overflow`).
+    pub drops: Vec<QueueState>,
+}
+
+/// What the queues held on one clock.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct QueueState {
+    pub cycle: u64,
+    /// Which block dropped a line on this clock.
+    pub interpolator_overflow: bool,
+    pub row_check_overflow: bool,
+    /// Lines (markers) taken from the reference camera, out of the matcher,
+    /// out of the row check, out of the interpolator, so far.
+    pub lines_in: usize,
+    pub lines_matched: usize,
+    pub lines_checked: usize,
+    pub lines_interpolated: usize,
+    /// Per side (left, right): beats in the record queue (written, not yet
+    /// taken by the matcher) and line markers among them.
+    pub record_beats: [u64; 2],
+    pub record_lines: [u64; 2],
+    /// The interpolator's lines (`q_used`: admitted, last pixel not yet
+    /// issued) and segments (`seg_used`: written, not yet read).
+    pub interp_lines: u64,
+    pub interp_segments: u64,
+    /// Rows in the row check: markers in, not yet out (the dropped ones
+    /// counted until the end).
+    pub row_check_rows: u64,
+    /// The line processor's count of lines in flight (reference markers
+    /// the matcher took, less lines sent or dropped after it), and the
+    /// clocks so far on which its limit held a beat of the reference
+    /// queue back.
+    pub in_flight: u64,
+    pub held_clocks: u64,
+}
+
+impl QueueState {
+    fn max(&self, o: &QueueState) -> QueueState {
+        let m2 = |a: [u64; 2], b: [u64; 2]| [a[0].max(b[0]), a[1].max(b[1])];
+        QueueState {
+            cycle: self.cycle.max(o.cycle),
+            interpolator_overflow: self.interpolator_overflow | o.interpolator_overflow,
+            row_check_overflow: self.row_check_overflow | o.row_check_overflow,
+            lines_in: self.lines_in.max(o.lines_in),
+            lines_matched: self.lines_matched.max(o.lines_matched),
+            lines_checked: self.lines_checked.max(o.lines_checked),
+            lines_interpolated: self.lines_interpolated.max(o.lines_interpolated),
+            record_beats: m2(self.record_beats, o.record_beats),
+            record_lines: m2(self.record_lines, o.record_lines),
+            interp_lines: self.interp_lines.max(o.interp_lines),
+            interp_segments: self.interp_segments.max(o.interp_segments),
+            row_check_rows: self.row_check_rows.max(o.row_check_rows),
+            in_flight: self.in_flight.max(o.in_flight),
+            held_clocks: self.held_clocks.max(o.held_clocks),
+        }
+    }
+}
+
+impl<const N: usize> StereoSim<N> {
+    /// Counts this clock's events into `state` and `probe` (after the
+    /// clock's inputs settled, before its edge).
+    fn probe_clock(&self, state: &mut QueueState, probe: &mut QueueProbe) {
+        let u = &*self.uut;
+        let cycle = self.cycle;
+        state.cycle = cycle;
+        // (A beat's marker bit, decoded, is the matcher's `r_last`/`o_last`.)
+        let queues = [(&u.l_queue, u.matcher.r_last.val()), (&u.r_queue, u.matcher.o_last.val())];
+        for (k, (q, marker_out)) in queues.iter().enumerate() {
+            if q.w_valid.val() {
+                state.record_beats[k] += 1;
+                if q.w_marker.val() {
+                    state.record_lines[k] += 1;
+                }
+            }
+            if q.r_valid.val() && q.r_ready.val() {
+                state.record_beats[k] -= 1;
+                if *marker_out {
+                    state.record_lines[k] -= 1;
+                }
+            }
+        }
+        if u.l_tvalid.val() && u.l_tready.val() && u.l_tlast.val() {
+            state.lines_in += 1;
+            probe.line_in.push(cycle);
+        }
+        if u.matcher.m_valid.val() && u.matcher.m_last.val() {
+            state.lines_matched += 1;
+            state.row_check_rows += 1;
+            probe.matched.push(cycle);
+        }
+        if u.row_check.c_valid.val() && u.row_check.c_last.val() {
+            state.lines_checked += 1;
+            state.row_check_rows -= 1;
+            probe.checked.push(cycle);
+        }
+        if u.interpolator.p_valid.val() && u.interpolator.p_last.val() {
+            state.lines_interpolated += 1;
+            probe.interpolated.push(cycle);
+        }
+        state.interp_lines = u.interpolator.q_used.q.val().to_u64();
+        state.interp_segments = u.interpolator.seg_used.q.val().to_u64();
+        state.in_flight = u.in_flight.q.val().to_u64();
+        if u.hold.val() && u.l_queue.r_valid.val() {
+            state.held_clocks += 1;
+        }
+        state.interpolator_overflow = u.interpolator.overflow.val();
+        state.row_check_overflow = u.row_check.overflow.val();
+        if state.interp_lines > probe.peak.interp_lines {
+            probe.peak_interp_cycle = cycle;
+        }
+        probe.peak = probe.peak.max(state);
+        if state.interpolator_overflow || state.row_check_overflow {
+            probe.drops.push(*state);
+        }
+    }
 }
 
 impl StereoRun {
@@ -163,6 +304,7 @@ impl<const N: usize> StereoSim<N> {
         let mut first_in = None;
         let mut last_activity = 0u64;
         let height = left.height();
+        let mut state = QueueState::default();
         loop {
             let u = &mut *self.uut;
             u.clock.next = false.into();
@@ -182,6 +324,8 @@ impl<const N: usize> StereoSim<N> {
                 l.next = tlast;
             }
             settle(u, SETTLE_LOW);
+            self.probe_clock(&mut state, &mut run.probe);
+            let u = &mut *self.uut;
             let taken = [offers[0].is_some() && u.l_tready.val(), offers[1].is_some() && u.r_tready.val()];
             if (offers[0].is_some() && !taken[0]) || (offers[1].is_some() && !taken[1]) {
                 run.stall_cycles += 1;
@@ -343,6 +487,11 @@ pub struct StereoReport {
     pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
+    /// The most lines in flight between the matcher's input and the
+    /// interpolator's output (at most `LINES_IN_FLIGHT`), and the clocks
+    /// on which that limit held the reference queue back.
+    pub lines_in_flight_peak: u64,
+    pub held_cycles: u64,
 }
 
 /// What runs the line processor clock by clock.
@@ -434,6 +583,8 @@ pub fn run_pair(
         pixels_dropped: run.pixels_dropped,
         lines_full: run.lines_full,
         lines_wide: run.lines_wide,
+        lines_in_flight_peak: run.probe.peak.in_flight,
+        held_cycles: run.probe.peak.held_clocks,
     };
     let mut depth = vec![0u16; left.width() * left.height()];
     for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
