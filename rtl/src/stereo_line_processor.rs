@@ -195,6 +195,17 @@ pub struct StereoLineProcessor<const N: usize> {
     p_row: DFF<Bits<HEIGHT_BITS>>,
     m_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
     p_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
+    // The queues' lanes 0-2, built here and then given to each queue in
+    // one assignment: a port assigned twice in one evaluation changes twice,
+    // and under Icarus the queue's logic and this block then wake each
+    // other without end (an event loop, though the logic has no
+    // combinational loop: Verilator and Yosys see none).
+    l_lane0: Signal<Local, Bits<DP16KD_WIDTH>>,
+    l_lane1: Signal<Local, Bits<DP16KD_WIDTH>>,
+    l_lane2: Signal<Local, Bits<DP16KD_WIDTH>>,
+    r_lane0: Signal<Local, Bits<DP16KD_WIDTH>>,
+    r_lane1: Signal<Local, Bits<DP16KD_WIDTH>>,
+    r_lane2: Signal<Local, Bits<DP16KD_WIDTH>>,
     // The reference line's width: pixels counted up to W_MAX, kept at its
     // last pixel.
     l_count: DFF<Bits<WIDTH_BITS>>,
@@ -260,6 +271,12 @@ impl<const N: usize> StereoLineProcessor<N> {
             m_row: Default::default(),
             p_row: Default::default(),
             m_row_now: Default::default(),
+            l_lane0: Default::default(),
+            l_lane1: Default::default(),
+            l_lane2: Default::default(),
+            r_lane0: Default::default(),
+            r_lane1: Default::default(),
+            r_lane2: Default::default(),
             p_row_now: Default::default(),
             l_count: Default::default(),
             width: DFFWithInit::new((W_MAX as u64).into()),
@@ -332,50 +349,52 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         // constants above).
         self.l_queue.w_valid.next = self.left.m_valid.val();
         self.l_queue.w_marker.next = self.left.m_last.val();
-        self.l_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
-        self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val());
-        if self.left.m_last.val() {
-            self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val()) | self.marker_mask.val();
-            if self.left.m_sof.val() {
-                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.sof_mask.val();
-            }
-            if self.left.m_wide.val() {
-                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.wide_mask.val();
-            }
-            if self.left.m_full.val() {
-                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.full_mask.val();
-            }
-        }
-        self.l_queue.w_lane2.next =
+        self.l_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
+        self.l_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val());
+        self.l_lane2.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left0.val());
         if self.left.m_last.val() {
-            self.l_queue.w_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.left.m_dt.val());
+            self.l_lane1.next = self.l_lane1.val() | self.marker_mask.val();
+            self.l_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.left.m_dt.val());
+            if self.left.m_sof.val() {
+                self.l_lane0.next = self.l_lane0.val() | self.sof_mask.val();
+            }
+            if self.left.m_wide.val() {
+                self.l_lane0.next = self.l_lane0.val() | self.wide_mask.val();
+            }
+            if self.left.m_full.val() {
+                self.l_lane0.next = self.l_lane0.val() | self.full_mask.val();
+            }
         }
+        self.l_queue.w_lane0.next = self.l_lane0.val();
+        self.l_queue.w_lane1.next = self.l_lane1.val();
+        self.l_queue.w_lane2.next = self.l_lane2.val();
         self.l_queue.w_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left2.val());
         self.l_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right1.val());
         self.r_queue.w_valid.next = self.right.m_valid.val();
         self.r_queue.w_marker.next = self.right.m_last.val();
-        self.r_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val());
-        self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val());
-        if self.right.m_last.val() {
-            self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val()) | self.marker_mask.val();
-            if self.right.m_sof.val() {
-                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.sof_mask.val();
-            }
-            if self.right.m_wide.val() {
-                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.wide_mask.val();
-            }
-            if self.right.m_full.val() {
-                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.full_mask.val();
-            }
-        }
-        self.r_queue.w_lane2.next =
+        self.r_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val());
+        self.r_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val());
+        self.r_lane2.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left0.val());
         if self.right.m_last.val() {
-            self.r_queue.w_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.right.m_dt.val());
+            self.r_lane1.next = self.r_lane1.val() | self.marker_mask.val();
+            self.r_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.right.m_dt.val());
+            if self.right.m_sof.val() {
+                self.r_lane0.next = self.r_lane0.val() | self.sof_mask.val();
+            }
+            if self.right.m_wide.val() {
+                self.r_lane0.next = self.r_lane0.val() | self.wide_mask.val();
+            }
+            if self.right.m_full.val() {
+                self.r_lane0.next = self.r_lane0.val() | self.full_mask.val();
+            }
         }
+        self.r_queue.w_lane0.next = self.r_lane0.val();
+        self.r_queue.w_lane1.next = self.r_lane1.val();
+        self.r_queue.w_lane2.next = self.r_lane2.val();
         self.r_queue.w_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left2.val());
         self.r_queue.w_lane4.next =

@@ -243,6 +243,14 @@ struct RtlDepthArgs {
     /// What simulates the line processor clock by clock.
     #[arg(long, value_enum, default_value_t = sim::stereo::Engine::RustHdl)]
     engine: sim::stereo::Engine,
+    /// Write a VCD waveform of every signal of the line processor (a clock of 10 ns) while the
+    /// rows given by --lines go through it: from the first pixel of the first row in to the last
+    /// disparity of the last row out (rust-hdl engine; a few lines make tens of megabytes).
+    #[arg(long, requires = "lines")]
+    vcd: Option<PathBuf>,
+    /// Rows of the frame (of the band, with --rows) to trace in the VCD, as A..B (rows A to B-1).
+    #[arg(long, value_parser = parse_range, requires = "vcd")]
+    lines: Option<std::ops::Range<usize>>,
 }
 
 #[derive(Args, Debug)]
@@ -904,7 +912,13 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
     let (l, r) = (band(l)?, band(r)?);
     let bar = lines_bar(l.height(), "rtl line processor".into(), a.pair.json);
     let name = a.pair.left.display().to_string();
-    let (report, rtl, gold, depth) = sim::stereo::run_pair(&name, &l, &r, a.pair.dispmax, a.hblank, a.engine, |n| bar.set_position(n as u64))?;
+    if let Some(lines) = &a.lines {
+        if lines.is_empty() || lines.end > l.height() {
+            return Err(SimError::Argument(format!("--lines {}..{}: not rows of the frame run ({} rows)", lines.start, lines.end, l.height())));
+        }
+    }
+    let vcd = a.vcd.as_deref().zip(a.lines.as_ref());
+    let (report, rtl, gold, depth) = sim::stereo::run_pair(&name, &l, &r, a.pair.dispmax, a.hblank, a.engine, vcd, |n| bar.set_position(n as u64))?;
     bar.finish_and_clear();
 
     let out = a.out.clone().unwrap_or_else(|| {
@@ -945,6 +959,9 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
         println!("  simulation          {} clocks in {:.1} s, {:.0} clocks/s ({}; build {:.1} s)", r.cycles, r.seconds, r.sim_cycles_per_s, r.engine, r.build_seconds);
         for (p, what) in &files {
             println!("  {:<44} {what}", p.display());
+        }
+        if let (Some(p), Some(lines)) = (&a.vcd, &a.lines) {
+            println!("  {:<44} waveform of rows {}..{}", p.display(), lines.start, lines.end);
         }
     }
     Ok(())

@@ -220,6 +220,25 @@ pub struct StereoSim<const N: usize> {
     pub cycle: u64,
     /// Eq. 6's bound, `1/2^POS_FRAC_BITS` px.
     pub dispmax: u32,
+    vcd: Option<StereoVcd>,
+}
+
+/// A waveform being written ([`StereoSim::trace_lines_to`]).
+struct StereoVcd {
+    probe: Option<rust_hdl::core::vcd_probe::VCDProbe<std::io::BufWriter<std::fs::File>>>,
+    /// The frame's rows whose clocks are recorded.
+    lines: std::ops::Range<usize>,
+}
+
+impl StereoVcd {
+    /// Records the block's signals at `time` (ns, a clock of 10 ns) if
+    /// `active`.
+    fn sample<const N: usize>(&mut self, active: bool, time: u64, u: &StereoLineProcessor<N>) {
+        if let (true, Some(mut probe)) = (active, self.probe.take()) {
+            let _ = probe.timestamp(time);
+            self.probe = Some(write_vcd_change(probe, u));
+        }
+    }
 }
 
 /// Passes over the logic before `simulate` is asked whether it settled
@@ -282,7 +301,7 @@ impl<const N: usize> StereoSim<N> {
     /// (`1/2^POS_FRAC_BITS` px) and the depth stage's `camera`, eq. 6's
     /// bound `dispmax` in the same unit.
     pub fn new(rule: GainRule, jump: Option<u64>, camera: DepthCamera, dispmax: u32) -> Result<Self, rtl::depth_stage::DepthError> {
-        Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax })
+        Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax, vcd: None })
     }
 
     /// The default mode's line processor (as [`StereoLineProcessor::robust`]).
@@ -295,6 +314,18 @@ impl<const N: usize> StereoSim<N> {
     /// clocks after each line), until `height` lines have left or nothing
     /// has left for `quiet` clocks after the last pixel in. `progress` is
     /// called with the number of lines out after each.
+    /// Writes a VCD waveform (every signal of the line processor, a clock
+    /// of 10 ns) to `path` during the next [`run`](Self::run): from the clock
+    /// the left camera offers the first pixel of row `lines.start` to the
+    /// clock the output line `lines.end − 1` leaves, so that the lines'
+    /// pixels, records, matches and disparities are all in it.
+    pub fn trace_lines_to(&mut self, path: &std::path::Path, lines: std::ops::Range<usize>) -> std::io::Result<()> {
+        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        let probe = write_vcd_header(file, &*self.uut);
+        self.vcd = Some(StereoVcd { probe: Some(probe), lines });
+        Ok(())
+    }
+
     pub fn run(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, mut progress: impl FnMut(usize)) -> StereoRun {
         let quiet = QUIET_CLOCKS;
         let mut run = StereoRun { width: left.width().min(rtl::params::W_MAX), ..StereoRun::default() };
@@ -324,6 +355,10 @@ impl<const N: usize> StereoSim<N> {
                 l.next = tlast;
             }
             settle(u, SETTLE_LOW);
+            let tracing = self.vcd.as_ref().is_some_and(|v| cams[0].y >= v.lines.start && run.rows.len() < v.lines.end);
+            if let Some(v) = &mut self.vcd {
+                v.sample(tracing, self.cycle * 10, &self.uut);
+            }
             self.probe_clock(&mut state, &mut run.probe);
             let u = &mut *self.uut;
             let taken = [offers[0].is_some() && u.l_tready.val(), offers[1].is_some() && u.r_tready.val()];
@@ -358,6 +393,9 @@ impl<const N: usize> StereoSim<N> {
             }
             u.clock.next = true.into();
             settle(u, SETTLE_HIGH);
+            if let Some(v) = &mut self.vcd {
+                v.sample(tracing, self.cycle * 10 + 5, &self.uut);
+            }
             self.cycle += 1;
             for (cam, &t) in cams.iter_mut().zip(&taken) {
                 cam.advance(t, hblank);
@@ -367,6 +405,8 @@ impl<const N: usize> StereoSim<N> {
                 break;
             }
         }
+        // Dropping the probe flushes and closes the waveform.
+        self.vcd = None;
         let u = &*self.uut;
         run.first_in = first_in.unwrap_or(0);
         run.cycles = self.cycle;
@@ -522,7 +562,9 @@ impl Engine {
 }
 
 /// Runs a pair through the line processor (default mode: [`GainRule::Robust`],
-/// the edge jump, the default camera) on `engine` and compares with golden; returns the
+/// the edge jump, the default camera) on `engine` and compares with golden
+/// (with `vcd`, the rust-hdl engine writes a waveform of the frame's rows
+/// in the range to the file, as [`StereoSim::trace_lines_to`]); returns the
 /// report, the rtl's map and golden's (px, row-major, 0 = none) and the
 /// rtl's depths (mm, row-major, 0 = none).
 pub fn run_pair(
@@ -532,6 +574,7 @@ pub fn run_pair(
     dispmax: f64,
     hblank: usize,
     engine: Engine,
+    vcd: Option<(&std::path::Path, &std::ops::Range<usize>)>,
     progress: impl FnMut(usize),
 ) -> Result<(StereoReport, Vec<f64>, Vec<f64>, Vec<u16>), crate::SimError> {
     let lsb = crate::budget::dispmax_lsb(dispmax)?;
@@ -545,9 +588,15 @@ pub fn run_pair(
     if (left.width(), left.height()) != (right.width(), right.height()) {
         return Err(golden::GoldenError::SizeMismatch { left_w: left.width(), left_h: left.height(), right_w: right.width(), right_h: right.height() }.into());
     }
+    if vcd.is_some() && engine != Engine::RustHdl {
+        return Err(crate::SimError::Argument(format!("a waveform (--vcd) is written by the rust-hdl engine only, not by {}", engine.name())));
+    }
     let (run, seconds, build_seconds) = match engine {
         Engine::RustHdl => {
             let mut sim = StereoSim::<{ rtl::params::N_CELLS }>::robust(lsb);
+            if let Some((path, lines)) = vcd {
+                sim.trace_lines_to(path, lines.clone()).map_err(|source| crate::SimError::Io { path: path.to_path_buf(), source })?;
+            }
             let t0 = std::time::Instant::now();
             let run = sim.run(left, right, hblank, progress);
             (run, t0.elapsed().as_secs_f64(), 0.0)
@@ -618,7 +667,7 @@ pub struct RtlEvalReport {
 /// truth.
 pub fn evaluate_pair_rtl(pair: &crate::io::PairData, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, crate::SimError> {
     use crate::eval::dense_scores;
-    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, progress)?;
+    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, None, progress)?;
     let gt = &pair.gt_left;
     let all = dense_scores(&rtl, gt, None);
     Ok(RtlEvalReport {
