@@ -245,7 +245,7 @@ struct RtlDepthArgs {
     engine: sim::stereo::Engine,
     /// Write a VCD waveform of every signal of the line processor (a clock of 10 ns) while the
     /// rows given by --lines go through it: from the first pixel of the first row in to the last
-    /// disparity of the last row out (rust-hdl engine; a few lines make tens of megabytes).
+    /// disparity of the last row out (rust-hdl engine, which then runs about ten times slower; with the 64-cell matcher a line of 384 px makes about a hundred megabytes).
     #[arg(long, requires = "lines")]
     vcd: Option<PathBuf>,
     /// Rows of the frame (of the band, with --rows) to trace in the VCD, as A..B (rows A to B-1).

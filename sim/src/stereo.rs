@@ -234,7 +234,10 @@ impl StereoVcd {
     /// Records the block's signals at `time` (ns, a clock of 10 ns) if
     /// `active`.
     fn sample<const N: usize>(&mut self, active: bool, time: u64, u: &StereoLineProcessor<N>) {
-        if let (true, Some(mut probe)) = (active, self.probe.take()) {
+        if !active {
+            return;
+        }
+        if let Some(mut probe) = self.probe.take() {
             let _ = probe.timestamp(time);
             self.probe = Some(write_vcd_change(probe, u));
         }
