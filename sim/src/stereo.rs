@@ -532,9 +532,10 @@ pub struct StereoReport {
     pub lines_wide: u64,
     /// The most lines in flight between the matcher's input and the
     /// interpolator's output (at most `LINES_IN_FLIGHT`), and the clocks
-    /// on which that limit held the reference queue back.
-    pub lines_in_flight_peak: u64,
-    pub held_cycles: u64,
+    /// on which that limit held the reference queue back: probed inside the
+    /// rust-hdl model, `null` from the Verilog engines.
+    pub lines_in_flight_peak: Option<u64>,
+    pub held_cycles: Option<u64>,
 }
 
 /// What runs the line processor clock by clock.
@@ -635,8 +636,8 @@ pub fn run_pair(
         pixels_dropped: run.pixels_dropped,
         lines_full: run.lines_full,
         lines_wide: run.lines_wide,
-        lines_in_flight_peak: run.probe.peak.in_flight,
-        held_cycles: run.probe.peak.held_clocks,
+        lines_in_flight_peak: (engine == Engine::RustHdl).then_some(run.probe.peak.in_flight),
+        held_cycles: (engine == Engine::RustHdl).then_some(run.probe.peak.held_clocks),
     };
     let mut depth = vec![0u16; left.width() * left.height()];
     for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
