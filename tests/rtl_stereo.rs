@@ -136,3 +136,80 @@ fn venus_after_its_slow_stretch_loses_no_line() {
     // four.
     assert!(peak.interp_lines > 4, "the band no longer fills the interpolator's queue: {peak:?}");
 }
+
+/// A synthetic pair whose first `heavy` rows have a declivity every 3 px
+/// (their matching takes about twice their line time) and whose other rows
+/// have one every `light_step` px, the right view the left shifted by 5 px.
+fn backlog_pair(width: usize, height: usize, heavy: usize, light_step: usize) -> (golden::GreyImage, golden::GreyImage) {
+    let mut seed = 0x2545_f491_u64;
+    let mut next = move || {
+        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 33) as u32
+    };
+    let shift = 5;
+    let mut left = Vec::with_capacity(width * height);
+    let mut right = Vec::with_capacity(width * height);
+    for y in 0..height {
+        let step = if y < heavy { 3 } else { light_step };
+        let mut row = Vec::with_capacity(width + shift);
+        let mut high = false;
+        while row.len() < width + shift {
+            let level = if high { 150 + next() % 80 } else { 20 + next() % 60 };
+            row.extend(std::iter::repeat_n(level as u8, step));
+            high = !high;
+        }
+        // left(x) = right(x - 5): disparity 5 px.
+        left.extend_from_slice(&row[..width]);
+        right.extend_from_slice(&row[shift..shift + width]);
+    }
+    let img = |p: Vec<u8>| golden::GreyImage::new(width, height, p).expect("an image");
+    (img(left), img(right))
+}
+
+/// Lines after a backlog held back, not dropped: ten rows slower to match
+/// than their line time, then lighter rows on which the matcher catches
+/// up, faster than the interpolator sends lines. The limit on lines in
+/// flight holds the reference queue (the interpolator would otherwise need
+/// more lines than its queue); no line or record is lost and the output is
+/// that of the blocks one after the other.
+#[test]
+fn lines_after_a_backlog_are_held_in_the_record_queues_not_dropped() {
+    let (width, height) = (300, 40);
+    let (left, right) = backlog_pair(width, height, 10, 16);
+    let dispmax = 16.0;
+    let mut sim = StereoSim::<N_CELLS>::robust(sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
+    let t = std::time::Instant::now();
+    let run = sim.run(&left, &right, 0, |_| {});
+    let secs = t.elapsed().as_secs_f64();
+    let peak = run.probe.peak;
+    eprintln!(
+        "backlog pair {width}x{height}: {} rows out, {} clocks ({:.0} clocks/s), dropped {} lines {} records, stalls {}; peaks: interpolator {} lines {} segments, in flight {}, record queues {:?} beats {:?} lines, row check {} rows, held {} clocks",
+        run.rows.len(),
+        run.cycles,
+        run.cycles as f64 / secs,
+        run.lines_dropped,
+        run.records_dropped,
+        run.stall_cycles,
+        peak.interp_lines,
+        peak.interp_segments,
+        peak.in_flight,
+        peak.record_beats,
+        peak.record_lines,
+        peak.row_check_rows,
+        peak.held_clocks
+    );
+    print_probe("backlog", &run, width);
+    assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
+    assert_eq!(run.rows.len(), height);
+    // The limit was reached and held lines back.
+    assert_eq!(peak.in_flight as usize, LINES_IN_FLIGHT, "{peak:?}");
+    assert!(peak.held_clocks > 0, "{peak:?}");
+    assert!(peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
+    let (blocks, depth) =
+        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim.dispmax);
+    assert_eq!(blocks.len(), run.rows.len());
+    for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
+        assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
+    }
+    assert_eq!(run.depth_rows, depth);
+}

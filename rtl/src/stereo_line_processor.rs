@@ -105,7 +105,11 @@
 //! the next marker), the matcher and the interpolator finish their lines
 //! by themselves, so with two or more lines allowed one always leaves. The
 //! limit costs no throughput while fewer than eight lines are in flight:
-//! on the eight pairs at most 7 (venus), it never held.
+//! on the eight pairs at most 7 (venus), it never held. `tests/rtl_stereo.rs`
+//! drives it with a synthetic pair (ten rows twice as slow to match as
+//! their line, then light ones): it holds 5970 clocks, the record queues
+//! peak at 515 beats, and no line is lost (without it the interpolator
+//! dropped nine).
 //!
 //! The width given to the interpolator is the last reference line's
 //! (every line of a frame has one width): it is counted as the line comes
