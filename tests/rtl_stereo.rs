@@ -71,27 +71,6 @@ fn print_probe(what: &str, run: &sim::stereo::StereoRun, width: usize) {
     }
 }
 
-/// The whole of venus through the line processor with the queues probed
-/// (about three minutes): `cargo test --release -p declivity-tests --test
-/// rtl_stereo -- --ignored --nocapture venus_probe`.
-#[test]
-#[ignore]
-fn venus_probe() {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("venus")).expect("the pair loads");
-    let rows = std::env::var("PROBE_ROWS")
-        .ok()
-        .and_then(|s| s.split_once("..").map(|(a, b)| a.parse::<usize>().unwrap()..b.parse::<usize>().unwrap()))
-        .unwrap_or(0..data.left.height());
-    let (left, right) = (crop(&data.left, rows.clone()), crop(&data.right, rows.clone()));
-    let dispmax = data.dispmax + 1.0;
-    let mut sim = StereoSim::<N_CELLS>::robust(sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
-    let run = sim.run(&left, &right, 0, |_| {});
-    let golden = golden_map(&left, &right, dispmax).expect("golden runs");
-    let agree = agree_quarter_px(&run.disparity_px(left.height()), &golden);
-    eprintln!("venus rows {rows:?}: {} rows out, agree {agree:.4}, lines dropped {}", run.rows.len(), run.lines_dropped);
-    print_probe("venus", &run, left.width());
-}
-
 /// Venus rows 228..310: the matcher falls behind on rows 231–246 (their
 /// matching takes longer than their 434-clock line) and the record queues
 /// hold the backlog; the interpolator's output, which sends a line per line
