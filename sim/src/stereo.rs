@@ -185,7 +185,36 @@ impl<const N: usize> StereoSim<N> {
     }
 }
 
+/// An output line being received: its disparities and depths so far.
+#[derive(Debug, Clone, Default)]
+pub struct PendingLine {
+    disparities: Vec<u32>,
+    depths: Vec<u16>,
+}
+
 impl StereoRun {
+    /// Takes an output beat (`m_tdata` = `word`, with `m_tuser`, `m_tlast`)
+    /// sampled on clock `clock` into `pending`, and the line into the run at
+    /// its `tlast`; returns whether a line was completed.
+    pub fn push_beat(&mut self, clock: u64, word: u64, tuser: bool, tlast: bool, pending: &mut PendingLine) -> bool {
+        self.first_out.get_or_insert(clock);
+        self.last_out = Some(clock);
+        if pending.disparities.is_empty() {
+            self.sof.push(tuser);
+            self.line_cycles.push((clock, clock));
+        }
+        if let Some(l) = self.line_cycles.last_mut() {
+            l.1 = clock;
+        }
+        pending.disparities.push((word & ((1 << DEPTH_BITS) - 1)) as u32);
+        pending.depths.push((word >> DEPTH_BITS) as u16);
+        if tlast {
+            self.rows.push(std::mem::take(&mut pending.disparities));
+            self.depth_rows.push(std::mem::take(&mut pending.depths));
+        }
+        tlast
+    }
+
     /// Clocks from the first pixel in to the first disparity out.
     pub fn latency_cycles(&self) -> Option<u64> {
         self.first_out.map(|o| o - self.first_in)
@@ -333,8 +362,7 @@ impl<const N: usize> StereoSim<N> {
         let quiet = QUIET_CLOCKS;
         let mut run = StereoRun { width: left.width().min(rtl::params::W_MAX), ..StereoRun::default() };
         let mut cams = [Camera { image: left, x: 0, y: 0, idle: 0 }, Camera { image: right, x: 0, y: 0, idle: 0 }];
-        let mut row: Vec<u32> = Vec::with_capacity(run.width);
-        let mut depth_row: Vec<u16> = Vec::with_capacity(run.width);
+        let mut row = PendingLine::default();
         let mut first_in = None;
         let mut last_activity = 0u64;
         let height = left.height();
@@ -375,22 +403,8 @@ impl<const N: usize> StereoSim<N> {
                 last_activity = self.cycle;
             }
             if u.m_tvalid.val() {
-                run.first_out.get_or_insert(self.cycle);
-                run.last_out = Some(self.cycle);
                 last_activity = self.cycle;
-                if row.is_empty() {
-                    run.sof.push(u.m_tuser.val());
-                    run.line_cycles.push((self.cycle, self.cycle));
-                }
-                if let Some(l) = run.line_cycles.last_mut() {
-                    l.1 = self.cycle;
-                }
-                let word = u.m_tdata.val().to_u64();
-                row.push((word & ((1 << DEPTH_BITS) - 1)) as u32);
-                depth_row.push((word >> DEPTH_BITS) as u16);
-                if u.m_tlast.val() {
-                    run.rows.push(std::mem::take(&mut row));
-                    run.depth_rows.push(std::mem::take(&mut depth_row));
+                if run.push_beat(self.cycle, u.m_tdata.val().to_u64(), u.m_tuser.val(), u.m_tlast.val(), &mut row) {
                     progress(run.rows.len());
                 }
             }

@@ -30,12 +30,12 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use golden::GreyImage;
-use rtl::params::{DEPTH_BITS, DISPMAX_BITS, PIXEL_BITS, W_MAX};
+use rtl::params::{DISPMAX_BITS, PIXEL_BITS, W_MAX};
 use rtl::stereo_line_processor::{HEIGHT_BITS, OUT_BITS, STATUS_BITS};
 
 use crate::cosim::{io_err, log_of, run_tool, top_ports, verilator_build, CosimError, Options, Port, Simulator, WorkDir, TOP_MODULE};
 use crate::primitives::MODELS_FILE;
-use crate::stereo::{StereoRun, QUIET_CLOCKS};
+use crate::stereo::{PendingLine, StereoRun, QUIET_CLOCKS};
 
 /// Pixels an image may have in the testbench: `W_MAX` columns of
 /// `2^HEIGHT_BITS` rows (the processor's limits).
@@ -245,9 +245,7 @@ fn parse_err(what: &str, line: usize, msg: impl Into<String>) -> CosimError {
 /// The [`StereoRun`] the testbench's files describe (`width` the lines').
 fn parse_frame(beats: &str, summary: &str, width: usize) -> Result<StereoRun, CosimError> {
     let mut run = StereoRun { width, ..StereoRun::default() };
-    let mut row: Vec<u32> = Vec::with_capacity(width);
-    let mut depth_row: Vec<u16> = Vec::with_capacity(width);
-    let disparity_mask = (1u64 << DEPTH_BITS) - 1;
+    let mut pending = PendingLine::default();
     for (i, line) in beats.lines().enumerate() {
         let f: Vec<&str> = line.split_whitespace().collect();
         let bad = || parse_err(FRAME_BEATS_FILE, i + 1, format!("expected `clock tdata tuser tlast`, got `{line}`"));
@@ -256,22 +254,7 @@ fn parse_frame(beats: &str, summary: &str, width: usize) -> Result<StereoRun, Co
         }
         let clock: u64 = f[0].parse().map_err(|_| bad())?;
         let word = u64::from_str_radix(f[1], 16).map_err(|_| parse_err(FRAME_BEATS_FILE, i + 1, format!("tdata `{}` is not hex (X or Z from the simulator?)", f[1])))?;
-        let (tuser, tlast) = (f[2] == "1", f[3] == "1");
-        run.first_out.get_or_insert(clock);
-        run.last_out = Some(clock);
-        if row.is_empty() {
-            run.sof.push(tuser);
-            run.line_cycles.push((clock, clock));
-        }
-        if let Some(l) = run.line_cycles.last_mut() {
-            l.1 = clock;
-        }
-        row.push((word & disparity_mask) as u32);
-        depth_row.push((word >> DEPTH_BITS) as u16);
-        if tlast {
-            run.rows.push(std::mem::take(&mut row));
-            run.depth_rows.push(std::mem::take(&mut depth_row));
-        }
+        run.push_beat(clock, word, f[2] == "1", f[3] == "1", &mut pending);
     }
     let v: Vec<u64> = summary
         .split_whitespace()
