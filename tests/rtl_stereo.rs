@@ -20,28 +20,14 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
     let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("tsukuba")).expect("the pair loads");
     let (left, right) = (crop(&data.left, 100..116), crop(&data.right, 100..116));
     let dispmax = data.dispmax + 1.0;
-    let mut sim = StereoSim::<N_CELLS>::robust(sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
-    let t = std::time::Instant::now();
-    let run = sim.run(&left, &right, 0, |_| {});
-    let secs = t.elapsed().as_secs_f64();
+    let run = run_and_report("tsukuba rows 100..116", &left, &right, dispmax);
     let golden = golden_map(&left, &right, dispmax).expect("golden runs");
-    let rtl = run.disparity_px(left.height());
-    let agree = agree_quarter_px(&rtl, &golden);
-    eprintln!(
-        "tsukuba rows 100..116: {} rows out, agree {agree:.4}, {} clocks ({:.0} clocks/s), stalls {}, latency {:?}, px/clk {:.4}, dropped {} records {} lines",
-        run.rows.len(),
-        run.cycles,
-        run.cycles as f64 / secs,
-        run.stall_cycles,
-        run.latency_cycles(),
-        run.px_per_clk(),
-        run.records_dropped,
-        run.lines_dropped
-    );
+    let agree = agree_quarter_px(&run.disparity_px(left.height()), &golden);
+    eprintln!("tsukuba rows 100..116: agree {agree:.4}, latency {:?}, px/clk {:.4}", run.latency_cycles(), run.px_per_clk());
     assert_eq!(run.rows.len(), left.height());
     assert_eq!((run.records_dropped, run.lines_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
     let (blocks, depth) =
-        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim.dispmax);
+        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
     assert_eq!(blocks.len(), run.rows.len());
     for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
         assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
