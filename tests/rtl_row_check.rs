@@ -12,7 +12,7 @@
 
 use proptest::prelude::*;
 use rtl::params::{CONSISTENT_DD_LSB, CONSISTENT_DX_LSB, N_MAX, POS_FRAC_BITS, W_MAX};
-use rtl::row_check::{row_check_cycles, row_check_period, RowCheck, ROW_FIRST_LAG, ROW_START_LAG};
+use rtl::row_check::{row_check_cycles, row_check_period, RowCheck, ROW_FIRST_LAG, ROW_RESTART_LAG, ROW_START_LAG};
 use sim::row_check::{frame_rows, golden_kept, unchecked_rows, FixedMatch, RowCheckSim, RowRun, TimedRow};
 
 /// One position LSB (1/16 px).
@@ -43,10 +43,11 @@ fn check_kept(frames: &[&[Vec<FixedMatch>]], run: &RowRun) -> Result<(), String>
 }
 
 /// The documented timing, clock by clock: row `y` starts at
-/// `s = max(marker(y+1) + ROW_START_LAG, finish(y-1) + 1)` (its own marker
+/// `s = max(marker(y+1) + ROW_START_LAG, finish(y-1) + ROW_RESTART_LAG)` (its own marker
 /// for a frame's last row); it finishes at `c = marker_out - 1` with
 /// `c - s` at most `row_check_cycles` (exactly 1 for an empty row, at least
-/// `n + 4`, and exactly `n + 4` without neighbour matches); its kept
+/// `row_check_cycles(0, n, 0)`, and exactly that without neighbour
+/// matches); its kept
 /// matches leave in order, one clock apart at least, from
 /// `s + ROW_FIRST_LAG` on, before the marker (one clock apart exactly and
 /// from `s + ROW_FIRST_LAG` exactly when it has no neighbour matches).
@@ -65,7 +66,8 @@ fn check_timing(rows: &[TimedRow], run: &RowRun) -> Result<usize, String> {
         let above = if r.sof { 0 } else { counts[y - 1] };
         let below = if r.eof { 0 } else { counts[y + 1] };
         let bound = row_check_cycles(above, n, below);
-        let ok = if n == 0 { c == 1 } else if above + below == 0 { c == n + 4 } else { c >= n + 4 && c <= bound };
+        let alone = row_check_cycles(0, n, 0);
+        let ok = if n == 0 { c == 1 } else if above + below == 0 { c == alone } else { c >= alone && c <= bound };
         if !ok {
             return Err(format!("row {y}: {c} clocks from its start {s} for {above}/{n}/{below} matches, bound {bound}"));
         }
@@ -77,18 +79,18 @@ fn check_timing(rows: &[TimedRow], run: &RowRun) -> Result<usize, String> {
             prev = t;
         }
         worst = worst.max(c);
-        free = finish + 1;
+        free = finish + ROW_RESTART_LAG as u64;
     }
     Ok(worst)
 }
 
-/// The largest `row_check_cycles` of a frame's rows plus one: a period
-/// that drops no row.
+/// The largest `row_check_cycles` of a frame's rows plus
+/// `ROW_RESTART_LAG`: a period that drops no row.
 fn safe_period(frame: &[Vec<FixedMatch>], gap: usize) -> usize {
     let h = frame.len();
     let n = |y: usize| frame[y].len();
     let cycles = (0..h)
-        .map(|y| row_check_cycles(if y == 0 { 0 } else { n(y - 1) }, n(y), if y + 1 == h { 0 } else { n(y + 1) }) + 1)
+        .map(|y| row_check_cycles(if y == 0 { 0 } else { n(y - 1) }, n(y), if y + 1 == h { 0 } else { n(y + 1) }) + ROW_RESTART_LAG)
         .max()
         .unwrap_or(1);
     let beats = frame.iter().map(|r| r.len() * (gap + 1) + 1).max().unwrap_or(1);
@@ -171,12 +173,13 @@ fn row(n: usize, x0: u64, step: u64, d: u64) -> Vec<FixedMatch> {
     (0..n as u64).map(|k| (x0 * PX + k * step, d * PX)).collect()
 }
 
-/// Without neighbour matches a row of `n` takes exactly `n + 4` clocks,
+/// Without neighbour matches a row of `n` takes exactly
+/// `row_check_cycles(0, n, 0)` clocks (`n + ROW_FIRST_LAG - 1`),
 /// keeps nothing and is sent at once; an empty row takes one clock; a
 /// one-row frame keeps nothing; rows with matching neighbours keep them
 /// all, at most one per clock, within the bound.
 #[test]
-fn a_row_without_neighbour_matches_takes_n_plus_4_clocks_and_a_confirmed_row_keeps_all_within_the_bound() {
+fn a_row_without_neighbour_matches_takes_n_plus_the_first_lag_clocks_and_a_confirmed_row_keeps_all_within_the_bound() {
     let frames: Vec<Vec<Vec<FixedMatch>>> = vec![
         vec![row(N_MAX, 2, 7 * PX, 5)],
         vec![vec![], row(40, 3, 20, 9), vec![]],
@@ -201,7 +204,8 @@ fn a_row_without_neighbour_matches_takes_n_plus_4_clocks_and_a_confirmed_row_kee
 
 /// The bound of the documentation on the worst rows it describes: a
 /// neighbour of N_MAX matches a pixel apart, checked rows sparse or full,
-/// and the period that drops no row for any row.
+/// or aligned with it and never confirmed (the most waits), and the period
+/// that drops no row for any row.
 #[test]
 fn row_check_cycles_bounds_the_measured_clocks_of_dense_neighbours_and_the_period_drops_nothing() {
     let dense = row(N_MAX, 1, PX, 6);
@@ -211,6 +215,10 @@ fn row_check_cycles_bounds_the_measured_clocks_of_dense_neighbours_and_the_perio
         vec![dense.clone(), dense.clone(), dense.clone()],
         vec![dense.clone(), row(N_MAX, 1, PX + 1, 20), dense.clone()],
         vec![row(N_MAX, 1, 7 * PX, 6), dense.clone(), row(N_MAX, 1, 7 * PX, 6)],
+        // Aligned with its neighbours and never confirmed: every match
+        // waits for one more entry of a full window.
+        vec![dense.clone(), row(N_MAX, 1, PX, 20), dense.clone()],
+        vec![dense.clone(), row(N_MAX, 1, PX, 20), vec![]],
     ];
     for frame in &cases {
         let rows = frame_rows(frame, row_check_period(), 0);
@@ -222,7 +230,7 @@ fn row_check_cycles_bounds_the_measured_clocks_of_dense_neighbours_and_the_perio
         let c = run.rows[1].marker_cycle - 1 - (run.markers[2] + ROW_START_LAG as u64);
         eprintln!("middle row of {} matches: {c} clocks, bound {}, frame at most {worst}", frame[1].len(), row_check_cycles(frame[0].len(), frame[1].len(), frame[2].len()));
     }
-    assert_eq!(row_check_period(), row_check_cycles(N_MAX, N_MAX, N_MAX) + 1);
+    assert_eq!(row_check_period(), row_check_cycles(N_MAX, N_MAX, N_MAX) + ROW_RESTART_LAG);
 }
 
 /// Two frames back to back, the first's last row equal to the second's
