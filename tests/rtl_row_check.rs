@@ -464,9 +464,12 @@ fn row_check_verilog_replays_the_rust_model_under_icarus_and_verilator() {
 /// two), no multiplier, no LUT RAM. The report (LUTs, FFs, Fmax, critical
 /// path) is printed, not checked: measured at commit time 2580 LUTs, 1439
 /// FFs, 146.9 MHz with nextpnr's default seed (136-148 MHz over seeds
-/// 0-5), critical paths from a compared match's operands through a
-/// comparison's carry chain into the registered confirmations, or from the
-/// prefetch ring's pointer through its read into the compare stage.
+/// 0-5); critical path a window's read issue (a registered left-of-window
+/// flag, the slot's release, the free-slot test, the read counter's
+/// enable), with other seeds a compared match's operand through a
+/// comparison's carry chain into the registered confirmations, or the
+/// prefetch ring's one-hot pointer through its read into the compare
+/// stage.
 #[test]
 fn row_check_places_and_routes_on_ecp5_85k_with_six_block_rams() {
     let v = sim::cosim::verilog_of(RowCheck::new());
