@@ -346,7 +346,7 @@ pub struct RowCheck {
     cx: [DFF<Bits<POS_BITS>>; CUR_RING],
     cd: [DFF<Bits<POS_BITS>>; CUR_RING],
     // The compare stage: the presented match (its index, whether there is
-    // one, its `X` and `d` one bit wider), the index presented next.
+    // one, its `X` and `d` in WIDE bits), the index presented next.
     pvalid: DFF<Bit>,
     pidx: DFF<Bits<COUNT_BITS>>,
     pn: DFF<Bits<COUNT_BITS>>,
@@ -836,9 +836,8 @@ impl Logic for RowCheck {
         self.a_ex.next = bit_cast::<WIDE, POS_BITS>(self.a_rx.val());
         self.a_ed.next = bit_cast::<WIDE, POS_BITS>(self.a_rdd.val());
         self.a_nxp.next = self.a_ex.val() + self.dx.val();
-        // (`X - DX` and `d - DD` may wrap below zero: as the minuend's
-        // subtrahend in a comparison, such a bound never borrows, which is
-        // the comparison with no bound.)
+        // (`X - DX` and `d - DD` may wrap below zero: subtracted in its
+        // comparison, such a bound never borrows, as if there were none.)
         self.a_nxm.next = self.a_ex.val() - self.dx.val();
         self.a_ndp.next = self.a_ed.val() + self.dd.val();
         self.a_ndm.next = self.a_ed.val() - self.dd.val();
@@ -890,13 +889,14 @@ impl Logic for RowCheck {
         }
         self.a_mem.read_address.next = self.a_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.a_rd.q.val());
         // The comparisons with the presented match (registered; a free
-        // slot is neither left nor confirming, its bounds being all ones).
-        // Each is the borrow of a subtraction (one carry chain).
+        // slot, its position bounds all ones, is neither left of the window
+        // nor confirming). Each is the borrow of a subtraction (one carry
+        // chain).
         for i in 0..ROW_WINDOW {
-            self.a_sl[i].next = (self.a_xp[i].q.val()) - (self.px.q.val());
-            self.a_sg[i].next = (self.px.q.val()) - (self.a_xm[i].q.val());
-            self.a_sdl[i].next = (self.pd.q.val()) - (self.a_dm[i].q.val());
-            self.a_sdh[i].next = (self.a_dp[i].q.val()) - (self.pd.q.val());
+            self.a_sl[i].next = self.a_xp[i].q.val() - self.px.q.val();
+            self.a_sg[i].next = self.px.q.val() - self.a_xm[i].q.val();
+            self.a_sdl[i].next = self.pd.q.val() - self.a_dm[i].q.val();
+            self.a_sdh[i].next = self.a_dp[i].q.val() - self.pd.q.val();
             self.a_lt[i].d.next = self.a_sl[i].val().get_bit(self.sign_at.val().index());
             self.a_okc[i].next = !self.a_sl[i].val().get_bit(self.sign_at.val().index()) & !self.a_sg[i].val().get_bit(self.sign_at.val().index()) & !self.a_sdl[i].val().get_bit(self.sign_at.val().index()) & !self.a_sdh[i].val().get_bit(self.sign_at.val().index());
         }
@@ -905,7 +905,7 @@ impl Logic for RowCheck {
         self.a_okq[0].d.next = self.a_okc[0].val() | self.a_okc[1].val() | self.a_okc[2].val() | self.a_okc[3].val();
         self.a_okq[1].d.next = self.a_okc[4].val() | self.a_okc[5].val() | self.a_okc[6].val() | self.a_okc[7].val();
         self.a_full.d.next = self.a_held[0].q.val() & self.a_held[1].q.val() & self.a_held[2].q.val() & self.a_held[3].q.val() & self.a_held[4].q.val() & self.a_held[5].q.val() & self.a_held[6].q.val() & self.a_held[7].q.val();
-        self.a_sb.next = (self.px.q.val()) - (self.a_lxm.q.val());
+        self.a_sb.next = self.px.q.val() - self.a_lxm.q.val();
         // (The newest entry, once it has left, was left of an earlier
         // match's window, so never right of this one's.)
         self.a_beyond_c.next = self.a_sb.val().get_bit(self.sign_at.val().index());
@@ -943,9 +943,8 @@ impl Logic for RowCheck {
         self.b_ex.next = bit_cast::<WIDE, POS_BITS>(self.b_rx.val());
         self.b_ed.next = bit_cast::<WIDE, POS_BITS>(self.b_rdd.val());
         self.b_nxp.next = self.b_ex.val() + self.dx.val();
-        // (`X - DX` and `d - DD` may wrap below zero: as the minuend's
-        // subtrahend in a comparison, such a bound never borrows, which is
-        // the comparison with no bound.)
+        // (`X - DX` and `d - DD` may wrap below zero: subtracted in its
+        // comparison, such a bound never borrows, as if there were none.)
         self.b_nxm.next = self.b_ex.val() - self.dx.val();
         self.b_ndp.next = self.b_ed.val() + self.dd.val();
         self.b_ndm.next = self.b_ed.val() - self.dd.val();
@@ -997,13 +996,14 @@ impl Logic for RowCheck {
         }
         self.b_mem.read_address.next = self.b_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.b_rd.q.val());
         // The comparisons with the presented match (registered; a free
-        // slot is neither left nor confirming, its bounds being all ones).
-        // Each is the borrow of a subtraction (one carry chain).
+        // slot, its position bounds all ones, is neither left of the window
+        // nor confirming). Each is the borrow of a subtraction (one carry
+        // chain).
         for i in 0..ROW_WINDOW {
-            self.b_sl[i].next = (self.b_xp[i].q.val()) - (self.px.q.val());
-            self.b_sg[i].next = (self.px.q.val()) - (self.b_xm[i].q.val());
-            self.b_sdl[i].next = (self.pd.q.val()) - (self.b_dm[i].q.val());
-            self.b_sdh[i].next = (self.b_dp[i].q.val()) - (self.pd.q.val());
+            self.b_sl[i].next = self.b_xp[i].q.val() - self.px.q.val();
+            self.b_sg[i].next = self.px.q.val() - self.b_xm[i].q.val();
+            self.b_sdl[i].next = self.pd.q.val() - self.b_dm[i].q.val();
+            self.b_sdh[i].next = self.b_dp[i].q.val() - self.pd.q.val();
             self.b_lt[i].d.next = self.b_sl[i].val().get_bit(self.sign_at.val().index());
             self.b_okc[i].next = !self.b_sl[i].val().get_bit(self.sign_at.val().index()) & !self.b_sg[i].val().get_bit(self.sign_at.val().index()) & !self.b_sdl[i].val().get_bit(self.sign_at.val().index()) & !self.b_sdh[i].val().get_bit(self.sign_at.val().index());
         }
@@ -1012,7 +1012,7 @@ impl Logic for RowCheck {
         self.b_okq[0].d.next = self.b_okc[0].val() | self.b_okc[1].val() | self.b_okc[2].val() | self.b_okc[3].val();
         self.b_okq[1].d.next = self.b_okc[4].val() | self.b_okc[5].val() | self.b_okc[6].val() | self.b_okc[7].val();
         self.b_full.d.next = self.b_held[0].q.val() & self.b_held[1].q.val() & self.b_held[2].q.val() & self.b_held[3].q.val() & self.b_held[4].q.val() & self.b_held[5].q.val() & self.b_held[6].q.val() & self.b_held[7].q.val();
-        self.b_sb.next = (self.px.q.val()) - (self.b_lxm.q.val());
+        self.b_sb.next = self.px.q.val() - self.b_lxm.q.val();
         // (The newest entry, once it has left, was left of an earlier
         // match's window, so never right of this one's.)
         self.b_beyond_c.next = self.b_sb.val().get_bit(self.sign_at.val().index());
