@@ -54,20 +54,20 @@
 //! ## The frame's end: flush and vertical blanking
 //! The frame's last row `H − 1` is checked right after row `H − 2` (the
 //! row check does not wait for a row below it) and reaches the interpolator
-//! `max(c_last + 1, W')` clocks after row `H − 2` (`c_last` its check's
-//! clocks; the interpolator is still busy with row `H − 2` for `W'`). The
+//! `max(c_last + ROW_RESTART_LAG, W')` clocks after row `H − 2` (`c_last`
+//! its check's clocks, started `ROW_RESTART_LAG` after row `H − 2`'s finish; the interpolator is still busy with row `H − 2` for `W'`). The
 //! median then sends output row `H − 3` in the last row's slot and flushes
 //! rows `H − 2` and `H − 1`, one pixel per clock, back to back. So the
 //! frame's output rows `0 … H − 4` leave one per line period from the
 //! first disparity on, and the last disparity leaves `(H − 4)·P +
-//! max(c_last + 1, W') + 3·W' − 1` clocks after the first.
+//! max(c_last + ROW_RESTART_LAG, W') + 3·W' − 1` clocks after the first.
 //!
 //! The median takes the next frame's pixels only after its flush (the
 //! pixels that come during it are dropped, `pixels_dropped`). The next
 //! frame's row 0 reaches the interpolator once its row 1's marker has left
 //! the matcher, `(V + 2)·P` after this frame's row `H − 1`'s (`V` lines of
 //! vertical blanking), so with the same work per row it needs
-//! `(V + 2)·P + c_first − c ≥ max(c_last + 1, W') + 3·W'`: `c_first` the
+//! `(V + 2)·P + c_first − c ≥ max(c_last + ROW_RESTART_LAG, W') + 3·W'`: `c_first` the
 //! first row's check clocks (no row above), `c` a row's inside the frame
 //! (row `H − 2`'s). The least such `V` is the budget's vertical blanking,
 //! and a frame takes `(H + V)·P` clocks. A next frame whose first rows are
@@ -94,7 +94,7 @@
 //! its three counts, so the worst row inside the frame is
 //! `row_check_cycles(N, N, N)`, the first `row_check_cycles(0, N, N)`, the
 //! last `row_check_cycles(N, N, 0)` — bounds, loose on real rows (the row
-//! check's doc: real rows take about `n + 5`).
+//! check's doc: real rows take about `n + 7`).
 
 use rtl::adaptive_threshold::THRESHOLD_LATENCY;
 use rtl::block_ram::{DP16KD_ADDR_BITS, DP16KD_WIDTH};
@@ -109,7 +109,7 @@ use rtl::params::{
     ROW_ENTRY_BITS, SEG_ADDR_BITS, WIDTH_BITS, W_MAX,
 };
 use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
-use rtl::row_check::{row_check_cycles, row_check_period, ROW_START_LAG};
+use rtl::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
 use rtl::vertical_median::MEDIAN_LAG;
 use serde::Serialize;
@@ -671,13 +671,16 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
 
 /// The row check (`rtl::row_check`, the default mode's consistency check
 /// against the rows above and below): one line of delay.
+/// The row check stage's name.
+const ROW_CHECK_NAME: &str = "row check";
+
 pub fn row_check_stage(s: &Sizes) -> StageBudget {
-    const NAME: &str = "row check";
+    const NAME: &str = ROW_CHECK_NAME;
     let c = s.load.check;
     let check = s.check_text("row_check_cycles(N, N, N)", "c (the row's measured clocks)");
     let (cycles, formula) = render(&[
         Term::new(check.clone(), c),
-        Term::new("1 (the engine takes the next row the clock after it finished)", 1),
+        Term::new("ROW_RESTART_LAG (the engine takes the next row this long after it finished)", ROW_RESTART_LAG),
     ]);
     let formula = if s.worst {
         format!("{formula} (a bound; row_check_period() = {} for N = N_MAX)", row_check_period())
@@ -920,7 +923,7 @@ pub struct Budget {
     /// `latency + (W' − 1)`.
     pub latency_last_pixel_cycles: u64,
     /// The frame's first disparity out → its last,
-    /// `(H − 4)·P + max(c_last + 1, W') + 3·W' − 1`.
+    /// `(H − 4)·P + max(c_last + ROW_RESTART_LAG, W') + 3·W' − 1`.
     pub output_span_cycles: u64,
     pub output_span_formula: String,
     /// The frame's first pixel accepted → its last disparity out,
@@ -1055,10 +1058,11 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     let (latency_cycles, latency_formula) = render(&latency_terms);
 
     // The frame's end (module doc, "The frame's end").
-    let last_check = if sizes.worst { "max(row_check_cycles(N, N, 0) + 1, W')" } else { "max(c_last + 1, W')" };
+    let last_check = if sizes.worst { "max(row_check_cycles(N, N, 0) + ROW_RESTART_LAG, W')" } else { "max(c_last + ROW_RESTART_LAG, W')" };
+    let last_check_cycles = (load.last_check + ROW_RESTART_LAG).max(wp);
     let (output_span_cycles, output_span_formula) = render(&[
         Term::new("(H − 4)·P (output rows 0 … H − 4, one a line period)", (h - MIN_HEIGHT) * p),
-        Term::new(format!("{last_check} (the last row, checked right after row H − 2, follows it into the interpolator)"), (load.last_check + 1).max(wp)),
+        Term::new(format!("{last_check} (the last row, checked right after row H − 2, follows it into the interpolator)"), last_check_cycles),
         Term::new("3·W' (output row H − 3 in the last row's slot, then the median's flush of rows H − 2 and H − 1, back to back)", 3 * wp),
         Term::minus("1", 1),
     ]);
@@ -1079,7 +1083,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     };
     let end = |first: Term| -> Vec<Term> {
         vec![
-            Term::new(last_check, (load.last_check + 1).max(wp)),
+            Term::new(last_check, last_check_cycles),
             Term::new("3·W' (the last row and the median's flush)", 3 * wp),
             Term::new(if sizes.worst { "row_check_cycles(N, N, N)" } else { "c" }, load.check),
             first,
@@ -1110,8 +1114,13 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     }
     if slowest.name != stages[0].name && line_period > input {
         let queue_lines = RECORD_FIFO_DEPTH / (r.n_max + 1);
+        let behind = if slowest.name == ROW_CHECK_NAME {
+            "the row check falls behind and drops a row (lines_dropped) that arrives before it has finished the row two before it (its clocks are a bound, loose on real rows: about n + 7)".to_string()
+        } else {
+            format!("the matcher falls behind and the record queues ({RECORD_FIFO_DEPTH} beats a camera, {queue_lines} lines of N records) absorb a run of such lines before records are dropped (records_dropped), and a row check behind drops rows (lines_dropped)")
+        };
         notes.push(format!(
-            "the {} is slower than W + hblank: the numbers assume the input paced to P = {line_period} (hblank ≥ {}); with a faster input the matcher falls behind and the record queues ({RECORD_FIFO_DEPTH} beats a camera, {queue_lines} lines of N records) absorb a run of such lines before records are dropped (records_dropped), and a row check behind drops rows (lines_dropped)",
+            "the {} is slower than W + hblank: the numbers assume the input paced to P = {line_period} (hblank ≥ {}); with a faster input {behind}",
             slowest.name,
             slowest.cycles_per_line.saturating_sub(r.width as u64)
         ));
@@ -1135,7 +1144,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     if sizes.worst {
         let (n, _, stop, k) = worst_matcher_line(r.n_max);
         notes.push(format!(
-            "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles grows with n, m and k and falls with the stop diagonal; the path of every diagonal pair reaches all bounds at once); its k = N matches checked against rows of N: row_check_cycles(N, N, N) = {} inside the frame, row_check_cycles(0, N, N) = {} for the first row, row_check_cycles(N, N, 0) = {} for the last — bounds, loose on real rows (about n + 5 clocks, rtl::row_check)",
+            "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles grows with n, m and k and falls with the stop diagonal; the path of every diagonal pair reaches all bounds at once); its k = N matches checked against rows of N: row_check_cycles(N, N, N) = {} inside the frame, row_check_cycles(0, N, N) = {} for the first row, row_check_cycles(N, N, 0) = {} for the last — bounds, loose on real rows (about n + 7 clocks, rtl::row_check)",
             load.check, load.first_check, load.last_check
         ));
     } else {
@@ -1437,7 +1446,7 @@ mod tests {
     fn the_worst_row_load_is_rtls_bounds() {
         let w = RowLoad::worst(N_MAX);
         assert_eq!((w.n, w.m, w.stop_diag, w.k), worst_matcher_line(N_MAX));
-        assert_eq!(w.check + 1, row_check_period());
+        assert_eq!(w.check + ROW_RESTART_LAG, row_check_period());
         let b = budget(&request(1024, N_MAX, N_CELLS)).unwrap();
         let rc = b.stages.iter().find(|s| s.name == "row check").unwrap();
         assert_eq!(rc.cycles_per_line, row_check_period() as u64);
