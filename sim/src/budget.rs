@@ -369,6 +369,43 @@ pub struct StageBudget {
     pub memories: Vec<Memory>,
 }
 
+impl StageBudget {
+    /// A stage of `instances` copies, busy `cycles_per_line` clocks a line
+    /// (`formula`), its latency the sum of `latency_terms` between the
+    /// events `latency_span` names; no DSP block, memory or array until
+    /// given (`spare_cycles` is the budget's to set).
+    fn new(name: &'static str, instances: usize, cycles_per_line: u64, formula: String, latency_terms: Vec<Term>, latency_span: &'static str) -> Self {
+        let (latency_cycles, latency_formula) = render(&latency_terms);
+        StageBudget {
+            name,
+            instances,
+            cycles_per_line,
+            formula,
+            latency_cycles,
+            latency_formula,
+            latency_terms,
+            latency_span,
+            spare_cycles: 0,
+            pe_count: None,
+            rows_per_pe: None,
+            dsp_blocks: Some(0),
+            memories: Vec::new(),
+        }
+    }
+
+    fn dsp_blocks(self, dsp_blocks: usize) -> Self {
+        StageBudget { dsp_blocks: Some(dsp_blocks), ..self }
+    }
+
+    fn array(self, pe_count: usize, rows_per_pe: usize) -> Self {
+        StageBudget { pe_count: Some(pe_count), rows_per_pe: Some(rows_per_pe), ..self }
+    }
+
+    fn memories(self, memories: Vec<Memory>) -> Self {
+        StageBudget { memories, ..self }
+    }
+}
+
 /// What the rows of a frame cost the two stages whose clocks depend on the
 /// data, the matcher and the row check: every row's line pair, and the row
 /// check's clocks (start → finish) of a row inside the frame, of its first
@@ -532,21 +569,9 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
         Term::new("(W − 1)", s.width - 1),
         Term::new("marker_latency(W')", marker_latency_estimate(s.width) as usize),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 2,
-        cycles_per_line: cycles,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "a row's first pixel accepted → its marker out",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(2 * 3),
-        memories: vec![
+    StageBudget::new(NAME, 2, cycles, formula, latency_terms, "a row's first pixel accepted → its marker out")
+        .dsp_blocks(2 * 3)
+        .memories(vec![
             Memory::new(
                 NAME,
                 LINE_BUFFER,
@@ -567,8 +592,7 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
                 None,
                 "AdaptiveThreshold::hist0, hist1, one pair per camera",
             ),
-        ],
-    }
+        ])
 }
 
 /// The record queues, one per camera (`rtl::record_fifo`): a line's
@@ -582,21 +606,8 @@ pub fn record_queue_stage(s: &Sizes) -> StageBudget {
         format!("max(n, m) + 1 (one beat a clock: a line's records and its marker) = {beats}")
     };
     let latency_terms = vec![Term::new("RECORD_FIFO_LAG", RECORD_FIFO_LAG)];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 2,
-        cycles_per_line: beats as u64,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "the row's marker out of the detectors → on the matcher's ports (the queue empty)",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(0),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 2, beats as u64, formula, latency_terms, "the row's marker out of the detectors → on the matcher's ports (the queue empty)")
+        .memories(vec![Memory::new(
             NAME,
             RECORD_QUEUE,
             2,
@@ -605,8 +616,7 @@ pub fn record_queue_stage(s: &Sizes) -> StageBudget {
             DP16KD_WIDTH,
             Some(2 * RECORD_FIFO_LANES * dp16kd_of(DP16KD_WIDTH, RECORD_FIFO_DEPTH)),
             "RecordFifo::mem0..mem4 (a record's fields and a marker's flags in five DP16KD lanes), one queue per camera",
-        )],
-    }
+        )])
 }
 
 /// The matcher: systolic array, traceback, record and choice memories.
@@ -627,23 +637,11 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
         Term::new("TAKE_AFTER_MARKER", TAKE_AFTER_MARKER as usize),
         Term::new(format!("line_cycles({args}, K)"), line_cycles(n, m, stop, k, s.cells)),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
     let record_bits = (POS_BITS + 1) + 6 * LEVEL_BITS;
     let record_rams = dp16kd_of(POS_BITS + 1, 1 << DIAG_BITS) + 6 * dp16kd_of(LEVEL_BITS, 1 << DIAG_BITS);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: cycles,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "the pair's second marker on the matcher's ports → the pair's marker out",
-        spare_cycles: 0,
-        pe_count: Some(s.cells),
-        rows_per_pe: Some(ROWS_PER_CELL),
-        dsp_blocks: Some(0),
-        memories: vec![
+    StageBudget::new(NAME, 1, cycles, formula, latency_terms, "the pair's second marker on the matcher's ports → the pair's marker out")
+        .array(s.cells, ROWS_PER_CELL)
+        .memories(vec![
             Memory::new(
                 NAME,
                 RECORD_MEMORY,
@@ -665,8 +663,7 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
                 "SystolicMatcher::lo_ram, hi_ram (low, high rows), one word of 2-bit choices per anti-diagonal",
             ),
             Memory::new(NAME, "traceback stack", 1, 1, 1 << INDEX_BITS, 2 * INDEX_BITS, None, "Traceback::stack_i, stack_j"),
-        ],
-    }
+        ])
 }
 
 /// The row check (`rtl::row_check`, the default mode's consistency check
@@ -693,21 +690,8 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
         Term::new(check, c),
         Term::new("1 (the marker leaves the clock after the finish)", 1),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: cycles,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "row y's marker out of the matcher → row y's marker out of the row check",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(0),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 1, cycles, formula, latency_terms, "row y's marker out of the matcher → row y's marker out of the row check")
+        .memories(vec![Memory::new(
             NAME,
             ROW_MEMORY,
             3,
@@ -716,8 +700,7 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
             ROW_ENTRY_BITS,
             Some(3 * dp16kd_of(ROW_ENTRY_BITS, 1 << ROW_ADDR_BITS)),
             "RowCheck::cur_mem, a_mem, b_mem (the checked row, the rows above and below: three read ports), four banks of N_MAX matches (X, d)",
-        )],
-    }
+        )])
 }
 
 /// The interpolator: one disparity per reference pixel per clock
@@ -725,29 +708,16 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
 pub fn interpolator_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "interpolator";
     let latency_terms = vec![Term::new("SEGMENT_LAG", SEGMENT_LAG), Term::new("PIXEL_LAG", PIXEL_LAG)];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
     // The segment memory's fields (`Interpolator::seg_*`), one BlockRam each.
     let shape_bits = SEGMENT_BITS - WIDTH_BITS - 3 * POS_BITS - RECIP_BITS;
     let seg_rams = [WIDTH_BITS, POS_BITS, POS_BITS, POS_BITS, shape_bits, RECIP_BITS].iter().map(|&b| dp16kd_of(b, 1 << SEG_ADDR_BITS)).sum();
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: s.stored_width as u64,
-        formula: "W' (one pixel per clock, lines back to back)".to_string(),
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "the row check's marker out → the row's first disparity out (its pixels start from the marker)",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(2),
-        memories: vec![
+    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock, lines back to back)".to_string(), latency_terms, "the row check's marker out → the row's first disparity out (its pixels start from the marker)")
+        .dsp_blocks(2)
+        .memories(vec![
             Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, Some(seg_rams), "Interpolator::seg_* (one block RAM per field)"),
             Memory::new(NAME, "reciprocal table", 1, 1, 1 << RECIP_INDEX_BITS, RECIP_BITS, None, "Interpolator::recip (ROM)"),
             Memory::new(NAME, "line queue", 1, 1, LINE_QUEUE, LINE_BITS, None, "Interpolator::q_* (LUT RAM)"),
-        ],
-    }
+        ])
 }
 
 /// The vertical median of five rows (`rtl::vertical_median`): two lines of
@@ -758,21 +728,8 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
         Term::new("2·P (the median of rows y − 2 … y + 2 waits for row y + 2, two line periods later)", 2 * s.line_period as usize),
         Term::new("MEDIAN_LAG", MEDIAN_LAG),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: s.stored_width as u64,
-        formula: "W' (one pixel per clock)".to_string(),
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "row y's first disparity into the median → output row y's first median out",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(0),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "row y's first disparity into the median → output row y's first median out")
+        .memories(vec![Memory::new(
             NAME,
             MEDIAN_LINE_BUFFER,
             1,
@@ -781,8 +738,7 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
             POS_BITS,
             Some(MEDIAN_LINE_BUFFERS * dp16kd_of(POS_BITS, W_MAX)),
             "VerticalMedian::line0..line3 (rows k − 4 … k − 1 of the MEDIAN_TAPS = 5 taps, one DP16KD each)",
-        )],
-    }
+        )])
 }
 
 /// The depth stage (`rtl::depth_stage`, eq. 1): one depth per disparity per
@@ -790,21 +746,9 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
 pub fn depth_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "depth stage";
     let latency_terms = vec![Term::new("DEPTH_LAG", DEPTH_LAG)];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: s.stored_width as u64,
-        formula: "W' (one pixel per clock)".to_string(),
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "a median out → its depth on the output",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(1),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "a median out → its depth on the output")
+        .dsp_blocks(1)
+        .memories(vec![Memory::new(
             NAME,
             DEPTH_TABLE,
             1,
@@ -813,8 +757,7 @@ pub fn depth_stage(s: &Sizes) -> StageBudget {
             DEPTH_WORD_BITS,
             None,
             "DepthStage::depth_rom (SyncROM: each entry K/m_i above its slope)",
-        )],
-    }
+        )])
 }
 
 /// Memories, DSP blocks and processing elements of the stages, summed.
