@@ -62,7 +62,8 @@
 //! out: the detector's [`crate::declivity_detector::marker_latency`], the
 //! queue's [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line
 //! (`line_cycles`), one line period in the row check (it waits for the
-//! next line's matches), the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
+//! next line's matches), [`CHECK_REGISTER_LAG`] between the row check and
+//! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
 //! line periods in the median (it waits for the row two below) and the
 //! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
 //! depth`: `latency_cycles`, the frame's first line). A later line's
@@ -135,6 +136,10 @@ pub const OUT_BITS: usize = 2 * DEPTH_BITS;
 /// Lines allowed between the matcher's input and the interpolator's output
 /// (see "Lines in flight" above): the interpolator's line queue.
 pub const LINES_IN_FLIGHT: usize = LINE_QUEUE;
+/// Clocks of the register between the row check's output and the
+/// interpolator's input (the two blocks are placed apart on the die: their
+/// route and the interpolator's first stage did not fit one clock).
+pub const CHECK_REGISTER_LAG: usize = 1;
 /// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
 const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
 // The interpolator admits every line the limit lets through: at a line's
@@ -199,6 +204,13 @@ pub struct StereoLineProcessor<const N: usize> {
     p_row: DFF<Bits<HEIGHT_BITS>>,
     m_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
     p_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
+    // The row check's output registered on its way to the interpolator
+    // (CHECK_REGISTER_LAG).
+    k_valid: DFF<Bit>,
+    k_last: DFF<Bit>,
+    k_x: DFF<Bits<POS_BITS>>,
+    k_d: DFF<Bits<POS_BITS>>,
+    k_sof: DFF<Bit>,
     // The queues' lanes 0-2, built here and then given to each queue in
     // one assignment: a port assigned twice in one evaluation changes twice,
     // and under Icarus the queue's logic and this block then wake each
@@ -290,6 +302,11 @@ impl<const N: usize> StereoLineProcessor<N> {
             n_lines_full: Default::default(),
             n_lines_wide: Default::default(),
             in_flight: Default::default(),
+            k_valid: Default::default(),
+            k_last: Default::default(),
+            k_x: Default::default(),
+            k_d: Default::default(),
+            k_sof: Default::default(),
             flight_now: Default::default(),
             hold: Default::default(),
             flight_max: Constant::new((LINES_IN_FLIGHT as u64).into()),
@@ -313,7 +330,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight);
+        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof);
         self.left.clock.next = self.clock.val();
         self.right.clock.next = self.clock.val();
         self.l_queue.clock.next = self.clock.val();
@@ -454,11 +471,16 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.row_check.m_disp.next = self.matcher.m_disp.val();
         self.row_check.m_sof.next = self.matcher.m_sof.val();
         self.row_check.m_eof.next = self.m_row_now.val() == self.height.val() - 1;
-        self.interpolator.a_valid.next = self.row_check.c_valid.val();
-        self.interpolator.a_last.next = self.row_check.c_last.val();
-        self.interpolator.a_x.next = self.row_check.c_x_ref.val();
-        self.interpolator.a_d.next = self.row_check.c_disp.val();
-        self.interpolator.a_sof.next = self.row_check.c_sof.val();
+        self.k_valid.d.next = self.row_check.c_valid.val();
+        self.k_last.d.next = self.row_check.c_last.val();
+        self.k_x.d.next = self.row_check.c_x_ref.val();
+        self.k_d.d.next = self.row_check.c_disp.val();
+        self.k_sof.d.next = self.row_check.c_sof.val();
+        self.interpolator.a_valid.next = self.k_valid.q.val();
+        self.interpolator.a_last.next = self.k_last.q.val();
+        self.interpolator.a_x.next = self.k_x.q.val();
+        self.interpolator.a_d.next = self.k_d.q.val();
+        self.interpolator.a_sof.next = self.k_sof.q.val();
         self.interpolator.a_width.next = self.width.q.val();
 
         // ---- Pixels through the median (the frame's last row marked from

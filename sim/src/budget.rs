@@ -35,7 +35,8 @@
 //! - row check: `P` (it waits for row `y + 1`'s marker) `+ ROW_START_LAG +
 //!   c + 1` to the row's marker out, `c ≤ row_check_cycles(n_above, n,
 //!   n_below)` the engine's clocks for the row;
-//! - interpolator: `SEGMENT_LAG + PIXEL_LAG` to the row's first pixel (the
+//! - interpolator: `CHECK_REGISTER_LAG` (the register from the row check)
+//!   `+ SEGMENT_LAG + PIXEL_LAG` to the row's first pixel (the
 //!   pixels start from the row's marker, not its first match, so
 //!   `ROW_FIRST_LAG` is in no path);
 //! - vertical median: `2·P` (it waits for row `y + 2`) `+ MEDIAN_LAG`;
@@ -110,6 +111,7 @@ use rtl::params::{
 };
 use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
 use rtl::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
+use rtl::stereo_line_processor::CHECK_REGISTER_LAG;
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
 use rtl::vertical_median::MEDIAN_LAG;
 use serde::Serialize;
@@ -707,7 +709,11 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
 /// (`rtl::interpolator`).
 pub fn interpolator_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "interpolator";
-    let latency_terms = vec![Term::new("SEGMENT_LAG", SEGMENT_LAG), Term::new("PIXEL_LAG", PIXEL_LAG)];
+    let latency_terms = vec![
+        Term::new("CHECK_REGISTER_LAG", CHECK_REGISTER_LAG),
+        Term::new("SEGMENT_LAG", SEGMENT_LAG),
+        Term::new("PIXEL_LAG", PIXEL_LAG),
+    ];
     // The segment memory's fields (`Interpolator::seg_*`), one BlockRam each.
     let shape_bits = SEGMENT_BITS - WIDTH_BITS - 3 * POS_BITS - RECIP_BITS;
     let seg_rams = [WIDTH_BITS, POS_BITS, POS_BITS, POS_BITS, shape_bits, RECIP_BITS].iter().map(|&b| dp16kd_of(b, 1 << SEG_ADDR_BITS)).sum();
