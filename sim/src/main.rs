@@ -191,11 +191,12 @@ the vertical median of five rows, the depth stage for the default camera), the t
 streaming one pixel per clock from the same clock with --hblank idle clocks after each line, and \
 compare the disparity map with golden's default mode in hardware parity. --engine rust-hdl (the \
 default) runs the rust-hdl model itself, about 1-2 thousand clocks per second: a 384x288 pair takes \
-one to two minutes. --engine verilator runs the processor's generated Verilog under Verilator with \
-the same camera model in a Verilog testbench (the cosim_stereo tests check that it gives the \
+one to two minutes. --engine verilator runs the processor's generated Verilog under Verilator, \
+driven clock by clock by a C++ main with the same camera model (the cosim_stereo tests check that it gives the \
 model's run clock for clock): about 100 thousand clocks per second or more, a pair in a second or \
 two, after a build of one to two minutes that is kept (in the temporary directory, keyed by the \
-design) for later runs; --engine icarus does the same under Icarus Verilog, slowly. --rows runs a \
+design) for later runs; --engine icarus does the same under Icarus Verilog (the camera model in a \
+Verilog testbench), slowly. --rows runs a \
 band (as a frame of its own).
 
 Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels (left \

@@ -560,9 +560,10 @@ pub enum Engine {
     #[default]
     #[value(name = "rust-hdl")]
     RustHdl,
-    /// Its generated Verilog under Verilator, the cameras driven by the same
-    /// model in the testbench (`sim::stereo_cosim`): hundreds of thousands of
-    /// clocks per second after a build of a few minutes, kept for later runs.
+    /// Its generated Verilog under Verilator, driven directly by a C++ `main`
+    /// holding the same camera model (`sim::stereo_cosim::frame_driver`):
+    /// over a hundred thousand clocks per second after a build of a few
+    /// minutes, kept for later runs.
     Verilator,
     /// Its generated Verilog under Icarus Verilog (slow; a few lines).
     Icarus,
