@@ -13,7 +13,7 @@
 use proptest::prelude::*;
 use rtl::params::{CONSISTENT_DD_LSB, CONSISTENT_DX_LSB, N_MAX, POS_FRAC_BITS, W_MAX};
 use rtl::row_check::{row_check_cycles, row_check_period, RowCheck, ROW_FIRST_LAG, ROW_RESTART_LAG, ROW_START_LAG};
-use sim::row_check::{frame_rows, golden_kept, unchecked_rows, FixedMatch, RowCheckSim, RowRun, TimedRow};
+use sim::row_check::{frame_rows, golden_kept, row_beats, unchecked_rows, Beat, FixedMatch, RowCheckSim, RowRun, TimedRow};
 
 /// One position LSB (1/16 px).
 const PX: u64 = 1 << POS_FRAC_BITS;
@@ -362,17 +362,6 @@ fn row_check_generates_verilog_that_lints_clean_but_for_the_accepted_warnings() 
     eprintln!("accepted lint warnings: {counts:?}");
 }
 
-/// One clock's input beat of a replay.
-#[derive(Clone, Copy, Default)]
-struct Beat {
-    valid: bool,
-    last: bool,
-    x: u64,
-    d: u64,
-    sof: bool,
-    eof: bool,
-}
-
 /// The generated Verilog under Icarus and Verilator gives the Rust model's
 /// outputs, clock by clock, on frames of random rows (empty, sparse, a
 /// pixel apart, denser than a pixel so that windows crowd) at periods from
@@ -384,7 +373,7 @@ fn row_check_verilog_replays_the_rust_model_under_icarus_and_verilator() {
     let (ins, outs) = cosim::data_ports(&v).expect("ports");
     let names: Vec<String> = ins.iter().map(|p| p.name.clone()).collect();
     let mut rng = cosim::VectorRng(0x0c0f_fee5);
-    let mut beats: Vec<Beat> = Vec::new();
+    let mut rows: Vec<TimedRow> = Vec::new();
     // Frames of `h` rows: `n` matches `step` apart, rows `period` clocks
     // apart; the first two fixed (denser than a pixel: crowded; full rows
     // back to back: dropped), the others random.
@@ -400,19 +389,13 @@ fn row_check_verilog_replays_the_rust_model_under_icarus_and_verilator() {
             let step = [5, PX, [PX, PX + 3, 3 * PX, 5][((r >> 8) % 4) as usize]][f.min(2)];
             let d0 = 4 + (r >> 16) % 8;
             let gap = ((r >> 24) % 3) as usize * ((r >> 28) % 2) as usize;
-            let first = beats.len();
-            let mut x = (r >> 32) % (4 * PX);
-            for _ in 0..n {
-                let d = d0 * PX + (rng.next() % (3 * PX));
-                beats.push(Beat { valid: true, x, d, ..Beat::default() });
-                beats.extend(std::iter::repeat_n(Beat::default(), gap));
-                x += step;
-            }
-            beats.push(Beat { valid: true, last: true, sof: y == 0, eof: y + 1 == h, ..Beat::default() });
+            let x0 = (r >> 32) % (4 * PX);
+            let matches = (0..n as u64).map(|i| (x0 + i * step, d0 * PX + (rng.next() % (3 * PX)))).collect();
             let period = [400, 0, [0usize, 40, 150, 400][((r >> 40) % 4) as usize]][f.min(2)];
-            beats.resize(beats.len().max(first + period), Beat::default());
+            rows.push(TimedRow { matches, sof: y == 0, eof: y + 1 == h, period, gap });
         }
     }
+    let (mut beats, _) = row_beats(&rows);
     beats.resize(beats.len() + row_check_period() * 3, Beat::default());
     let value = |b: &Beat, n: &str| match n {
         "m_valid" => b.valid as u64,
