@@ -201,6 +201,31 @@ fn a_line_without_room_in_the_queue_is_dropped_whole_and_flagged_and_later_lines
     check_line(&later[0], Some(EDGE_JUMP_LSB), &got[0]).expect("the next line is intact");
 }
 
+/// A full queue of the fullest lines at once: `LINE_QUEUE` lines of
+/// `N_MAX` matches (`N_MAX - 1` segments each) arriving back to back are all
+/// admitted, whole (the segment memory holds the other lines' segments and
+/// a line's reserve when the last one starts, as the line processor's
+/// limit on lines in flight relies on); one more is dropped.
+#[test]
+fn a_full_queue_of_lines_of_n_max_matches_is_admitted_whole() {
+    let line = |k: u32| AnchorLine {
+        anchors: (0..N_MAX as u32).map(|i| FixedAnchor { x: i * 7 * PX + k, d: 5 * PX + (i * 5 + k) % 64 }).collect(),
+        width: W_MAX,
+        sof: k == 0,
+    };
+    let full: Vec<AnchorLine> = (0..LINE_QUEUE as u32).map(line).collect();
+    let mut sim = InterpolatorSim::robust();
+    let (got, _) = sim.run(&full, 0);
+    assert_eq!(sim.overflows, 0, "every line of a full queue is admitted");
+    assert_eq!(got.len(), LINE_QUEUE);
+    for (l, g) in full.iter().zip(&got) {
+        check_line(l, Some(EDGE_JUMP_LSB), g).expect("whole");
+    }
+    let over: Vec<AnchorLine> = (0..LINE_QUEUE as u32 + 1).map(line).collect();
+    let (got, _) = InterpolatorSim::robust().run(&over, 0);
+    assert_eq!(got.len(), LINE_QUEUE, "the line beyond the queue is dropped");
+}
+
 /// Every entry of the reciprocal table is within `2^-(RECIP_INDEX_BITS+1)`
 /// + `2^-15` (relative: half a bucket, then the entry's truncation) of
 /// `2^RECIP_SHIFT / m` for every normalised distance `m` of its bucket,

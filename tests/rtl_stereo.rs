@@ -4,7 +4,9 @@
 
 use rtl::declivity_matcher::GainRule;
 use rtl::depth_stage::DepthCamera;
+use rtl::interpolator::LINE_QUEUE;
 use rtl::params::{EDGE_JUMP_LSB, N_CELLS};
+use rtl::stereo_line_processor::LINES_IN_FLIGHT;
 use sim::stereo::{agree_quarter_px, golden_map, StereoSim};
 
 /// Rows `rows` of both images of `pair`.
@@ -18,28 +20,14 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
     let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("tsukuba")).expect("the pair loads");
     let (left, right) = (crop(&data.left, 100..116), crop(&data.right, 100..116));
     let dispmax = data.dispmax + 1.0;
-    let mut sim = StereoSim::<N_CELLS>::robust(sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
-    let t = std::time::Instant::now();
-    let run = sim.run(&left, &right, 0, |_| {});
-    let secs = t.elapsed().as_secs_f64();
+    let run = run_and_report("tsukuba rows 100..116", &left, &right, dispmax);
     let golden = golden_map(&left, &right, dispmax).expect("golden runs");
-    let rtl = run.disparity_px(left.height());
-    let agree = agree_quarter_px(&rtl, &golden);
-    eprintln!(
-        "tsukuba rows 100..116: {} rows out, agree {agree:.4}, {} clocks ({:.0} clocks/s), stalls {}, latency {:?}, px/clk {:.4}, dropped {} records {} lines",
-        run.rows.len(),
-        run.cycles,
-        run.cycles as f64 / secs,
-        run.stall_cycles,
-        run.latency_cycles(),
-        run.px_per_clk(),
-        run.records_dropped,
-        run.lines_dropped
-    );
+    let agree = agree_quarter_px(&run.disparity_px(left.height()), &golden);
+    eprintln!("tsukuba rows 100..116: agree {agree:.4}, latency {:?}, px/clk {:.4}", run.latency_cycles(), run.px_per_clk());
     assert_eq!(run.rows.len(), left.height());
     assert_eq!((run.records_dropped, run.lines_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
     let (blocks, depth) =
-        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim.dispmax);
+        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
     assert_eq!(blocks.len(), run.rows.len());
     for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
         assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
@@ -52,3 +40,133 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
     assert!(agree >= 0.995, "{agree}");
 }
 
+
+/// Runs the pair through the default line processor (`dispmax` px) and
+/// prints what came out, the speed and the queues' peaks.
+fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> sim::stereo::StereoRun {
+    let mut sim = StereoSim::<N_CELLS>::robust(sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
+    let t = std::time::Instant::now();
+    let run = sim.run(left, right, 0, |_| {});
+    let secs = t.elapsed().as_secs_f64();
+    let peak = run.probe.peak;
+    eprintln!(
+        "{what}: {} rows out, {} clocks ({:.0} clocks/s), dropped {} lines {} records, stalls {}; peaks: interpolator {} lines {} segments, in flight {}, record queues {:?} beats {:?} lines, row check {} rows, held {} clocks",
+        run.rows.len(),
+        run.cycles,
+        run.cycles as f64 / secs,
+        run.lines_dropped,
+        run.records_dropped,
+        run.stall_cycles,
+        peak.interp_lines,
+        peak.interp_segments,
+        peak.in_flight,
+        peak.record_beats,
+        peak.record_lines,
+        peak.row_check_rows,
+        peak.held_clocks
+    );
+    run
+}
+
+/// Prints the probe's state on each dropped line and the lines' clocks
+/// through the stages around it (diagnostics).
+fn print_probe(what: &str, run: &sim::stereo::StereoRun, width: usize) {
+    let p = &run.probe;
+    eprintln!("{what}: peaks {:?} (interpolator's lines at clock {})", p.peak, p.peak_interp_cycle);
+    for d in &p.drops {
+        eprintln!("{what}: drop {d:?}");
+    }
+    // Each line's clocks relative to its last pixel in, in lines of `width`.
+    eprintln!("{what}: line, in, matched-in, checked-in, interpolated-in (clocks)");
+    for (k, &t) in p.line_in.iter().enumerate() {
+        let rel = |v: &Vec<u64>| v.get(k).map_or("-".to_string(), |&c| format!("{} ({:.2} W)", c as i64 - t as i64, (c as f64 - t as f64) / width as f64));
+        eprintln!("{what}: {k:4} {t:8} {} {} {}", rel(&p.matched), rel(&p.checked), rel(&p.interpolated));
+    }
+}
+
+/// Venus rows 228..310: the matcher falls behind on rows 231–246 (their
+/// matching takes longer than their 434-clock line) and the record queues
+/// hold the backlog; the interpolator's output, which sends a line per line
+/// time and so never catches up, stays that far behind while the matcher
+/// catches up, and around row 305 the interpolator had to hold five lines.
+/// With a four-line queue it dropped one (the whole frame: `lines_dropped`
+/// 1, agree 0.9829). The line processor now keeps at most
+/// `LINES_IN_FLIGHT` lines between the matcher's input and the
+/// interpolator's output, all of which the interpolator holds.
+#[test]
+fn venus_after_its_slow_stretch_loses_no_line() {
+    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("venus")).expect("the pair loads");
+    let rows = 228..310;
+    let (left, right) = (crop(&data.left, rows.clone()), crop(&data.right, rows.clone()));
+    let dispmax = data.dispmax + 1.0;
+    let run = run_and_report(&format!("venus rows {rows:?}"), &left, &right, dispmax);
+    let peak = run.probe.peak;
+    let golden = golden_map(&left, &right, dispmax).expect("golden runs");
+    let agree = agree_quarter_px(&run.disparity_px(left.height()), &golden);
+    eprintln!("venus rows {rows:?}: agree {agree:.4}");
+    assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
+    assert_eq!(run.rows.len(), left.height());
+    assert!(agree >= 0.995, "{agree}");
+    assert!(peak.in_flight as usize <= LINES_IN_FLIGHT && peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
+    // The band still stresses the queue: more lines at once than the old
+    // four.
+    assert!(peak.interp_lines > 4, "the band no longer fills the interpolator's queue: {peak:?}");
+}
+
+/// A synthetic pair whose first `heavy` rows have a declivity every 3 px
+/// (their matching takes about twice their line time) and whose other rows
+/// have one every `light_step` px, the right view the left shifted by 5 px.
+fn backlog_pair(width: usize, height: usize, heavy: usize, light_step: usize) -> (golden::GreyImage, golden::GreyImage) {
+    let mut seed = 0x2545_f491_u64;
+    let mut next = move || {
+        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 33) as u32
+    };
+    let shift = 5;
+    let mut left = Vec::with_capacity(width * height);
+    let mut right = Vec::with_capacity(width * height);
+    for y in 0..height {
+        let step = if y < heavy { 3 } else { light_step };
+        let mut row = Vec::with_capacity(width + shift);
+        let mut high = false;
+        while row.len() < width + shift {
+            let level = if high { 150 + next() % 80 } else { 20 + next() % 60 };
+            row.extend(std::iter::repeat_n(level as u8, step));
+            high = !high;
+        }
+        // left(x) = right(x - 5): disparity 5 px.
+        left.extend_from_slice(&row[..width]);
+        right.extend_from_slice(&row[shift..shift + width]);
+    }
+    let img = |p: Vec<u8>| golden::GreyImage::new(width, height, p).expect("an image");
+    (img(left), img(right))
+}
+
+/// Lines after a backlog held back, not dropped: ten rows slower to match
+/// than their line time, then lighter rows on which the matcher catches
+/// up, faster than the interpolator sends lines. The limit on lines in
+/// flight holds the reference queue (the interpolator would otherwise need
+/// more lines than its queue); no line or record is lost and the output is
+/// that of the blocks one after the other.
+#[test]
+fn lines_after_a_backlog_are_held_in_the_record_queues_not_dropped() {
+    let (width, height) = (300, 40);
+    let (left, right) = backlog_pair(width, height, 10, 16);
+    let dispmax = 16.0;
+    let run = run_and_report(&format!("backlog pair {width}x{height}"), &left, &right, dispmax);
+    let peak = run.probe.peak;
+    print_probe("backlog", &run, width);
+    assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
+    assert_eq!(run.rows.len(), height);
+    // The limit was reached and held lines back.
+    assert_eq!(peak.in_flight as usize, LINES_IN_FLIGHT, "{peak:?}");
+    assert!(peak.held_clocks > 0, "{peak:?}");
+    assert!(peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
+    let (blocks, depth) =
+        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
+    assert_eq!(blocks.len(), run.rows.len());
+    for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
+        assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
+    }
+    assert_eq!(run.depth_rows, depth);
+}

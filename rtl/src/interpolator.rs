@@ -66,8 +66,17 @@
 //! `2^SEG_ADDR_BITS` segments; a line is admitted on its first match (or
 //! its marker) if the queue has a free place and the memory room for a
 //! whole line ([`SEG_RESERVE`]), else it is dropped whole (its marker
-//! raises `overflow`, its pixels never leave). Lines that arrive at most
-//! one per `W` clocks, as a sensor's do, are never dropped. `a_valid` low
+//! raises `overflow`, its pixels never leave). A line is counted in the
+//! queue from its marker to its last pixel's clock in the pixel engine, so
+//! no line is dropped while at most `LINE_QUEUE - 1` lines are in the
+//! queue when one starts (their segments, at most `N_MAX - 1` each, then
+//! leave room for it: `(LINE_QUEUE - 1)·(N_MAX - 1) + SEG_RESERVE ≤
+//! 2^SEG_ADDR_BITS`). Lines arriving on average one per `W` clocks are not
+//! enough for that: the queue holds every line that arrives while earlier
+//! ones are sent, and lines come in bursts after a late one (the matcher
+//! catching up on a backlog). The line processor keeps at most
+//! `LINE_QUEUE` lines between the matcher's input and this output
+//! (`rtl::stereo_line_processor`, "Lines in flight"). `a_valid` low
 //! between matches only delays them.
 
 use crate::block_ram::BlockRam;
@@ -92,6 +101,9 @@ pub const LINE_QUEUE: usize = 1 << LINE_QUEUE_BITS;
 /// `N_MAX - 1` segments and the three of the previous line still on
 /// their way to the memory.
 pub const SEG_RESERVE: usize = N_MAX - 1 + 3;
+// A full queue's other lines leave a line room in the segment memory (see
+// Timing).
+const _: () = assert!((LINE_QUEUE - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << SEG_ADDR_BITS);
 
 /// The reciprocal table: entry `i` is `⌊2^RECIP_SHIFT / m⌋` for the middle
 /// `m` of the bucket of normalised distances whose bits after the leading
@@ -195,9 +207,10 @@ pub struct Interpolator {
     // registers `e0..e3` used as a ring (written at `wi`, the pixel
     // engine's segment at `ri`).
     rd_ptr: DFF<Bits<SEG_PTR_BITS>>,
-    // Segments written and not yet read; lines in the queue.
-    seg_used: DFF<Bits<SEG_PTR_BITS>>,
-    q_used: DFF<Bits<QUEUE_PTR_BITS>>,
+    // Segments written and not yet read; lines in the queue (public for
+    // the drivers' diagnostics).
+    pub seg_used: DFF<Bits<SEG_PTR_BITS>>,
+    pub q_used: DFF<Bits<QUEUE_PTR_BITS>>,
     rd1: DFF<Bit>,
     rd2: DFF<Bit>,
     fill: DFF<Bits<FILL_BITS>>,

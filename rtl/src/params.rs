@@ -206,10 +206,21 @@ pub const RECIP_BITS: usize = 16;
 /// `2^RECIP_BITS`.
 pub const RECIP_SHIFT: usize = POS_BITS - 1 + RECIP_BITS;
 /// Address bits of the interpolator's segment memory (`2^SEG_ADDR_BITS`
-/// entries: lines of at most `N_MAX - 1` segments, three of them and more).
-pub const SEG_ADDR_BITS: usize = INDEX_BITS + 2;
-/// Address bits of the interpolator's line queue.
-pub const LINE_QUEUE_BITS: usize = 2;
+/// = 1024 entries): with a full line queue, the other `LINE_QUEUE - 1`
+/// lines' segments, at most `N_MAX - 1` each (889), leave a line's reserve
+/// (`N_MAX - 1 + 3` = 130) free, so a line the queue has room for is never
+/// dropped for want of segments. Still one `DP16KD` per field (1024 words
+/// of 18 bits, the most one holds).
+pub const SEG_ADDR_BITS: usize = INDEX_BITS + 3;
+/// Address bits of the interpolator's line queue (8 lines). Lines reach the
+/// interpolator in bursts when the matcher catches up on a backlog, while
+/// it sends one per `W` clocks and so never catches up itself: on venus
+/// (434 px) the matcher fell about three line times behind (rows 231-246)
+/// and at row 305 the queue had to hold five lines (four dropped one). The
+/// line processor keeps at most this many lines between the matcher's
+/// input and the interpolator's output (`rtl::stereo_line_processor`,
+/// "Lines in flight"), so the interpolator never drops one there.
+pub const LINE_QUEUE_BITS: usize = 3;
 
 /// Reference declivities per gain cell: cell `c` of `N` holds rows `c` and
 /// `c + N` of the matching table (the column stream passes the array

@@ -17,13 +17,26 @@
 //! - **Engine**: row `y` is checked once row `y + 1`'s marker has arrived,
 //!   or right after its own marker if `y` is the frame's last row (so after
 //!   the last row's marker rows `h - 2` and `h - 1` leave back to back).
-//!   Its matches are read in order into a 4-entry prefetch ring; each
-//!   neighbour is read in order into a window ring ([`ROW_WINDOW`] entries) that drops the matches left of the checked
-//!   match's window as the checked match moves right (a merge: positions
-//!   increase in every row) and compares every held entry with the checked
-//!   match in one clock. A match is decided on the clock either window
-//!   holds a confirming entry, or both windows hold every neighbour match
-//!   up to `X + DX`; a kept match leaves on the next clock.
+//!   Its matches are read in order into an 8-entry prefetch ring; each
+//!   neighbour is read in order into a window ring ([`ROW_WINDOW`]
+//!   entries, each held with its bounds `X ± DX`, `d ± DD`). Two pipeline
+//!   stages check one match per clock:
+//!   - the **compare stage** presents a match and compares it with every
+//!     held entry of both windows (each comparison is the borrow of one
+//!     subtraction): left of the match's window, confirming, and whether
+//!     the newest entry is right of it; the results are registered;
+//!   - the **decision stage** decides the compared match if it is the
+//!     row's next undecided one: kept if a window holds a confirming entry,
+//!     dropped if both windows are complete (each has an entry right of the
+//!     match's window, or holds its whole row); a kept match leaves on the
+//!     next clock. The entries left of the window leave their ring (a
+//!     merge: positions increase in every row), and each ring reads its
+//!     row's next entry while a slot is free.
+//!
+//!   While a match is decided the compare stage already presents the next
+//!   one; if the match cannot be decided yet (its windows wait for entries
+//!   still being read: a miss) the compare stage presents it again on the
+//!   next clock, and the clock after a miss decides nothing.
 //!
 //! Exactness needs at most `ROW_WINDOW - 1` = 7 matches of a row within
 //! any 6 px (so that a window and the first match beyond it fit the ring):
@@ -53,81 +66,103 @@
 //!   without the whole of a neighbour's window (see above).
 //!
 //! ## Timing
-//! The engine starts row `y` on the clock after the marker that makes it
-//! ready ([`ROW_START_LAG`]), or on the clock after it finished the
-//! previous row. From its start clock `s` it finishes on clock `s + c`, `c`
-//! at most [`row_check_cycles`]`(n_above, n, n_below)` (exactly `1` for an
-//! empty row and `n + 4` when neither neighbour has a match); its kept
-//! matches leave in order, at most one per clock, the first at
-//! `s + ` [`ROW_FIRST_LAG`] at the earliest, and its marker leaves at
-//! `s + c + 1`. The engine takes the next row on the clock after it
-//! finished. A row is dropped only if, when it starts, the engine has not
-//! finished the row two before it; with row markers at least
-//! [`row_check_period`]` = row_check_cycles(N_MAX, N_MAX, N_MAX) + 1`
-//! clocks apart (within and across frames) no row is dropped. The bound is
-//! loose: measured (`tests/rtl_row_check.rs`), a row of 128 matches a
-//! pixel apart between two such rows takes 132 clocks, one of 128 matches
-//! 17 LSB apart between them 276 (the bound says 900); real rows take
-//! about `n + 5` (tsukuba at most 59 clocks for 54 matches, cones 66 for
-//! 58), far inside their line of 384 or 450 pixels.
+//! The engine starts row `y` (its start clock `s`) [`ROW_START_LAG`]
+//! clocks after the marker that makes it ready, or [`ROW_RESTART_LAG`]
+//! clocks after it finished the previous row, whichever is later. It
+//! finishes on clock `s + c`, `c` at most [`row_check_cycles`]`(n_above, n,
+//! n_below)` (exactly `1` for an empty row and `n + ROW_FIRST_LAG - 1` when
+//! neither neighbour has a match); its kept matches leave in order, at
+//! most one per clock, the first at `s + ` [`ROW_FIRST_LAG`] at the
+//! earliest, and its marker leaves at `s + c + 1`.
+//!
+//! Throughput: one match decided per clock while no match waits for a
+//! neighbour's entries; a match that waits is compared again every other
+//! clock until its windows are complete. A row is dropped only if, when it
+//! starts, the engine has not finished the row two before it; with row
+//! markers at least [`row_check_period`]` = row_check_cycles(N_MAX, N_MAX,
+//! N_MAX) + ROW_RESTART_LAG` clocks apart (within and across frames) no
+//! row is dropped. The bound is loose: measured (`tests/rtl_row_check.rs`),
+//! a row of 128 matches a pixel apart between two such rows takes 134
+//! clocks, one of 128 matches 17 LSB apart between them 390, one of 128
+//! matches a pixel apart, aligned with its neighbours' and never confirmed
+//! (every match waits for one entry) 618 (the bound says 1158); real rows
+//! take about `n + 7` (tsukuba at most 61 clocks for 54 matches, cones 67
+//! for 58), far inside their line of 384 or 450 pixels. (Before the
+//! compare and decision stages were split, for 54 MHz, these took 132,
+//! 276, 496, 59 and 66 clocks.)
 
 use crate::block_ram::BlockRam;
 use crate::params::*;
 use rust_hdl::prelude::*;
 
-/// Clocks from the marker that makes a row ready to its start clock.
-pub const ROW_START_LAG: usize = 1;
+/// Clocks from the marker that makes a row ready to its start clock (the
+/// marker's write, the registered start).
+pub const ROW_START_LAG: usize = 2;
+/// Clocks from a row's finish to the next row's start clock at the
+/// earliest (the engine free, the registered start).
+pub const ROW_RESTART_LAG: usize = 2;
 /// Clocks from a row's start to its first match leaving at the earliest:
 /// the first reads' address (the clock after the start), the memory's two
-/// clocks, the rings' write, the decision's output register.
-pub const ROW_FIRST_LAG: usize = 5;
+/// clocks, the ring's write, the compare stage, the decision stage, the
+/// output register.
+pub const ROW_FIRST_LAG: usize = 7;
 /// Entries of the checked row's prefetch ring.
-const CUR_RING: usize = 4;
+const CUR_RING: usize = 8;
 /// Bits of a slot of that ring.
-const CUR_SLOT_BITS: usize = 2;
-/// Bits of its fill `0 ..= CUR_RING`.
-const CUR_FILL_BITS: usize = 3;
-/// Bits of the position comparisons: a position plus a threshold.
-const WIDE: usize = POS_BITS + 1;
-/// Bits of a window ring's fill `0 ..= ROW_WINDOW`.
-const WIN_FILL_BITS: usize = ROW_WINDOW_BITS + 1;
+const CUR_SLOT_BITS: usize = 3;
+/// Bits of a ring slot and one above it (to tell a full ring from an
+/// empty one).
+const CUR_PTR_BITS: usize = CUR_SLOT_BITS + 1;
+/// Bits of the comparisons' operands and differences: a position plus a
+/// threshold (below `2^(POS_BITS + 1)`), and the borrow of a difference of
+/// two of them (its top bit).
+const WIDE: usize = POS_BITS + 2;
 /// Bits of a row number modulo twice the banks (so that full and empty
 /// differ).
 const ROW_PTR_BITS: usize = ROW_BANK_BITS + 1;
 
+// The slot-by-slot logic below is written for these sizes.
+const _: () = assert!(ROW_WINDOW == 8 && CUR_RING == 8 && CUR_RING == 1 << CUR_SLOT_BITS);
+
+/// Clocks a match that waits for its neighbours' entries costs at most
+/// beyond their reads (see [`row_check_cycles`]).
+pub const ROW_WAIT_LAG: usize = 6;
+
 /// Clocks from a row's start to its finish (the clock of its marker's
 /// decision), at most, for a row of `n` matches between rows of `above`
-/// and `below` (0 for a missing neighbour), when no window is crowded.
+/// and `below` matches (0 for a missing neighbour), when no window is
+/// crowded.
 ///
-/// Exactly 1 for `n = 0`. Otherwise the first decision is 4 clocks after
-/// the start, the matches are decided at most one per clock, and a match
-/// waits only for a neighbour's entries not yet in its ring: entries are
-/// read one per clock and arrive 3 clocks after their read, so the wait
-/// for a neighbour of `m` matches adds over the row at most `m` clocks
-/// (one per entry read) plus 2 per wait (the last entry's memory latency),
-/// and each of at most `min(n, m + 1)` matches waits once for it (each
-/// wait is for a different first entry right of the window, or the end
-/// of the row).
+/// Exactly 1 for `n = 0`. Otherwise the first match is decided
+/// `ROW_FIRST_LAG - 1` clocks after the start (the reads, the compare
+/// stage) and every later one on the clock after the one before it,
+/// unless it waits: the clocks of the row are its `n` decisions and the
+/// clocks its matches wait. A match waits (from its first comparison at
+/// the decision stage to its decision) when a neighbour's window misses
+/// entries not yet arrived; the window then reads them one per clock (once
+/// the entries left of the match's window have left, its held entries are
+/// at most 7 — matches at least a pixel apart — and the first beyond them
+/// fits the eighth slot), the last arrives 3 clocks after its read, is
+/// compared on the next clock the match is presented (every other clock)
+/// and decided on the clock after: at most its reads plus 4 clocks, plus 2
+/// while entries left of the window that arrived since the last
+/// comparison still hold slots ([`ROW_WAIT_LAG`] = 6). The waits take
+/// disjoint stretches of the neighbours' reads (`above + below` entries
+/// in all), and each sees at least one of them arrive, so at most
+/// `min(n, above + below)` matches wait.
 pub const fn row_check_cycles(above: usize, n: usize, below: usize) -> usize {
     if n == 0 {
         return 1;
     }
-    4 + n + neighbour_wait(n, above) + neighbour_wait(n, below)
-}
-
-/// The clocks a row of `n` matches waits at most for a neighbour of `m`.
-const fn neighbour_wait(n: usize, m: usize) -> usize {
-    if m == 0 {
-        return 0;
-    }
-    let waits = if n < m + 1 { n } else { m + 1 };
-    m + 2 * waits
+    let m = above + below;
+    let waits = if n < m { n } else { m };
+    ROW_FIRST_LAG - 1 + n + m + ROW_WAIT_LAG * waits
 }
 
 /// The smallest clocks between row markers (within and across frames)
 /// with which no row is dropped whatever the rows' matches.
 pub const fn row_check_period() -> usize {
-    row_check_cycles(N_MAX, N_MAX, N_MAX) + 1
+    row_check_cycles(N_MAX, N_MAX, N_MAX) + ROW_RESTART_LAG
 }
 
 #[derive(LogicBlock)]
@@ -151,221 +186,123 @@ pub struct RowCheck {
     // ---- The window of the row above (see the module doc).
     a_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
     a_base: DFF<Bits<ROW_ADDR_BITS>>,
-    a_n: DFF<Bits<COUNT_BITS>>,
     a_rd: DFF<Bits<COUNT_BITS>>,
+    // The row's matches not yet read; none (`rend`).
+    a_left: DFF<Bits<COUNT_BITS>>,
+    a_rend: DFF<Bit>,
     a_rd1: DFF<Bit>,
     a_rd2: DFF<Bit>,
-    a_head: DFF<Bits<ROW_WINDOW_BITS>>,
     a_wi: DFF<Bits<ROW_WINDOW_BITS>>,
-    a_fill: DFF<Bits<WIN_FILL_BITS>>,
-    a_x0: DFF<Bits<POS_BITS>>,
-    a_x1: DFF<Bits<POS_BITS>>,
-    a_x2: DFF<Bits<POS_BITS>>,
-    a_x3: DFF<Bits<POS_BITS>>,
-    a_x4: DFF<Bits<POS_BITS>>,
-    a_x5: DFF<Bits<POS_BITS>>,
-    a_x6: DFF<Bits<POS_BITS>>,
-    a_x7: DFF<Bits<POS_BITS>>,
-    a_d0: DFF<Bits<POS_BITS>>,
-    a_d1: DFF<Bits<POS_BITS>>,
-    a_d2: DFF<Bits<POS_BITS>>,
-    a_d3: DFF<Bits<POS_BITS>>,
-    a_d4: DFF<Bits<POS_BITS>>,
-    a_d5: DFF<Bits<POS_BITS>>,
-    a_d6: DFF<Bits<POS_BITS>>,
-    a_d7: DFF<Bits<POS_BITS>>,
-    a_r0: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v0: Signal<Local, Bit>,
-    a_ex0: Signal<Local, Bits<WIDE>>,
-    a_ed0: Signal<Local, Bits<WIDE>>,
-    a_lt0: Signal<Local, Bit>,
-    a_gt0: Signal<Local, Bit>,
-    a_ok0: Signal<Local, Bit>,
-    a_p0: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_r1: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v1: Signal<Local, Bit>,
-    a_ex1: Signal<Local, Bits<WIDE>>,
-    a_ed1: Signal<Local, Bits<WIDE>>,
-    a_lt1: Signal<Local, Bit>,
-    a_gt1: Signal<Local, Bit>,
-    a_ok1: Signal<Local, Bit>,
-    a_p1: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_r2: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v2: Signal<Local, Bit>,
-    a_ex2: Signal<Local, Bits<WIDE>>,
-    a_ed2: Signal<Local, Bits<WIDE>>,
-    a_lt2: Signal<Local, Bit>,
-    a_gt2: Signal<Local, Bit>,
-    a_ok2: Signal<Local, Bit>,
-    a_p2: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_r3: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v3: Signal<Local, Bit>,
-    a_ex3: Signal<Local, Bits<WIDE>>,
-    a_ed3: Signal<Local, Bits<WIDE>>,
-    a_lt3: Signal<Local, Bit>,
-    a_gt3: Signal<Local, Bit>,
-    a_ok3: Signal<Local, Bit>,
-    a_p3: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_r4: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v4: Signal<Local, Bit>,
-    a_ex4: Signal<Local, Bits<WIDE>>,
-    a_ed4: Signal<Local, Bits<WIDE>>,
-    a_lt4: Signal<Local, Bit>,
-    a_gt4: Signal<Local, Bit>,
-    a_ok4: Signal<Local, Bit>,
-    a_p4: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_r5: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v5: Signal<Local, Bit>,
-    a_ex5: Signal<Local, Bits<WIDE>>,
-    a_ed5: Signal<Local, Bits<WIDE>>,
-    a_lt5: Signal<Local, Bit>,
-    a_gt5: Signal<Local, Bit>,
-    a_ok5: Signal<Local, Bit>,
-    a_p5: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_r6: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v6: Signal<Local, Bit>,
-    a_ex6: Signal<Local, Bits<WIDE>>,
-    a_ed6: Signal<Local, Bits<WIDE>>,
-    a_lt6: Signal<Local, Bit>,
-    a_gt6: Signal<Local, Bit>,
-    a_ok6: Signal<Local, Bit>,
-    a_p6: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_r7: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_v7: Signal<Local, Bit>,
-    a_ex7: Signal<Local, Bits<WIDE>>,
-    a_ed7: Signal<Local, Bits<WIDE>>,
-    a_lt7: Signal<Local, Bit>,
-    a_gt7: Signal<Local, Bit>,
-    a_ok7: Signal<Local, Bit>,
-    a_p7: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_beyond: Signal<Local, Bit>,
-    a_found: Signal<Local, Bit>,
-    a_npop: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_kept: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_occ: Signal<Local, Bits<WIN_FILL_BITS>>,
-    a_loaded: Signal<Local, Bit>,
-    a_issue: Signal<Local, Bit>,
+    // Each slot: held, and its entry's bounds `X + DX`, `X - DX`, `d + DD`,
+    // `d - DD` (the last two modulo `2^WIDE`: see the comparisons); the
+    // newest entry's `X - DX` (0 at a row's start).
+    a_held: [DFF<Bit>; ROW_WINDOW],
+    a_xp: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    a_xm: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    a_dp: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    a_dm: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    a_lxm: DFF<Bits<WIDE>>,
+    // The comparisons with the presented match, registered: each slot left
+    // of its window (`lt`), a confirming entry among slots 0-3 and 4-7
+    // (`okq`); the window full, the newest entry right of it (`beyond`),
+    // the row read and arrived (`loaded`).
+    a_lt: [DFF<Bit>; ROW_WINDOW],
+    a_okq: [DFF<Bit>; 2],
+    a_full: DFF<Bit>,
+    a_beyond: DFF<Bit>,
+    a_loaded: DFF<Bit>,
+    // The window was found crowded for the row's next undecided match (it
+    // stays so until that match is decided: `stuck`).
+    a_stuck: DFF<Bit>,
+    // The comparisons as differences whose top bit is the borrow: `X + DX
+    // - x`, `x - (X - DX)`, `d_q - (d - DD)`, `d + DD - d_q` (negative:
+    // left of the window, right of it, below it, above it).
+    a_sl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    a_sg: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    a_sdl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    a_sdh: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    a_sb: Signal<Local, Bits<WIDE>>,
+    a_okc: [Signal<Local, Bit>; ROW_WINDOW],
+    a_stay: [Signal<Local, Bit>; ROW_WINDOW],
     a_rx: Signal<Local, Bits<POS_BITS>>,
     a_rdd: Signal<Local, Bits<POS_BITS>>,
-    a_hit: Signal<Local, Bit>,
-    a_done: Signal<Local, Bit>,
-    a_crowded: Signal<Local, Bit>,
+    a_ex: Signal<Local, Bits<WIDE>>,
+    a_ed: Signal<Local, Bits<WIDE>>,
+    a_nxp: Signal<Local, Bits<WIDE>>,
+    a_nxm: Signal<Local, Bits<WIDE>>,
+    a_ndp: Signal<Local, Bits<WIDE>>,
+    a_ndm: Signal<Local, Bits<WIDE>>,
+    a_pos: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    a_free: Signal<Local, Bit>,
+    a_issue: Signal<Local, Bit>,
+    a_found: Signal<Local, Bit>,
+    a_anylt: Signal<Local, Bit>,
+    a_crowd: Signal<Local, Bit>,
+    a_beyond_c: Signal<Local, Bit>,
+    a_loaded_c: Signal<Local, Bit>,
+    a_stuck_n: Signal<Local, Bit>,
     a_count: Signal<Local, Bits<COUNT_BITS>>,
     a_bank: Signal<Local, Bits<ROW_BANK_BITS>>,
     // ---- The window of the row below (see the module doc).
     b_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
     b_base: DFF<Bits<ROW_ADDR_BITS>>,
-    b_n: DFF<Bits<COUNT_BITS>>,
     b_rd: DFF<Bits<COUNT_BITS>>,
+    // The row's matches not yet read; none (`rend`).
+    b_left: DFF<Bits<COUNT_BITS>>,
+    b_rend: DFF<Bit>,
     b_rd1: DFF<Bit>,
     b_rd2: DFF<Bit>,
-    b_head: DFF<Bits<ROW_WINDOW_BITS>>,
     b_wi: DFF<Bits<ROW_WINDOW_BITS>>,
-    b_fill: DFF<Bits<WIN_FILL_BITS>>,
-    b_x0: DFF<Bits<POS_BITS>>,
-    b_x1: DFF<Bits<POS_BITS>>,
-    b_x2: DFF<Bits<POS_BITS>>,
-    b_x3: DFF<Bits<POS_BITS>>,
-    b_x4: DFF<Bits<POS_BITS>>,
-    b_x5: DFF<Bits<POS_BITS>>,
-    b_x6: DFF<Bits<POS_BITS>>,
-    b_x7: DFF<Bits<POS_BITS>>,
-    b_d0: DFF<Bits<POS_BITS>>,
-    b_d1: DFF<Bits<POS_BITS>>,
-    b_d2: DFF<Bits<POS_BITS>>,
-    b_d3: DFF<Bits<POS_BITS>>,
-    b_d4: DFF<Bits<POS_BITS>>,
-    b_d5: DFF<Bits<POS_BITS>>,
-    b_d6: DFF<Bits<POS_BITS>>,
-    b_d7: DFF<Bits<POS_BITS>>,
-    b_r0: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v0: Signal<Local, Bit>,
-    b_ex0: Signal<Local, Bits<WIDE>>,
-    b_ed0: Signal<Local, Bits<WIDE>>,
-    b_lt0: Signal<Local, Bit>,
-    b_gt0: Signal<Local, Bit>,
-    b_ok0: Signal<Local, Bit>,
-    b_p0: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_r1: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v1: Signal<Local, Bit>,
-    b_ex1: Signal<Local, Bits<WIDE>>,
-    b_ed1: Signal<Local, Bits<WIDE>>,
-    b_lt1: Signal<Local, Bit>,
-    b_gt1: Signal<Local, Bit>,
-    b_ok1: Signal<Local, Bit>,
-    b_p1: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_r2: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v2: Signal<Local, Bit>,
-    b_ex2: Signal<Local, Bits<WIDE>>,
-    b_ed2: Signal<Local, Bits<WIDE>>,
-    b_lt2: Signal<Local, Bit>,
-    b_gt2: Signal<Local, Bit>,
-    b_ok2: Signal<Local, Bit>,
-    b_p2: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_r3: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v3: Signal<Local, Bit>,
-    b_ex3: Signal<Local, Bits<WIDE>>,
-    b_ed3: Signal<Local, Bits<WIDE>>,
-    b_lt3: Signal<Local, Bit>,
-    b_gt3: Signal<Local, Bit>,
-    b_ok3: Signal<Local, Bit>,
-    b_p3: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_r4: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v4: Signal<Local, Bit>,
-    b_ex4: Signal<Local, Bits<WIDE>>,
-    b_ed4: Signal<Local, Bits<WIDE>>,
-    b_lt4: Signal<Local, Bit>,
-    b_gt4: Signal<Local, Bit>,
-    b_ok4: Signal<Local, Bit>,
-    b_p4: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_r5: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v5: Signal<Local, Bit>,
-    b_ex5: Signal<Local, Bits<WIDE>>,
-    b_ed5: Signal<Local, Bits<WIDE>>,
-    b_lt5: Signal<Local, Bit>,
-    b_gt5: Signal<Local, Bit>,
-    b_ok5: Signal<Local, Bit>,
-    b_p5: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_r6: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v6: Signal<Local, Bit>,
-    b_ex6: Signal<Local, Bits<WIDE>>,
-    b_ed6: Signal<Local, Bits<WIDE>>,
-    b_lt6: Signal<Local, Bit>,
-    b_gt6: Signal<Local, Bit>,
-    b_ok6: Signal<Local, Bit>,
-    b_p6: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_r7: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_v7: Signal<Local, Bit>,
-    b_ex7: Signal<Local, Bits<WIDE>>,
-    b_ed7: Signal<Local, Bits<WIDE>>,
-    b_lt7: Signal<Local, Bit>,
-    b_gt7: Signal<Local, Bit>,
-    b_ok7: Signal<Local, Bit>,
-    b_p7: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_beyond: Signal<Local, Bit>,
-    b_found: Signal<Local, Bit>,
-    b_npop: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_kept: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_occ: Signal<Local, Bits<WIN_FILL_BITS>>,
-    b_loaded: Signal<Local, Bit>,
-    b_issue: Signal<Local, Bit>,
+    // Each slot: held, and its entry's bounds `X + DX`, `X - DX`, `d + DD`,
+    // `d - DD` (the last two modulo `2^WIDE`: see the comparisons); the
+    // newest entry's `X - DX` (0 at a row's start).
+    b_held: [DFF<Bit>; ROW_WINDOW],
+    b_xp: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    b_xm: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    b_dp: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    b_dm: [DFF<Bits<WIDE>>; ROW_WINDOW],
+    b_lxm: DFF<Bits<WIDE>>,
+    // The comparisons with the presented match, registered: each slot left
+    // of its window (`lt`), a confirming entry among slots 0-3 and 4-7
+    // (`okq`); the window full, the newest entry right of it (`beyond`),
+    // the row read and arrived (`loaded`).
+    b_lt: [DFF<Bit>; ROW_WINDOW],
+    b_okq: [DFF<Bit>; 2],
+    b_full: DFF<Bit>,
+    b_beyond: DFF<Bit>,
+    b_loaded: DFF<Bit>,
+    // The window was found crowded for the row's next undecided match (it
+    // stays so until that match is decided: `stuck`).
+    b_stuck: DFF<Bit>,
+    // The comparisons as differences whose top bit is the borrow: `X + DX
+    // - x`, `x - (X - DX)`, `d_q - (d - DD)`, `d + DD - d_q` (negative:
+    // left of the window, right of it, below it, above it).
+    b_sl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    b_sg: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    b_sdl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    b_sdh: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
+    b_sb: Signal<Local, Bits<WIDE>>,
+    b_okc: [Signal<Local, Bit>; ROW_WINDOW],
+    b_stay: [Signal<Local, Bit>; ROW_WINDOW],
     b_rx: Signal<Local, Bits<POS_BITS>>,
     b_rdd: Signal<Local, Bits<POS_BITS>>,
-    b_hit: Signal<Local, Bit>,
-    b_done: Signal<Local, Bit>,
-    b_crowded: Signal<Local, Bit>,
+    b_ex: Signal<Local, Bits<WIDE>>,
+    b_ed: Signal<Local, Bits<WIDE>>,
+    b_nxp: Signal<Local, Bits<WIDE>>,
+    b_nxm: Signal<Local, Bits<WIDE>>,
+    b_ndp: Signal<Local, Bits<WIDE>>,
+    b_ndm: Signal<Local, Bits<WIDE>>,
+    b_pos: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    b_free: Signal<Local, Bit>,
+    b_issue: Signal<Local, Bit>,
+    b_found: Signal<Local, Bit>,
+    b_anylt: Signal<Local, Bit>,
+    b_crowd: Signal<Local, Bit>,
+    b_beyond_c: Signal<Local, Bit>,
+    b_loaded_c: Signal<Local, Bit>,
+    b_stuck_n: Signal<Local, Bit>,
     b_count: Signal<Local, Bits<COUNT_BITS>>,
     b_bank: Signal<Local, Bits<ROW_BANK_BITS>>,
-    // ---- The checked match's window bounds: [X - DX, X + DX] (no left
-    // bound below DX), [d - DD, d + DD] (from 0 below DD), one bit wider
-    // than a position.
-    qx: Signal<Local, Bits<WIDE>>,
-    qx_hi: Signal<Local, Bits<WIDE>>,
-    qx_lo: Signal<Local, Bits<WIDE>>,
-    qd: Signal<Local, Bits<WIDE>>,
-    qd_hi: Signal<Local, Bits<WIDE>>,
-    qd_lo: Signal<Local, Bits<WIDE>>,
-    any_left: Signal<Local, Bit>,
     // ---- The checked row's memory copy.
     cur_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
     // ---- Loader: the row being received (admission, its next index), the
@@ -375,6 +312,7 @@ pub struct RowCheck {
     widx: DFF<Bits<COUNT_BITS>>,
     wl: DFF<Bits<ROW_PTR_BITS>>,
     sof_pending: DFF<Bit>,
+    nofree: DFF<Bit>,
     cnt0: DFF<Bits<COUNT_BITS>>,
     sof0: DFF<Bit>,
     eof0: DFF<Bit>,
@@ -391,28 +329,41 @@ pub struct RowCheck {
     // still needed as its row above, the row's matches, flags, decisions
     // and kept matches.
     el: DFF<Bits<ROW_PTR_BITS>>,
+    start_q: DFF<Bit>,
     prev_needed: DFF<Bit>,
     busy: DFF<Bit>,
     n_cur: DFF<Bits<COUNT_BITS>>,
     sof_cur: DFF<Bit>,
     eof_cur: DFF<Bit>,
     dec: DFF<Bits<COUNT_BITS>>,
+    dec1: DFF<Bits<COUNT_BITS>>,
     kept: DFF<Bits<COUNT_BITS>>,
-    // The checked row's prefetch ring.
+    // The checked row's prefetch ring: reads issued, in flight, arrived.
     crd: DFF<Bits<COUNT_BITS>>,
     crd1: DFF<Bit>,
     crd2: DFF<Bit>,
-    cfill: DFF<Bits<CUR_FILL_BITS>>,
-    cwi: DFF<Bits<CUR_SLOT_BITS>>,
-    cri: DFF<Bits<CUR_SLOT_BITS>>,
-    cx0: DFF<Bits<POS_BITS>>,
-    cd0: DFF<Bits<POS_BITS>>,
-    cx1: DFF<Bits<POS_BITS>>,
-    cd1: DFF<Bits<POS_BITS>>,
-    cx2: DFF<Bits<POS_BITS>>,
-    cd2: DFF<Bits<POS_BITS>>,
-    cx3: DFF<Bits<POS_BITS>>,
-    cd3: DFF<Bits<POS_BITS>>,
+    cwr: DFF<Bits<COUNT_BITS>>,
+    cx: [DFF<Bits<POS_BITS>>; CUR_RING],
+    cd: [DFF<Bits<POS_BITS>>; CUR_RING],
+    // The compare stage: the presented match (its index, whether there is
+    // one, its `X` and `d` in WIDE bits), the index presented next.
+    pvalid: DFF<Bit>,
+    pidx: DFF<Bits<COUNT_BITS>>,
+    pn: DFF<Bits<COUNT_BITS>>,
+    // `pn`'s ring slot and `dec + 1`'s, one-hot (the ring's read is an
+    // AND-OR of its slots).
+    pn_oh: [DFF<Bit>; CUR_RING],
+    dec1_oh: [DFF<Bit>; CUR_RING],
+    px: DFF<Bits<WIDE>>,
+    pd: DFF<Bits<WIDE>>,
+    // The decision stage: the compared match (the row's next undecided one
+    // when `dvalid`), its `X` and `d`.
+    dvalid: DFF<Bit>,
+    // Both windows complete for the compared match (registered with the
+    // comparisons).
+    both_ready: DFF<Bit>,
+    qx: DFF<Bits<POS_BITS>>,
+    qd: DFF<Bits<POS_BITS>>,
     // ---- Output registers.
     o_valid: DFF<Bit>,
     o_last: DFF<Bit>,
@@ -425,7 +376,7 @@ pub struct RowCheck {
     crowded_q: DFF<Bit>,
     // ---- Locals.
     first_event: Signal<Local, Bit>,
-    used: Signal<Local, Bits<ROW_PTR_BITS>>,
+    used_n: Signal<Local, Bits<ROW_PTR_BITS>>,
     drop_now: Signal<Local, Bit>,
     take_match: Signal<Local, Bit>,
     take_marker: Signal<Local, Bit>,
@@ -444,17 +395,17 @@ pub struct RowCheck {
     sof_el: Signal<Local, Bit>,
     eof_el: Signal<Local, Bit>,
     start: Signal<Local, Bit>,
-    head_x: Signal<Local, Bits<POS_BITS>>,
-    head_d: Signal<Local, Bits<POS_BITS>>,
-    q_valid: Signal<Local, Bit>,
     keep: Signal<Local, Bit>,
-    up_ready: Signal<Local, Bit>,
-    dn_ready: Signal<Local, Bit>,
     decide: Signal<Local, Bit>,
+    miss: Signal<Local, Bit>,
     finish: Signal<Local, Bit>,
-    ckept: Signal<Local, Bits<CUR_FILL_BITS>>,
-    cocc: Signal<Local, Bits<CUR_FILL_BITS>>,
+    cfull: Signal<Local, Bit>,
     cissue: Signal<Local, Bit>,
+    cwslot: Signal<Local, Bits<CUR_SLOT_BITS>>,
+    cmask: [Signal<Local, Bits<POS_BITS>>; CUR_RING],
+    n_here: Signal<Local, Bit>,
+    nx: Signal<Local, Bits<POS_BITS>>,
+    nd: Signal<Local, Bits<POS_BITS>>,
     rx: Signal<Local, Bits<POS_BITS>>,
     rdd: Signal<Local, Bits<POS_BITS>>,
     // ---- Constants.
@@ -462,26 +413,18 @@ pub struct RowCheck {
     bank1: Constant<Bits<ROW_BANK_BITS>>,
     bank2: Constant<Bits<ROW_BANK_BITS>>,
     bank3: Constant<Bits<ROW_BANK_BITS>>,
-    slot1: Constant<Bits<CUR_SLOT_BITS>>,
-    slot2: Constant<Bits<CUR_SLOT_BITS>>,
-    slot3: Constant<Bits<CUR_SLOT_BITS>>,
     banks: Constant<Bits<ROW_PTR_BITS>>,
     two: Constant<Bits<ROW_PTR_BITS>>,
-    cur_ring: Constant<Bits<CUR_FILL_BITS>>,
-    one_fill: Constant<Bits<CUR_FILL_BITS>>,
     n_max: Constant<Bits<COUNT_BITS>>,
-    wslot0: Constant<Bits<ROW_WINDOW_BITS>>,
-    wslot1: Constant<Bits<ROW_WINDOW_BITS>>,
-    wslot2: Constant<Bits<ROW_WINDOW_BITS>>,
-    wslot3: Constant<Bits<ROW_WINDOW_BITS>>,
-    wslot4: Constant<Bits<ROW_WINDOW_BITS>>,
-    wslot5: Constant<Bits<ROW_WINDOW_BITS>>,
-    wslot6: Constant<Bits<ROW_WINDOW_BITS>>,
-    wslot7: Constant<Bits<ROW_WINDOW_BITS>>,
+    cur_wrap: Constant<Bits<CUR_PTR_BITS>>,
+    count_one: Constant<Bits<COUNT_BITS>>,
+    cslot: [Constant<Bits<CUR_SLOT_BITS>>; CUR_RING],
+    wslot: [Constant<Bits<ROW_WINDOW_BITS>>; ROW_WINDOW],
     dx: Constant<Bits<WIDE>>,
     dd: Constant<Bits<WIDE>>,
-    one: Constant<Bits<WIN_FILL_BITS>>,
-    ring_size: Constant<Bits<WIN_FILL_BITS>>,
+    ones: Constant<Bits<WIDE>>,
+    pos_ones: Constant<Bits<POS_BITS>>,
+    sign_at: Constant<Bits<8>>,
     index_bits: Constant<Bits<8>>,
     pos_bits: Constant<Bits<8>>,
 }
@@ -497,7 +440,6 @@ impl RowCheck {
     /// golden's, [`CONSISTENT_DX_LSB`] and [`CONSISTENT_DD_LSB`]).
     pub fn new() -> Self {
         let bank = |b: u64| Constant::<Bits<ROW_BANK_BITS>>::new(b.into());
-        let slot = |b: u64| Constant::<Bits<CUR_SLOT_BITS>>::new(b.into());
         RowCheck {
             clock: Default::default(),
             m_valid: Default::default(),
@@ -517,225 +459,103 @@ impl RowCheck {
             crowded: Default::default(),
             a_mem: Default::default(),
             a_base: Default::default(),
-            a_n: Default::default(),
             a_rd: Default::default(),
+            a_left: Default::default(),
+            a_rend: Default::default(),
             a_rd1: Default::default(),
             a_rd2: Default::default(),
-            a_head: Default::default(),
             a_wi: Default::default(),
-            a_fill: Default::default(),
-            a_x0: Default::default(),
-            a_x1: Default::default(),
-            a_x2: Default::default(),
-            a_x3: Default::default(),
-            a_x4: Default::default(),
-            a_x5: Default::default(),
-            a_x6: Default::default(),
-            a_x7: Default::default(),
-            a_d0: Default::default(),
-            a_d1: Default::default(),
-            a_d2: Default::default(),
-            a_d3: Default::default(),
-            a_d4: Default::default(),
-            a_d5: Default::default(),
-            a_d6: Default::default(),
-            a_d7: Default::default(),
-            a_r0: Default::default(),
-            a_v0: Default::default(),
-            a_ex0: Default::default(),
-            a_ed0: Default::default(),
-            a_lt0: Default::default(),
-            a_gt0: Default::default(),
-            a_ok0: Default::default(),
-            a_p0: Default::default(),
-            a_r1: Default::default(),
-            a_v1: Default::default(),
-            a_ex1: Default::default(),
-            a_ed1: Default::default(),
-            a_lt1: Default::default(),
-            a_gt1: Default::default(),
-            a_ok1: Default::default(),
-            a_p1: Default::default(),
-            a_r2: Default::default(),
-            a_v2: Default::default(),
-            a_ex2: Default::default(),
-            a_ed2: Default::default(),
-            a_lt2: Default::default(),
-            a_gt2: Default::default(),
-            a_ok2: Default::default(),
-            a_p2: Default::default(),
-            a_r3: Default::default(),
-            a_v3: Default::default(),
-            a_ex3: Default::default(),
-            a_ed3: Default::default(),
-            a_lt3: Default::default(),
-            a_gt3: Default::default(),
-            a_ok3: Default::default(),
-            a_p3: Default::default(),
-            a_r4: Default::default(),
-            a_v4: Default::default(),
-            a_ex4: Default::default(),
-            a_ed4: Default::default(),
-            a_lt4: Default::default(),
-            a_gt4: Default::default(),
-            a_ok4: Default::default(),
-            a_p4: Default::default(),
-            a_r5: Default::default(),
-            a_v5: Default::default(),
-            a_ex5: Default::default(),
-            a_ed5: Default::default(),
-            a_lt5: Default::default(),
-            a_gt5: Default::default(),
-            a_ok5: Default::default(),
-            a_p5: Default::default(),
-            a_r6: Default::default(),
-            a_v6: Default::default(),
-            a_ex6: Default::default(),
-            a_ed6: Default::default(),
-            a_lt6: Default::default(),
-            a_gt6: Default::default(),
-            a_ok6: Default::default(),
-            a_p6: Default::default(),
-            a_r7: Default::default(),
-            a_v7: Default::default(),
-            a_ex7: Default::default(),
-            a_ed7: Default::default(),
-            a_lt7: Default::default(),
-            a_gt7: Default::default(),
-            a_ok7: Default::default(),
-            a_p7: Default::default(),
+            a_held: Default::default(),
+            a_xp: Default::default(),
+            a_xm: Default::default(),
+            a_dp: Default::default(),
+            a_dm: Default::default(),
+            a_lxm: Default::default(),
+            a_lt: Default::default(),
+            a_okq: Default::default(),
+            a_full: Default::default(),
             a_beyond: Default::default(),
-            a_found: Default::default(),
-            a_npop: Default::default(),
-            a_kept: Default::default(),
-            a_occ: Default::default(),
             a_loaded: Default::default(),
-            a_issue: Default::default(),
+            a_stuck: Default::default(),
+            a_sl: Default::default(),
+            a_sg: Default::default(),
+            a_sdl: Default::default(),
+            a_sdh: Default::default(),
+            a_sb: Default::default(),
+            a_okc: Default::default(),
+            a_stay: Default::default(),
             a_rx: Default::default(),
             a_rdd: Default::default(),
-            a_hit: Default::default(),
-            a_done: Default::default(),
-            a_crowded: Default::default(),
+            a_ex: Default::default(),
+            a_ed: Default::default(),
+            a_nxp: Default::default(),
+            a_nxm: Default::default(),
+            a_ndp: Default::default(),
+            a_ndm: Default::default(),
+            a_pos: Default::default(),
+            a_free: Default::default(),
+            a_issue: Default::default(),
+            a_found: Default::default(),
+            a_anylt: Default::default(),
+            a_crowd: Default::default(),
+            a_beyond_c: Default::default(),
+            a_loaded_c: Default::default(),
+            a_stuck_n: Default::default(),
             a_count: Default::default(),
             a_bank: Default::default(),
             b_mem: Default::default(),
             b_base: Default::default(),
-            b_n: Default::default(),
             b_rd: Default::default(),
+            b_left: Default::default(),
+            b_rend: Default::default(),
             b_rd1: Default::default(),
             b_rd2: Default::default(),
-            b_head: Default::default(),
             b_wi: Default::default(),
-            b_fill: Default::default(),
-            b_x0: Default::default(),
-            b_x1: Default::default(),
-            b_x2: Default::default(),
-            b_x3: Default::default(),
-            b_x4: Default::default(),
-            b_x5: Default::default(),
-            b_x6: Default::default(),
-            b_x7: Default::default(),
-            b_d0: Default::default(),
-            b_d1: Default::default(),
-            b_d2: Default::default(),
-            b_d3: Default::default(),
-            b_d4: Default::default(),
-            b_d5: Default::default(),
-            b_d6: Default::default(),
-            b_d7: Default::default(),
-            b_r0: Default::default(),
-            b_v0: Default::default(),
-            b_ex0: Default::default(),
-            b_ed0: Default::default(),
-            b_lt0: Default::default(),
-            b_gt0: Default::default(),
-            b_ok0: Default::default(),
-            b_p0: Default::default(),
-            b_r1: Default::default(),
-            b_v1: Default::default(),
-            b_ex1: Default::default(),
-            b_ed1: Default::default(),
-            b_lt1: Default::default(),
-            b_gt1: Default::default(),
-            b_ok1: Default::default(),
-            b_p1: Default::default(),
-            b_r2: Default::default(),
-            b_v2: Default::default(),
-            b_ex2: Default::default(),
-            b_ed2: Default::default(),
-            b_lt2: Default::default(),
-            b_gt2: Default::default(),
-            b_ok2: Default::default(),
-            b_p2: Default::default(),
-            b_r3: Default::default(),
-            b_v3: Default::default(),
-            b_ex3: Default::default(),
-            b_ed3: Default::default(),
-            b_lt3: Default::default(),
-            b_gt3: Default::default(),
-            b_ok3: Default::default(),
-            b_p3: Default::default(),
-            b_r4: Default::default(),
-            b_v4: Default::default(),
-            b_ex4: Default::default(),
-            b_ed4: Default::default(),
-            b_lt4: Default::default(),
-            b_gt4: Default::default(),
-            b_ok4: Default::default(),
-            b_p4: Default::default(),
-            b_r5: Default::default(),
-            b_v5: Default::default(),
-            b_ex5: Default::default(),
-            b_ed5: Default::default(),
-            b_lt5: Default::default(),
-            b_gt5: Default::default(),
-            b_ok5: Default::default(),
-            b_p5: Default::default(),
-            b_r6: Default::default(),
-            b_v6: Default::default(),
-            b_ex6: Default::default(),
-            b_ed6: Default::default(),
-            b_lt6: Default::default(),
-            b_gt6: Default::default(),
-            b_ok6: Default::default(),
-            b_p6: Default::default(),
-            b_r7: Default::default(),
-            b_v7: Default::default(),
-            b_ex7: Default::default(),
-            b_ed7: Default::default(),
-            b_lt7: Default::default(),
-            b_gt7: Default::default(),
-            b_ok7: Default::default(),
-            b_p7: Default::default(),
+            b_held: Default::default(),
+            b_xp: Default::default(),
+            b_xm: Default::default(),
+            b_dp: Default::default(),
+            b_dm: Default::default(),
+            b_lxm: Default::default(),
+            b_lt: Default::default(),
+            b_okq: Default::default(),
+            b_full: Default::default(),
             b_beyond: Default::default(),
-            b_found: Default::default(),
-            b_npop: Default::default(),
-            b_kept: Default::default(),
-            b_occ: Default::default(),
             b_loaded: Default::default(),
-            b_issue: Default::default(),
+            b_stuck: Default::default(),
+            b_sl: Default::default(),
+            b_sg: Default::default(),
+            b_sdl: Default::default(),
+            b_sdh: Default::default(),
+            b_sb: Default::default(),
+            b_okc: Default::default(),
+            b_stay: Default::default(),
             b_rx: Default::default(),
             b_rdd: Default::default(),
-            b_hit: Default::default(),
-            b_done: Default::default(),
-            b_crowded: Default::default(),
+            b_ex: Default::default(),
+            b_ed: Default::default(),
+            b_nxp: Default::default(),
+            b_nxm: Default::default(),
+            b_ndp: Default::default(),
+            b_ndm: Default::default(),
+            b_pos: Default::default(),
+            b_free: Default::default(),
+            b_issue: Default::default(),
+            b_found: Default::default(),
+            b_anylt: Default::default(),
+            b_crowd: Default::default(),
+            b_beyond_c: Default::default(),
+            b_loaded_c: Default::default(),
+            b_stuck_n: Default::default(),
             b_count: Default::default(),
             b_bank: Default::default(),
-            qx: Default::default(),
-            qx_hi: Default::default(),
-            qx_lo: Default::default(),
-            qd: Default::default(),
-            qd_hi: Default::default(),
-            qd_lo: Default::default(),
-            any_left: Default::default(),
             cur_mem: Default::default(),
             in_line: Default::default(),
             dropping: Default::default(),
             widx: Default::default(),
             wl: Default::default(),
             sof_pending: Default::default(),
-            lbank: Default::default(),
-            drop_eof: Default::default(),
+            nofree: Default::default(),
             cnt0: Default::default(),
             sof0: Default::default(),
             eof0: Default::default(),
@@ -749,27 +569,32 @@ impl RowCheck {
             sof3: Default::default(),
             eof3: Default::default(),
             el: Default::default(),
+            start_q: Default::default(),
             prev_needed: Default::default(),
             busy: Default::default(),
             n_cur: Default::default(),
             sof_cur: Default::default(),
             eof_cur: Default::default(),
             dec: Default::default(),
+            dec1: Default::default(),
             kept: Default::default(),
             crd: Default::default(),
             crd1: Default::default(),
             crd2: Default::default(),
-            cfill: Default::default(),
-            cwi: Default::default(),
-            cri: Default::default(),
-            cx0: Default::default(),
-            cd0: Default::default(),
-            cx1: Default::default(),
-            cd1: Default::default(),
-            cx2: Default::default(),
-            cd2: Default::default(),
-            cx3: Default::default(),
-            cd3: Default::default(),
+            cwr: Default::default(),
+            cx: Default::default(),
+            cd: Default::default(),
+            pvalid: Default::default(),
+            pidx: Default::default(),
+            pn: Default::default(),
+            pn_oh: Default::default(),
+            dec1_oh: Default::default(),
+            px: Default::default(),
+            pd: Default::default(),
+            dvalid: Default::default(),
+            both_ready: Default::default(),
+            qx: Default::default(),
+            qd: Default::default(),
             o_valid: Default::default(),
             o_last: Default::default(),
             o_x: Default::default(),
@@ -780,11 +605,13 @@ impl RowCheck {
             overflow_q: Default::default(),
             crowded_q: Default::default(),
             first_event: Default::default(),
-            used: Default::default(),
+            used_n: Default::default(),
             drop_now: Default::default(),
             take_match: Default::default(),
             take_marker: Default::default(),
             wbank: Default::default(),
+            lbank: Default::default(),
+            drop_eof: Default::default(),
             waddr: Default::default(),
             wdata: Default::default(),
             pend: Default::default(),
@@ -797,43 +624,35 @@ impl RowCheck {
             sof_el: Default::default(),
             eof_el: Default::default(),
             start: Default::default(),
-            head_x: Default::default(),
-            head_d: Default::default(),
-            q_valid: Default::default(),
             keep: Default::default(),
-            up_ready: Default::default(),
-            dn_ready: Default::default(),
             decide: Default::default(),
+            miss: Default::default(),
             finish: Default::default(),
-            ckept: Default::default(),
-            cocc: Default::default(),
+            cfull: Default::default(),
             cissue: Default::default(),
+            cwslot: Default::default(),
+            cmask: Default::default(),
+            n_here: Default::default(),
+            nx: Default::default(),
+            nd: Default::default(),
             rx: Default::default(),
             rdd: Default::default(),
             bank0: bank(0),
             bank1: bank(1),
             bank2: bank(2),
             bank3: bank(3),
-            slot1: slot(1),
-            slot2: slot(2),
-            slot3: slot(3),
             banks: Constant::new((1u64 << ROW_BANK_BITS).into()),
             two: Constant::new(2u64.into()),
-            cur_ring: Constant::new((CUR_RING as u64).into()),
-            one_fill: Constant::new(1u64.into()),
             n_max: Constant::new((N_MAX as u64).into()),
-            wslot0: Constant::new(0u64.into()),
-            wslot1: Constant::new(1u64.into()),
-            wslot2: Constant::new(2u64.into()),
-            wslot3: Constant::new(3u64.into()),
-            wslot4: Constant::new(4u64.into()),
-            wslot5: Constant::new(5u64.into()),
-            wslot6: Constant::new(6u64.into()),
-            wslot7: Constant::new(7u64.into()),
+            cur_wrap: Constant::new((CUR_RING as u64).into()),
+            count_one: Constant::new(1u64.into()),
+            cslot: core::array::from_fn(|i| Constant::new((i as u64).into())),
+            wslot: core::array::from_fn(|i| Constant::new((i as u64).into())),
             dx: Constant::new(CONSISTENT_DX_LSB.into()),
             dd: Constant::new(CONSISTENT_DD_LSB.into()),
-            one: Constant::new(1u64.into()),
-            ring_size: Constant::new((ROW_WINDOW as u64).into()),
+            ones: Constant::new(((1u64 << (WIDE - 1)) - 1).into()),
+            pos_ones: Constant::new(((1u64 << POS_BITS) - 1).into()),
+            sign_at: Constant::new(((WIDE - 1) as u64).into()),
             index_bits: Constant::new((INDEX_BITS as u64).into()),
             pos_bits: Constant::new((POS_BITS as u64).into()),
         }
@@ -843,23 +662,20 @@ impl RowCheck {
 impl Logic for RowCheck {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, a_base, a_n, a_rd, a_rd1, a_rd2, a_head, a_wi, a_fill, a_x0, a_x1, a_x2, a_x3, a_x4, a_x5, a_x6, a_x7, a_d0, a_d1, a_d2, a_d3, a_d4, a_d5, a_d6, a_d7, b_base, b_n, b_rd, b_rd1, b_rd2, b_head, b_wi, b_fill, b_x0, b_x1, b_x2, b_x3, b_x4, b_x5, b_x6, b_x7, b_d0, b_d1, b_d2, b_d3, b_d4, b_d5, b_d6, b_d7, in_line, dropping, widx, wl, sof_pending, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, kept, crd, crd1, crd2, cfill, cwi, cri, cx0, cd0, cx1, cd1, cx2, cd2, cx3, cd3, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
+        dff_setup!(self, clock, a_base, a_rd, a_left, a_rend, a_rd1, a_rd2, a_wi, a_lxm, a_full, a_beyond, a_loaded, a_stuck, b_base, b_rd, b_left, b_rend, b_rd1, b_rd2, b_wi, b_lxm, b_full, b_beyond, b_loaded, b_stuck, in_line, dropping, widx, wl, sof_pending, nofree, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, start_q, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, dec1, kept, crd, crd1, crd2, cwr, pvalid, pidx, pn, px, pd, dvalid, both_ready, qx, qd, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
         self.cur_mem.clock.next = self.clock.val();
 
         // ================= Loader =================
         // A row is admitted on its first beat if a bank is free: the rows
         // stored and not yet checked, and the row before the checked one
-        // while it is still needed as the row above.
+        // while it is still needed as the row above (`nofree`, registered
+        // from the next values of these registers: see the end).
         self.pend.next = self.wl.q.val() - self.el.q.val();
-        self.used.next = self.pend.val();
-        if self.prev_needed.q.val() {
-            self.used.next = self.pend.val() + 1;
-        }
         self.first_event.next = self.m_valid.val() & !self.in_line.q.val();
         self.drop_now.next = self.dropping.q.val();
         if self.first_event.val() {
-            self.drop_now.next = self.used.val() >= self.banks.val();
-            self.dropping.d.next = self.used.val() >= self.banks.val();
+            self.drop_now.next = self.nofree.q.val();
+            self.dropping.d.next = self.nofree.q.val();
         }
         self.take_match.next = self.m_valid.val() & !self.m_last.val() & !self.drop_now.val() & (self.widx.q.val() < self.n_max.val());
         self.take_marker.next = self.m_valid.val() & self.m_last.val() & !self.drop_now.val();
@@ -982,8 +798,10 @@ impl Logic for RowCheck {
         if self.bank_cur.val() == self.bank3.val() {
             self.eof_el.next = self.eof3.q.val();
         }
-        // Ready: the row below has arrived, or this row ends its frame.
-        self.start.next = !self.busy.q.val() & ((self.pend.val() >= self.two.val()) | (self.pend.val().any() & self.eof_el.val()));
+        // Ready: the row below has arrived, or this row ends its frame; the
+        // start is registered (it resets most of the engine).
+        self.start_q.d.next = !self.busy.q.val() & !self.start_q.q.val() & ((self.pend.val() >= self.two.val()) | (self.pend.val().any() & self.eof_el.val()));
+        self.start.next = self.start_q.q.val();
         self.a_bank.next = self.bank_up.val();
         self.a_count.next = 0.into();
         if !self.sof_el.val() & self.prev_needed.q.val() {
@@ -994,439 +812,326 @@ impl Logic for RowCheck {
         if !self.eof_el.val() {
             self.b_count.next = self.cnt_dn.val();
         }
-        // The checked match: the prefetch ring's head.
-        self.head_x.next = self.cx0.q.val();
-        self.head_d.next = self.cd0.q.val();
-        if self.cri.q.val() == self.slot1.val() {
-            self.head_x.next = self.cx1.q.val();
-            self.head_d.next = self.cd1.q.val();
-        }
-        if self.cri.q.val() == self.slot2.val() {
-            self.head_x.next = self.cx2.q.val();
-            self.head_d.next = self.cd2.q.val();
-        }
-        if self.cri.q.val() == self.slot3.val() {
-            self.head_x.next = self.cx3.q.val();
-            self.head_d.next = self.cd3.q.val();
-        }
-        self.q_valid.next = self.busy.q.val() & self.cfill.q.val().any();
-        // ---- The windows (one per neighbour): each reads its row in order into
-        // its ring and compares every entry with the checked match.
-        // The window's bounds: [q_x - DX, q_x + DX] (no left bound below DX),
-        // [q_d - DD, q_d + DD] (from 0 below DD), one bit wider than a
-        // position.
-        self.qx.next = bit_cast::<WIDE, POS_BITS>(self.head_x.val());
-        self.qd.next = bit_cast::<WIDE, POS_BITS>(self.head_d.val());
-        self.qx_hi.next = self.qx.val() + self.dx.val();
-        self.qd_hi.next = self.qd.val() + self.dd.val();
-        self.any_left.next = self.q_valid.val() & (self.qx.val() >= self.dx.val());
-        self.qx_lo.next = self.qx.val() - self.dx.val();
-        self.qd_lo.next = 0.into();
-        if self.qd.val() >= self.dd.val() {
-            self.qd_lo.next = self.qd.val() - self.dd.val();
-        }
+        // ---- The window of the row above. Its memory copy takes the
+        // loader's writes.
         self.a_mem.clock.next = self.clock.val();
         self.a_mem.write_enable.next = self.take_match.val();
         self.a_mem.write_address.next = self.waddr.val();
         self.a_mem.write_data.next = self.wdata.val();
-        // Each slot: held (its place after the head below the fill), left
-        // of the window (popped), right of it, confirming.
-        self.a_r0.next = self.wslot0.val() - self.a_head.q.val();
-        self.a_v0.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r0.val()) < self.a_fill.q.val();
-        self.a_ex0.next = bit_cast::<WIDE, POS_BITS>(self.a_x0.q.val());
-        self.a_ed0.next = bit_cast::<WIDE, POS_BITS>(self.a_d0.q.val());
-        self.a_lt0.next = self.a_v0.val() & self.any_left.val() & (self.a_ex0.val() < self.qx_lo.val());
-        self.a_gt0.next = self.a_v0.val() & (self.a_ex0.val() > self.qx_hi.val());
-        self.a_ok0.next = self.a_v0.val() & !self.a_lt0.val() & !self.a_gt0.val() & (self.a_ed0.val() >= self.qd_lo.val()) & (self.a_ed0.val() <= self.qd_hi.val());
-        self.a_p0.next = 0.into();
-        if self.a_lt0.val() {
-            self.a_p0.next = self.one.val();
+        for i in 0..ROW_WINDOW {
+            self.a_held[i].clock.next = self.clock.val();
+            self.a_xp[i].clock.next = self.clock.val();
+            self.a_xm[i].clock.next = self.clock.val();
+            self.a_dp[i].clock.next = self.clock.val();
+            self.a_dm[i].clock.next = self.clock.val();
+            self.a_lt[i].clock.next = self.clock.val();
+            self.a_xp[i].d.next = self.a_xp[i].q.val();
+            self.a_xm[i].d.next = self.a_xm[i].q.val();
+            self.a_dp[i].d.next = self.a_dp[i].q.val();
+            self.a_dm[i].d.next = self.a_dm[i].q.val();
         }
-        self.a_r1.next = self.wslot1.val() - self.a_head.q.val();
-        self.a_v1.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r1.val()) < self.a_fill.q.val();
-        self.a_ex1.next = bit_cast::<WIDE, POS_BITS>(self.a_x1.q.val());
-        self.a_ed1.next = bit_cast::<WIDE, POS_BITS>(self.a_d1.q.val());
-        self.a_lt1.next = self.a_v1.val() & self.any_left.val() & (self.a_ex1.val() < self.qx_lo.val());
-        self.a_gt1.next = self.a_v1.val() & (self.a_ex1.val() > self.qx_hi.val());
-        self.a_ok1.next = self.a_v1.val() & !self.a_lt1.val() & !self.a_gt1.val() & (self.a_ed1.val() >= self.qd_lo.val()) & (self.a_ed1.val() <= self.qd_hi.val());
-        self.a_p1.next = 0.into();
-        if self.a_lt1.val() {
-            self.a_p1.next = self.one.val();
-        }
-        self.a_r2.next = self.wslot2.val() - self.a_head.q.val();
-        self.a_v2.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r2.val()) < self.a_fill.q.val();
-        self.a_ex2.next = bit_cast::<WIDE, POS_BITS>(self.a_x2.q.val());
-        self.a_ed2.next = bit_cast::<WIDE, POS_BITS>(self.a_d2.q.val());
-        self.a_lt2.next = self.a_v2.val() & self.any_left.val() & (self.a_ex2.val() < self.qx_lo.val());
-        self.a_gt2.next = self.a_v2.val() & (self.a_ex2.val() > self.qx_hi.val());
-        self.a_ok2.next = self.a_v2.val() & !self.a_lt2.val() & !self.a_gt2.val() & (self.a_ed2.val() >= self.qd_lo.val()) & (self.a_ed2.val() <= self.qd_hi.val());
-        self.a_p2.next = 0.into();
-        if self.a_lt2.val() {
-            self.a_p2.next = self.one.val();
-        }
-        self.a_r3.next = self.wslot3.val() - self.a_head.q.val();
-        self.a_v3.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r3.val()) < self.a_fill.q.val();
-        self.a_ex3.next = bit_cast::<WIDE, POS_BITS>(self.a_x3.q.val());
-        self.a_ed3.next = bit_cast::<WIDE, POS_BITS>(self.a_d3.q.val());
-        self.a_lt3.next = self.a_v3.val() & self.any_left.val() & (self.a_ex3.val() < self.qx_lo.val());
-        self.a_gt3.next = self.a_v3.val() & (self.a_ex3.val() > self.qx_hi.val());
-        self.a_ok3.next = self.a_v3.val() & !self.a_lt3.val() & !self.a_gt3.val() & (self.a_ed3.val() >= self.qd_lo.val()) & (self.a_ed3.val() <= self.qd_hi.val());
-        self.a_p3.next = 0.into();
-        if self.a_lt3.val() {
-            self.a_p3.next = self.one.val();
-        }
-        self.a_r4.next = self.wslot4.val() - self.a_head.q.val();
-        self.a_v4.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r4.val()) < self.a_fill.q.val();
-        self.a_ex4.next = bit_cast::<WIDE, POS_BITS>(self.a_x4.q.val());
-        self.a_ed4.next = bit_cast::<WIDE, POS_BITS>(self.a_d4.q.val());
-        self.a_lt4.next = self.a_v4.val() & self.any_left.val() & (self.a_ex4.val() < self.qx_lo.val());
-        self.a_gt4.next = self.a_v4.val() & (self.a_ex4.val() > self.qx_hi.val());
-        self.a_ok4.next = self.a_v4.val() & !self.a_lt4.val() & !self.a_gt4.val() & (self.a_ed4.val() >= self.qd_lo.val()) & (self.a_ed4.val() <= self.qd_hi.val());
-        self.a_p4.next = 0.into();
-        if self.a_lt4.val() {
-            self.a_p4.next = self.one.val();
-        }
-        self.a_r5.next = self.wslot5.val() - self.a_head.q.val();
-        self.a_v5.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r5.val()) < self.a_fill.q.val();
-        self.a_ex5.next = bit_cast::<WIDE, POS_BITS>(self.a_x5.q.val());
-        self.a_ed5.next = bit_cast::<WIDE, POS_BITS>(self.a_d5.q.val());
-        self.a_lt5.next = self.a_v5.val() & self.any_left.val() & (self.a_ex5.val() < self.qx_lo.val());
-        self.a_gt5.next = self.a_v5.val() & (self.a_ex5.val() > self.qx_hi.val());
-        self.a_ok5.next = self.a_v5.val() & !self.a_lt5.val() & !self.a_gt5.val() & (self.a_ed5.val() >= self.qd_lo.val()) & (self.a_ed5.val() <= self.qd_hi.val());
-        self.a_p5.next = 0.into();
-        if self.a_lt5.val() {
-            self.a_p5.next = self.one.val();
-        }
-        self.a_r6.next = self.wslot6.val() - self.a_head.q.val();
-        self.a_v6.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r6.val()) < self.a_fill.q.val();
-        self.a_ex6.next = bit_cast::<WIDE, POS_BITS>(self.a_x6.q.val());
-        self.a_ed6.next = bit_cast::<WIDE, POS_BITS>(self.a_d6.q.val());
-        self.a_lt6.next = self.a_v6.val() & self.any_left.val() & (self.a_ex6.val() < self.qx_lo.val());
-        self.a_gt6.next = self.a_v6.val() & (self.a_ex6.val() > self.qx_hi.val());
-        self.a_ok6.next = self.a_v6.val() & !self.a_lt6.val() & !self.a_gt6.val() & (self.a_ed6.val() >= self.qd_lo.val()) & (self.a_ed6.val() <= self.qd_hi.val());
-        self.a_p6.next = 0.into();
-        if self.a_lt6.val() {
-            self.a_p6.next = self.one.val();
-        }
-        self.a_r7.next = self.wslot7.val() - self.a_head.q.val();
-        self.a_v7.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.a_r7.val()) < self.a_fill.q.val();
-        self.a_ex7.next = bit_cast::<WIDE, POS_BITS>(self.a_x7.q.val());
-        self.a_ed7.next = bit_cast::<WIDE, POS_BITS>(self.a_d7.q.val());
-        self.a_lt7.next = self.a_v7.val() & self.any_left.val() & (self.a_ex7.val() < self.qx_lo.val());
-        self.a_gt7.next = self.a_v7.val() & (self.a_ex7.val() > self.qx_hi.val());
-        self.a_ok7.next = self.a_v7.val() & !self.a_lt7.val() & !self.a_gt7.val() & (self.a_ed7.val() >= self.qd_lo.val()) & (self.a_ed7.val() <= self.qd_hi.val());
-        self.a_p7.next = 0.into();
-        if self.a_lt7.val() {
-            self.a_p7.next = self.one.val();
-        }
-        self.a_beyond.next = self.a_gt0.val() | self.a_gt1.val() | self.a_gt2.val() | self.a_gt3.val() | self.a_gt4.val() | self.a_gt5.val() | self.a_gt6.val() | self.a_gt7.val();
-        self.a_found.next = self.q_valid.val() & (self.a_ok0.val() | self.a_ok1.val() | self.a_ok2.val() | self.a_ok3.val() | self.a_ok4.val() | self.a_ok5.val() | self.a_ok6.val() | self.a_ok7.val());
-        self.a_npop.next = self.a_p0.val() + self.a_p1.val() + self.a_p2.val() + self.a_p3.val() + self.a_p4.val() + self.a_p5.val() + self.a_p6.val() + self.a_p7.val();
-        // Every match of the row read and arrived.
-        self.a_loaded.next = (self.a_rd.q.val() == self.a_n.q.val()) & !self.a_rd1.q.val() & !self.a_rd2.q.val();
-        self.a_hit.next = self.a_found.val();
-        self.a_done.next = self.a_beyond.val() | self.a_loaded.val();
-        self.a_crowded.next = (self.a_fill.q.val() == self.ring_size.val()) & !self.a_npop.val().any() & !self.a_beyond.val() & !self.a_found.val() & !self.a_loaded.val();
-        // The ring: pops at the head, the arriving read at `wi`; a read is
-        // issued while the entries kept and in flight leave a slot free.
-        self.a_kept.next = self.a_fill.q.val() - self.a_npop.val();
-        self.a_head.d.next = self.a_head.q.val() + bit_cast::<ROW_WINDOW_BITS, WIN_FILL_BITS>(self.a_npop.val());
-        self.a_occ.next = self.a_kept.val();
-        if self.a_rd1.q.val() {
-            self.a_occ.next = self.a_kept.val() + self.one.val();
-        }
-        self.a_fill.d.next = self.a_kept.val();
-        if self.a_rd2.q.val() {
-            self.a_fill.d.next = self.a_kept.val() + self.one.val();
-            self.a_occ.next = self.a_kept.val() + self.one.val();
-            if self.a_rd1.q.val() {
-                self.a_occ.next = self.a_kept.val() + self.one.val() + self.one.val();
+        // An arriving entry's bounds.
+        self.a_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val() >> self.pos_bits.val());
+        self.a_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val());
+        self.a_ex.next = bit_cast::<WIDE, POS_BITS>(self.a_rx.val());
+        self.a_ed.next = bit_cast::<WIDE, POS_BITS>(self.a_rdd.val());
+        self.a_nxp.next = self.a_ex.val() + self.dx.val();
+        // (`X - DX` and `d - DD` may wrap below zero: subtracted in its
+        // comparison, such a bound never borrows, as if there were none.)
+        self.a_nxm.next = self.a_ex.val() - self.dx.val();
+        self.a_ndp.next = self.a_ed.val() + self.dd.val();
+        self.a_ndm.next = self.a_ed.val() - self.dd.val();
+        // The slots: a decided match's left entries leave (`lt` of the
+        // match in the decision stage), the arriving read lands at `wi`.
+        for i in 0..ROW_WINDOW {
+            self.a_stay[i].next = self.a_held[i].q.val() & !(self.dvalid.q.val() & self.a_lt[i].q.val());
+            self.a_held[i].d.next = self.a_stay[i].val();
+            // A free slot's bounds fail every comparison (so that the
+            // comparisons need not look at `held`).
+            if !self.a_stay[i].val() {
+                self.a_xp[i].d.next = self.ones.val();
+                self.a_xm[i].d.next = self.ones.val();
             }
-            self.a_wi.d.next = self.a_wi.q.val() + 1;
+            if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot[i].val()) {
+                self.a_held[i].d.next = true;
+                self.a_xp[i].d.next = self.a_nxp.val();
+                self.a_xm[i].d.next = self.a_nxm.val();
+                self.a_dp[i].d.next = self.a_ndp.val();
+                self.a_dm[i].d.next = self.a_ndm.val();
+            }
         }
-        self.a_issue.next = (self.a_rd.q.val() != self.a_n.q.val()) & (self.a_occ.val() < self.ring_size.val());
+        if self.a_rd2.q.val() {
+            self.a_wi.d.next = self.a_wi.q.val() + 1;
+            self.a_lxm.d.next = self.a_nxm.val();
+        }
+        // A read is issued while its slot (after the reads in flight) is
+        // free: the held slots are one run ending before `wi`.
+        self.a_pos.next = self.a_wi.q.val();
+        if self.a_rd1.q.val() | self.a_rd2.q.val() {
+            self.a_pos.next = self.a_wi.q.val() + 1;
+        }
+        if self.a_rd1.q.val() & self.a_rd2.q.val() {
+            self.a_pos.next = self.a_wi.q.val() + 2;
+        }
+        self.a_free.next = false;
+        for i in 0..ROW_WINDOW {
+            if self.a_pos.val() == self.wslot[i].val() {
+                self.a_free.next = !self.a_stay[i].val();
+            }
+        }
+        self.a_issue.next = !self.a_rend.q.val() & self.a_free.val();
         self.a_rd1.d.next = self.a_issue.val();
         self.a_rd2.d.next = self.a_rd1.q.val();
         if self.a_issue.val() {
             self.a_rd.d.next = self.a_rd.q.val() + 1;
+            self.a_left.d.next = self.a_left.q.val() - 1;
+            self.a_rend.d.next = self.a_left.q.val() == self.count_one.val();
         }
         self.a_mem.read_address.next = self.a_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.a_rd.q.val());
-        self.a_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val() >> self.pos_bits.val());
-        self.a_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val());
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot0.val()) {
-            self.a_x0.d.next = self.a_rx.val();
-            self.a_d0.d.next = self.a_rdd.val();
+        // The comparisons with the presented match (registered; a free
+        // slot, its position bounds all ones, is neither left of the window
+        // nor confirming). Each is the borrow of a subtraction (one carry
+        // chain).
+        for i in 0..ROW_WINDOW {
+            self.a_sl[i].next = self.a_xp[i].q.val() - self.px.q.val();
+            self.a_sg[i].next = self.px.q.val() - self.a_xm[i].q.val();
+            self.a_sdl[i].next = self.pd.q.val() - self.a_dm[i].q.val();
+            self.a_sdh[i].next = self.a_dp[i].q.val() - self.pd.q.val();
+            self.a_lt[i].d.next = self.a_sl[i].val().get_bit(self.sign_at.val().index());
+            self.a_okc[i].next = !self.a_sl[i].val().get_bit(self.sign_at.val().index()) & !self.a_sg[i].val().get_bit(self.sign_at.val().index()) & !self.a_sdl[i].val().get_bit(self.sign_at.val().index()) & !self.a_sdh[i].val().get_bit(self.sign_at.val().index());
         }
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot1.val()) {
-            self.a_x1.d.next = self.a_rx.val();
-            self.a_d1.d.next = self.a_rdd.val();
-        }
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot2.val()) {
-            self.a_x2.d.next = self.a_rx.val();
-            self.a_d2.d.next = self.a_rdd.val();
-        }
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot3.val()) {
-            self.a_x3.d.next = self.a_rx.val();
-            self.a_d3.d.next = self.a_rdd.val();
-        }
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot4.val()) {
-            self.a_x4.d.next = self.a_rx.val();
-            self.a_d4.d.next = self.a_rdd.val();
-        }
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot5.val()) {
-            self.a_x5.d.next = self.a_rx.val();
-            self.a_d5.d.next = self.a_rdd.val();
-        }
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot6.val()) {
-            self.a_x6.d.next = self.a_rx.val();
-            self.a_d6.d.next = self.a_rdd.val();
-        }
-        if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot7.val()) {
-            self.a_x7.d.next = self.a_rx.val();
-            self.a_d7.d.next = self.a_rdd.val();
-        }
-        // A new row: the ring empties, the reads in flight are forgotten.
-        if self.start.val() {
-            self.a_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.a_bank.val()) << self.index_bits.val();
-            self.a_n.d.next = self.a_count.val();
-            self.a_rd.d.next = 0.into();
-            self.a_rd1.d.next = false;
-            self.a_rd2.d.next = false;
-            self.a_head.d.next = 0.into();
-            self.a_wi.d.next = 0.into();
-            self.a_fill.d.next = 0.into();
-        }
+        self.a_okq[0].clock.next = self.clock.val();
+        self.a_okq[1].clock.next = self.clock.val();
+        self.a_okq[0].d.next = self.a_okc[0].val() | self.a_okc[1].val() | self.a_okc[2].val() | self.a_okc[3].val();
+        self.a_okq[1].d.next = self.a_okc[4].val() | self.a_okc[5].val() | self.a_okc[6].val() | self.a_okc[7].val();
+        self.a_full.d.next = self.a_held[0].q.val() & self.a_held[1].q.val() & self.a_held[2].q.val() & self.a_held[3].q.val() & self.a_held[4].q.val() & self.a_held[5].q.val() & self.a_held[6].q.val() & self.a_held[7].q.val();
+        self.a_sb.next = self.px.q.val() - self.a_lxm.q.val();
+        // (The newest entry, once it has left, was left of an earlier
+        // match's window, so never right of this one's.)
+        self.a_beyond_c.next = self.a_sb.val().get_bit(self.sign_at.val().index());
+        self.a_loaded_c.next = self.a_rend.q.val() & !self.a_rd1.q.val() & !self.a_rd2.q.val();
+        self.a_beyond.d.next = self.a_beyond_c.val();
+        self.a_loaded.d.next = self.a_loaded_c.val();
+        // The decision stage's view: a confirming entry; crowded (full of
+        // entries none of which leaves, none right of the window, the row
+        // not all read and arrived: the match would wait for ever; it is
+        // then `stuck` until decided).
+        self.a_found.next = self.a_okq[0].q.val() | self.a_okq[1].q.val();
+        self.a_anylt.next = self.a_lt[0].q.val() | self.a_lt[1].q.val() | self.a_lt[2].q.val() | self.a_lt[3].q.val() | self.a_lt[4].q.val() | self.a_lt[5].q.val() | self.a_lt[6].q.val() | self.a_lt[7].q.val();
+        self.a_crowd.next = self.dvalid.q.val() & self.a_full.q.val() & !self.a_anylt.val() & !self.a_beyond.q.val() & !self.a_loaded.q.val() & !self.a_found.val();
+        // ---- The window of the row below. Its memory copy takes the
+        // loader's writes.
         self.b_mem.clock.next = self.clock.val();
         self.b_mem.write_enable.next = self.take_match.val();
         self.b_mem.write_address.next = self.waddr.val();
         self.b_mem.write_data.next = self.wdata.val();
-        // Each slot: held (its place after the head below the fill), left
-        // of the window (popped), right of it, confirming.
-        self.b_r0.next = self.wslot0.val() - self.b_head.q.val();
-        self.b_v0.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r0.val()) < self.b_fill.q.val();
-        self.b_ex0.next = bit_cast::<WIDE, POS_BITS>(self.b_x0.q.val());
-        self.b_ed0.next = bit_cast::<WIDE, POS_BITS>(self.b_d0.q.val());
-        self.b_lt0.next = self.b_v0.val() & self.any_left.val() & (self.b_ex0.val() < self.qx_lo.val());
-        self.b_gt0.next = self.b_v0.val() & (self.b_ex0.val() > self.qx_hi.val());
-        self.b_ok0.next = self.b_v0.val() & !self.b_lt0.val() & !self.b_gt0.val() & (self.b_ed0.val() >= self.qd_lo.val()) & (self.b_ed0.val() <= self.qd_hi.val());
-        self.b_p0.next = 0.into();
-        if self.b_lt0.val() {
-            self.b_p0.next = self.one.val();
+        for i in 0..ROW_WINDOW {
+            self.b_held[i].clock.next = self.clock.val();
+            self.b_xp[i].clock.next = self.clock.val();
+            self.b_xm[i].clock.next = self.clock.val();
+            self.b_dp[i].clock.next = self.clock.val();
+            self.b_dm[i].clock.next = self.clock.val();
+            self.b_lt[i].clock.next = self.clock.val();
+            self.b_xp[i].d.next = self.b_xp[i].q.val();
+            self.b_xm[i].d.next = self.b_xm[i].q.val();
+            self.b_dp[i].d.next = self.b_dp[i].q.val();
+            self.b_dm[i].d.next = self.b_dm[i].q.val();
         }
-        self.b_r1.next = self.wslot1.val() - self.b_head.q.val();
-        self.b_v1.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r1.val()) < self.b_fill.q.val();
-        self.b_ex1.next = bit_cast::<WIDE, POS_BITS>(self.b_x1.q.val());
-        self.b_ed1.next = bit_cast::<WIDE, POS_BITS>(self.b_d1.q.val());
-        self.b_lt1.next = self.b_v1.val() & self.any_left.val() & (self.b_ex1.val() < self.qx_lo.val());
-        self.b_gt1.next = self.b_v1.val() & (self.b_ex1.val() > self.qx_hi.val());
-        self.b_ok1.next = self.b_v1.val() & !self.b_lt1.val() & !self.b_gt1.val() & (self.b_ed1.val() >= self.qd_lo.val()) & (self.b_ed1.val() <= self.qd_hi.val());
-        self.b_p1.next = 0.into();
-        if self.b_lt1.val() {
-            self.b_p1.next = self.one.val();
-        }
-        self.b_r2.next = self.wslot2.val() - self.b_head.q.val();
-        self.b_v2.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r2.val()) < self.b_fill.q.val();
-        self.b_ex2.next = bit_cast::<WIDE, POS_BITS>(self.b_x2.q.val());
-        self.b_ed2.next = bit_cast::<WIDE, POS_BITS>(self.b_d2.q.val());
-        self.b_lt2.next = self.b_v2.val() & self.any_left.val() & (self.b_ex2.val() < self.qx_lo.val());
-        self.b_gt2.next = self.b_v2.val() & (self.b_ex2.val() > self.qx_hi.val());
-        self.b_ok2.next = self.b_v2.val() & !self.b_lt2.val() & !self.b_gt2.val() & (self.b_ed2.val() >= self.qd_lo.val()) & (self.b_ed2.val() <= self.qd_hi.val());
-        self.b_p2.next = 0.into();
-        if self.b_lt2.val() {
-            self.b_p2.next = self.one.val();
-        }
-        self.b_r3.next = self.wslot3.val() - self.b_head.q.val();
-        self.b_v3.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r3.val()) < self.b_fill.q.val();
-        self.b_ex3.next = bit_cast::<WIDE, POS_BITS>(self.b_x3.q.val());
-        self.b_ed3.next = bit_cast::<WIDE, POS_BITS>(self.b_d3.q.val());
-        self.b_lt3.next = self.b_v3.val() & self.any_left.val() & (self.b_ex3.val() < self.qx_lo.val());
-        self.b_gt3.next = self.b_v3.val() & (self.b_ex3.val() > self.qx_hi.val());
-        self.b_ok3.next = self.b_v3.val() & !self.b_lt3.val() & !self.b_gt3.val() & (self.b_ed3.val() >= self.qd_lo.val()) & (self.b_ed3.val() <= self.qd_hi.val());
-        self.b_p3.next = 0.into();
-        if self.b_lt3.val() {
-            self.b_p3.next = self.one.val();
-        }
-        self.b_r4.next = self.wslot4.val() - self.b_head.q.val();
-        self.b_v4.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r4.val()) < self.b_fill.q.val();
-        self.b_ex4.next = bit_cast::<WIDE, POS_BITS>(self.b_x4.q.val());
-        self.b_ed4.next = bit_cast::<WIDE, POS_BITS>(self.b_d4.q.val());
-        self.b_lt4.next = self.b_v4.val() & self.any_left.val() & (self.b_ex4.val() < self.qx_lo.val());
-        self.b_gt4.next = self.b_v4.val() & (self.b_ex4.val() > self.qx_hi.val());
-        self.b_ok4.next = self.b_v4.val() & !self.b_lt4.val() & !self.b_gt4.val() & (self.b_ed4.val() >= self.qd_lo.val()) & (self.b_ed4.val() <= self.qd_hi.val());
-        self.b_p4.next = 0.into();
-        if self.b_lt4.val() {
-            self.b_p4.next = self.one.val();
-        }
-        self.b_r5.next = self.wslot5.val() - self.b_head.q.val();
-        self.b_v5.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r5.val()) < self.b_fill.q.val();
-        self.b_ex5.next = bit_cast::<WIDE, POS_BITS>(self.b_x5.q.val());
-        self.b_ed5.next = bit_cast::<WIDE, POS_BITS>(self.b_d5.q.val());
-        self.b_lt5.next = self.b_v5.val() & self.any_left.val() & (self.b_ex5.val() < self.qx_lo.val());
-        self.b_gt5.next = self.b_v5.val() & (self.b_ex5.val() > self.qx_hi.val());
-        self.b_ok5.next = self.b_v5.val() & !self.b_lt5.val() & !self.b_gt5.val() & (self.b_ed5.val() >= self.qd_lo.val()) & (self.b_ed5.val() <= self.qd_hi.val());
-        self.b_p5.next = 0.into();
-        if self.b_lt5.val() {
-            self.b_p5.next = self.one.val();
-        }
-        self.b_r6.next = self.wslot6.val() - self.b_head.q.val();
-        self.b_v6.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r6.val()) < self.b_fill.q.val();
-        self.b_ex6.next = bit_cast::<WIDE, POS_BITS>(self.b_x6.q.val());
-        self.b_ed6.next = bit_cast::<WIDE, POS_BITS>(self.b_d6.q.val());
-        self.b_lt6.next = self.b_v6.val() & self.any_left.val() & (self.b_ex6.val() < self.qx_lo.val());
-        self.b_gt6.next = self.b_v6.val() & (self.b_ex6.val() > self.qx_hi.val());
-        self.b_ok6.next = self.b_v6.val() & !self.b_lt6.val() & !self.b_gt6.val() & (self.b_ed6.val() >= self.qd_lo.val()) & (self.b_ed6.val() <= self.qd_hi.val());
-        self.b_p6.next = 0.into();
-        if self.b_lt6.val() {
-            self.b_p6.next = self.one.val();
-        }
-        self.b_r7.next = self.wslot7.val() - self.b_head.q.val();
-        self.b_v7.next = bit_cast::<WIN_FILL_BITS, ROW_WINDOW_BITS>(self.b_r7.val()) < self.b_fill.q.val();
-        self.b_ex7.next = bit_cast::<WIDE, POS_BITS>(self.b_x7.q.val());
-        self.b_ed7.next = bit_cast::<WIDE, POS_BITS>(self.b_d7.q.val());
-        self.b_lt7.next = self.b_v7.val() & self.any_left.val() & (self.b_ex7.val() < self.qx_lo.val());
-        self.b_gt7.next = self.b_v7.val() & (self.b_ex7.val() > self.qx_hi.val());
-        self.b_ok7.next = self.b_v7.val() & !self.b_lt7.val() & !self.b_gt7.val() & (self.b_ed7.val() >= self.qd_lo.val()) & (self.b_ed7.val() <= self.qd_hi.val());
-        self.b_p7.next = 0.into();
-        if self.b_lt7.val() {
-            self.b_p7.next = self.one.val();
-        }
-        self.b_beyond.next = self.b_gt0.val() | self.b_gt1.val() | self.b_gt2.val() | self.b_gt3.val() | self.b_gt4.val() | self.b_gt5.val() | self.b_gt6.val() | self.b_gt7.val();
-        self.b_found.next = self.q_valid.val() & (self.b_ok0.val() | self.b_ok1.val() | self.b_ok2.val() | self.b_ok3.val() | self.b_ok4.val() | self.b_ok5.val() | self.b_ok6.val() | self.b_ok7.val());
-        self.b_npop.next = self.b_p0.val() + self.b_p1.val() + self.b_p2.val() + self.b_p3.val() + self.b_p4.val() + self.b_p5.val() + self.b_p6.val() + self.b_p7.val();
-        // Every match of the row read and arrived.
-        self.b_loaded.next = (self.b_rd.q.val() == self.b_n.q.val()) & !self.b_rd1.q.val() & !self.b_rd2.q.val();
-        self.b_hit.next = self.b_found.val();
-        self.b_done.next = self.b_beyond.val() | self.b_loaded.val();
-        self.b_crowded.next = (self.b_fill.q.val() == self.ring_size.val()) & !self.b_npop.val().any() & !self.b_beyond.val() & !self.b_found.val() & !self.b_loaded.val();
-        // The ring: pops at the head, the arriving read at `wi`; a read is
-        // issued while the entries kept and in flight leave a slot free.
-        self.b_kept.next = self.b_fill.q.val() - self.b_npop.val();
-        self.b_head.d.next = self.b_head.q.val() + bit_cast::<ROW_WINDOW_BITS, WIN_FILL_BITS>(self.b_npop.val());
-        self.b_occ.next = self.b_kept.val();
-        if self.b_rd1.q.val() {
-            self.b_occ.next = self.b_kept.val() + self.one.val();
-        }
-        self.b_fill.d.next = self.b_kept.val();
-        if self.b_rd2.q.val() {
-            self.b_fill.d.next = self.b_kept.val() + self.one.val();
-            self.b_occ.next = self.b_kept.val() + self.one.val();
-            if self.b_rd1.q.val() {
-                self.b_occ.next = self.b_kept.val() + self.one.val() + self.one.val();
+        // An arriving entry's bounds.
+        self.b_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val() >> self.pos_bits.val());
+        self.b_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val());
+        self.b_ex.next = bit_cast::<WIDE, POS_BITS>(self.b_rx.val());
+        self.b_ed.next = bit_cast::<WIDE, POS_BITS>(self.b_rdd.val());
+        self.b_nxp.next = self.b_ex.val() + self.dx.val();
+        // (`X - DX` and `d - DD` may wrap below zero: subtracted in its
+        // comparison, such a bound never borrows, as if there were none.)
+        self.b_nxm.next = self.b_ex.val() - self.dx.val();
+        self.b_ndp.next = self.b_ed.val() + self.dd.val();
+        self.b_ndm.next = self.b_ed.val() - self.dd.val();
+        // The slots: a decided match's left entries leave (`lt` of the
+        // match in the decision stage), the arriving read lands at `wi`.
+        for i in 0..ROW_WINDOW {
+            self.b_stay[i].next = self.b_held[i].q.val() & !(self.dvalid.q.val() & self.b_lt[i].q.val());
+            self.b_held[i].d.next = self.b_stay[i].val();
+            // A free slot's bounds fail every comparison (so that the
+            // comparisons need not look at `held`).
+            if !self.b_stay[i].val() {
+                self.b_xp[i].d.next = self.ones.val();
+                self.b_xm[i].d.next = self.ones.val();
             }
-            self.b_wi.d.next = self.b_wi.q.val() + 1;
+            if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot[i].val()) {
+                self.b_held[i].d.next = true;
+                self.b_xp[i].d.next = self.b_nxp.val();
+                self.b_xm[i].d.next = self.b_nxm.val();
+                self.b_dp[i].d.next = self.b_ndp.val();
+                self.b_dm[i].d.next = self.b_ndm.val();
+            }
         }
-        self.b_issue.next = (self.b_rd.q.val() != self.b_n.q.val()) & (self.b_occ.val() < self.ring_size.val());
+        if self.b_rd2.q.val() {
+            self.b_wi.d.next = self.b_wi.q.val() + 1;
+            self.b_lxm.d.next = self.b_nxm.val();
+        }
+        // A read is issued while its slot (after the reads in flight) is
+        // free: the held slots are one run ending before `wi`.
+        self.b_pos.next = self.b_wi.q.val();
+        if self.b_rd1.q.val() | self.b_rd2.q.val() {
+            self.b_pos.next = self.b_wi.q.val() + 1;
+        }
+        if self.b_rd1.q.val() & self.b_rd2.q.val() {
+            self.b_pos.next = self.b_wi.q.val() + 2;
+        }
+        self.b_free.next = false;
+        for i in 0..ROW_WINDOW {
+            if self.b_pos.val() == self.wslot[i].val() {
+                self.b_free.next = !self.b_stay[i].val();
+            }
+        }
+        self.b_issue.next = !self.b_rend.q.val() & self.b_free.val();
         self.b_rd1.d.next = self.b_issue.val();
         self.b_rd2.d.next = self.b_rd1.q.val();
         if self.b_issue.val() {
             self.b_rd.d.next = self.b_rd.q.val() + 1;
+            self.b_left.d.next = self.b_left.q.val() - 1;
+            self.b_rend.d.next = self.b_left.q.val() == self.count_one.val();
         }
         self.b_mem.read_address.next = self.b_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.b_rd.q.val());
-        self.b_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val() >> self.pos_bits.val());
-        self.b_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val());
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot0.val()) {
-            self.b_x0.d.next = self.b_rx.val();
-            self.b_d0.d.next = self.b_rdd.val();
+        // The comparisons with the presented match (registered; a free
+        // slot, its position bounds all ones, is neither left of the window
+        // nor confirming). Each is the borrow of a subtraction (one carry
+        // chain).
+        for i in 0..ROW_WINDOW {
+            self.b_sl[i].next = self.b_xp[i].q.val() - self.px.q.val();
+            self.b_sg[i].next = self.px.q.val() - self.b_xm[i].q.val();
+            self.b_sdl[i].next = self.pd.q.val() - self.b_dm[i].q.val();
+            self.b_sdh[i].next = self.b_dp[i].q.val() - self.pd.q.val();
+            self.b_lt[i].d.next = self.b_sl[i].val().get_bit(self.sign_at.val().index());
+            self.b_okc[i].next = !self.b_sl[i].val().get_bit(self.sign_at.val().index()) & !self.b_sg[i].val().get_bit(self.sign_at.val().index()) & !self.b_sdl[i].val().get_bit(self.sign_at.val().index()) & !self.b_sdh[i].val().get_bit(self.sign_at.val().index());
         }
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot1.val()) {
-            self.b_x1.d.next = self.b_rx.val();
-            self.b_d1.d.next = self.b_rdd.val();
-        }
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot2.val()) {
-            self.b_x2.d.next = self.b_rx.val();
-            self.b_d2.d.next = self.b_rdd.val();
-        }
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot3.val()) {
-            self.b_x3.d.next = self.b_rx.val();
-            self.b_d3.d.next = self.b_rdd.val();
-        }
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot4.val()) {
-            self.b_x4.d.next = self.b_rx.val();
-            self.b_d4.d.next = self.b_rdd.val();
-        }
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot5.val()) {
-            self.b_x5.d.next = self.b_rx.val();
-            self.b_d5.d.next = self.b_rdd.val();
-        }
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot6.val()) {
-            self.b_x6.d.next = self.b_rx.val();
-            self.b_d6.d.next = self.b_rdd.val();
-        }
-        if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot7.val()) {
-            self.b_x7.d.next = self.b_rx.val();
-            self.b_d7.d.next = self.b_rdd.val();
-        }
-        // A new row: the ring empties, the reads in flight are forgotten.
-        if self.start.val() {
-            self.b_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.b_bank.val()) << self.index_bits.val();
-            self.b_n.d.next = self.b_count.val();
-            self.b_rd.d.next = 0.into();
-            self.b_rd1.d.next = false;
-            self.b_rd2.d.next = false;
-            self.b_head.d.next = 0.into();
-            self.b_wi.d.next = 0.into();
-            self.b_fill.d.next = 0.into();
-        }
-        // The decision: a confirming entry, or both windows complete (a
-        // crowded window counts as complete, flagged).
-        self.keep.next = self.a_hit.val() | self.b_hit.val();
-        self.up_ready.next = self.a_done.val() | self.a_crowded.val();
-        self.dn_ready.next = self.b_done.val() | self.b_crowded.val();
-        self.decide.next = self.q_valid.val() & (self.keep.val() | (self.up_ready.val() & self.dn_ready.val()));
-        self.crowded_q.d.next = self.decide.val() & !self.keep.val() & ((self.a_crowded.val() & !self.a_done.val()) | (self.b_crowded.val() & !self.b_done.val()));
-        self.finish.next = self.busy.q.val() & (self.dec.q.val() == self.n_cur.q.val());
-        if self.decide.val() {
-            self.dec.d.next = self.dec.q.val() + 1;
-        }
-        if self.decide.val() & self.keep.val() {
-            self.kept.d.next = self.kept.q.val() + 1;
-        }
-        // The checked row's prefetch ring: a read while the entries kept and
-        // in flight leave a slot free; a decided match leaves it.
-        self.ckept.next = self.cfill.q.val();
-        if self.decide.val() {
-            self.ckept.next = self.cfill.q.val() - self.one_fill.val();
-            self.cri.d.next = self.cri.q.val() + 1;
-        }
-        self.cocc.next = self.ckept.val();
-        if self.crd1.q.val() {
-            self.cocc.next = self.ckept.val() + self.one_fill.val();
-        }
-        self.cfill.d.next = self.ckept.val();
-        if self.crd2.q.val() {
-            self.cfill.d.next = self.ckept.val() + self.one_fill.val();
-            self.cocc.next = self.ckept.val() + self.one_fill.val();
-            if self.crd1.q.val() {
-                self.cocc.next = self.ckept.val() + self.one_fill.val() + self.one_fill.val();
-            }
-            self.cwi.d.next = self.cwi.q.val() + 1;
-        }
-        self.cissue.next = self.busy.q.val() & (self.crd.q.val() != self.n_cur.q.val()) & (self.cocc.val() < self.cur_ring.val());
+        self.b_okq[0].clock.next = self.clock.val();
+        self.b_okq[1].clock.next = self.clock.val();
+        self.b_okq[0].d.next = self.b_okc[0].val() | self.b_okc[1].val() | self.b_okc[2].val() | self.b_okc[3].val();
+        self.b_okq[1].d.next = self.b_okc[4].val() | self.b_okc[5].val() | self.b_okc[6].val() | self.b_okc[7].val();
+        self.b_full.d.next = self.b_held[0].q.val() & self.b_held[1].q.val() & self.b_held[2].q.val() & self.b_held[3].q.val() & self.b_held[4].q.val() & self.b_held[5].q.val() & self.b_held[6].q.val() & self.b_held[7].q.val();
+        self.b_sb.next = self.px.q.val() - self.b_lxm.q.val();
+        // (The newest entry, once it has left, was left of an earlier
+        // match's window, so never right of this one's.)
+        self.b_beyond_c.next = self.b_sb.val().get_bit(self.sign_at.val().index());
+        self.b_loaded_c.next = self.b_rend.q.val() & !self.b_rd1.q.val() & !self.b_rd2.q.val();
+        self.b_beyond.d.next = self.b_beyond_c.val();
+        self.b_loaded.d.next = self.b_loaded_c.val();
+        // The decision stage's view: a confirming entry; crowded (full of
+        // entries none of which leaves, none right of the window, the row
+        // not all read and arrived: the match would wait for ever; it is
+        // then `stuck` until decided).
+        self.b_found.next = self.b_okq[0].q.val() | self.b_okq[1].q.val();
+        self.b_anylt.next = self.b_lt[0].q.val() | self.b_lt[1].q.val() | self.b_lt[2].q.val() | self.b_lt[3].q.val() | self.b_lt[4].q.val() | self.b_lt[5].q.val() | self.b_lt[6].q.val() | self.b_lt[7].q.val();
+        self.b_crowd.next = self.dvalid.q.val() & self.b_full.q.val() & !self.b_anylt.val() & !self.b_beyond.q.val() & !self.b_loaded.q.val() & !self.b_found.val();
+        // ---- The checked row's prefetch ring: a read while fewer than
+        // CUR_RING of the row's matches are read and undecided (`crd - dec`
+        // is 0 ..= CUR_RING: it is CUR_RING when the two agree on the ring's
+        // slot but not on the bit above); arrivals in order at `cwr`.
+        self.cur_mem.read_address.next = (bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.bank_cur.val()) << self.index_bits.val()) + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.crd.q.val());
+        self.cfull.next = (bit_cast::<CUR_PTR_BITS, COUNT_BITS>(self.crd.q.val()) ^ bit_cast::<CUR_PTR_BITS, COUNT_BITS>(self.dec.q.val())) == self.cur_wrap.val();
+        self.cissue.next = self.busy.q.val() & (self.crd.q.val() != self.n_cur.q.val()) & !self.cfull.val();
         self.crd1.d.next = self.cissue.val();
         self.crd2.d.next = self.crd1.q.val();
         if self.cissue.val() {
             self.crd.d.next = self.crd.q.val() + 1;
         }
-        self.cur_mem.read_address.next = (bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.bank_cur.val()) << self.index_bits.val()) + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.crd.q.val());
         self.rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.cur_mem.read_data.val() >> self.pos_bits.val());
         self.rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.cur_mem.read_data.val());
-        if self.crd2.q.val() & !self.cwi.q.val().any() {
-            self.cx0.d.next = self.rx.val();
-            self.cd0.d.next = self.rdd.val();
+        self.cwslot.next = bit_cast::<CUR_SLOT_BITS, COUNT_BITS>(self.cwr.q.val());
+        for i in 0..CUR_RING {
+            self.cx[i].clock.next = self.clock.val();
+            self.cd[i].clock.next = self.clock.val();
+            self.cx[i].d.next = self.cx[i].q.val();
+            self.cd[i].d.next = self.cd[i].q.val();
+            if self.crd2.q.val() & (self.cwslot.val() == self.cslot[i].val()) {
+                self.cx[i].d.next = self.rx.val();
+                self.cd[i].d.next = self.rdd.val();
+            }
         }
-        if self.crd2.q.val() & (self.cwi.q.val() == self.slot1.val()) {
-            self.cx1.d.next = self.rx.val();
-            self.cd1.d.next = self.rdd.val();
+        if self.crd2.q.val() {
+            self.cwr.d.next = self.cwr.q.val() + 1;
         }
-        if self.crd2.q.val() & (self.cwi.q.val() == self.slot2.val()) {
-            self.cx2.d.next = self.rx.val();
-            self.cd2.d.next = self.rdd.val();
+        // ---- The one-hot slots of `pn` and `dec + 1` (the ring's read is an
+        // AND-OR of its slots).
+        for i in 0..CUR_RING {
+            self.pn_oh[i].clock.next = self.clock.val();
+            self.dec1_oh[i].clock.next = self.clock.val();
+            self.pn_oh[i].d.next = self.pn_oh[i].q.val();
+            self.dec1_oh[i].d.next = self.dec1_oh[i].q.val();
+            self.cmask[i].next = 0.into();
+            if self.pn_oh[i].q.val() {
+                self.cmask[i].next = self.pos_ones.val();
+            }
         }
-        if self.crd2.q.val() & (self.cwi.q.val() == self.slot3.val()) {
-            self.cx3.d.next = self.rx.val();
-            self.cd3.d.next = self.rdd.val();
+        // ---- The decision on the compared match (the registered
+        // comparisons of the decision stage): kept if a window confirms it,
+        // dropped once both windows are complete (`both_ready`: each has its
+        // newest entry right of the match's window, or its row all read and
+        // arrived, or is stuck: crowded, which counts as complete, flagged).
+        self.keep.next = self.a_found.val() | self.b_found.val();
+        self.decide.next = self.dvalid.q.val() & (self.keep.val() | self.both_ready.q.val());
+        self.crowded_q.d.next = self.decide.val() & !self.keep.val() & (self.a_stuck.q.val() | self.b_stuck.q.val());
+        self.a_stuck_n.next = self.a_stuck.q.val() | self.a_crowd.val();
+        self.b_stuck_n.next = self.b_stuck.q.val() | self.b_crowd.val();
+        if self.decide.val() {
+            self.a_stuck_n.next = false;
+            self.b_stuck_n.next = false;
         }
-        // The row's end: the marker, the next row.
+        self.a_stuck.d.next = self.a_stuck_n.val();
+        self.b_stuck.d.next = self.b_stuck_n.val();
+        self.both_ready.d.next = (self.a_beyond_c.val() | self.a_loaded_c.val() | self.a_stuck_n.val()) & (self.b_beyond_c.val() | self.b_loaded_c.val() | self.b_stuck_n.val());
+        self.finish.next = self.busy.q.val() & (self.dec.q.val() == self.n_cur.q.val());
+        if self.decide.val() {
+            self.dec.d.next = self.dec.q.val() + 1;
+            self.dec1.d.next = self.dec1.q.val() + 1;
+            for i in 1..CUR_RING {
+                self.dec1_oh[i].d.next = self.dec1_oh[i - 1].q.val();
+            }
+            self.dec1_oh[0].d.next = self.dec1_oh[7].q.val();
+        }
+        if self.dvalid.q.val() & self.keep.val() {
+            self.kept.d.next = self.kept.q.val() + 1;
+        }
+        // ---- The match presented next: the compared one again if it was
+        // not decided (a miss), else the next one of the ring if it has
+        // arrived. The decision stage takes the presented match; its
+        // comparisons count when it is the row's next undecided one.
+        self.nx.next = (self.cx[0].q.val() & self.cmask[0].val()) | (self.cx[1].q.val() & self.cmask[1].val()) | (self.cx[2].q.val() & self.cmask[2].val()) | (self.cx[3].q.val() & self.cmask[3].val()) | (self.cx[4].q.val() & self.cmask[4].val()) | (self.cx[5].q.val() & self.cmask[5].val()) | (self.cx[6].q.val() & self.cmask[6].val()) | (self.cx[7].q.val() & self.cmask[7].val());
+        self.nd.next = (self.cd[0].q.val() & self.cmask[0].val()) | (self.cd[1].q.val() & self.cmask[1].val()) | (self.cd[2].q.val() & self.cmask[2].val()) | (self.cd[3].q.val() & self.cmask[3].val()) | (self.cd[4].q.val() & self.cmask[4].val()) | (self.cd[5].q.val() & self.cmask[5].val()) | (self.cd[6].q.val() & self.cmask[6].val()) | (self.cd[7].q.val() & self.cmask[7].val());
+        self.n_here.next = self.pn.q.val() != self.cwr.q.val();
+        self.miss.next = self.dvalid.q.val() & !self.decide.val();
+        if self.miss.val() {
+            self.px.d.next = bit_cast::<WIDE, POS_BITS>(self.qx.q.val());
+            self.pd.d.next = bit_cast::<WIDE, POS_BITS>(self.qd.q.val());
+            self.pidx.d.next = self.dec.q.val();
+            self.pn.d.next = self.dec1.q.val();
+            for i in 0..CUR_RING {
+                self.pn_oh[i].d.next = self.dec1_oh[i].q.val();
+            }
+            self.pvalid.d.next = true;
+        } else {
+            self.px.d.next = bit_cast::<WIDE, POS_BITS>(self.nx.val());
+            self.pd.d.next = bit_cast::<WIDE, POS_BITS>(self.nd.val());
+            self.pidx.d.next = self.pn.q.val();
+            self.pvalid.d.next = self.busy.q.val() & self.n_here.val();
+            if self.n_here.val() {
+                self.pn.d.next = self.pn.q.val() + 1;
+                for i in 1..CUR_RING {
+                    self.pn_oh[i].d.next = self.pn_oh[i - 1].q.val();
+                }
+                self.pn_oh[0].d.next = self.pn_oh[7].q.val();
+            }
+        }
+        self.qx.d.next = bit_cast::<POS_BITS, WIDE>(self.px.q.val());
+        self.qd.d.next = bit_cast::<POS_BITS, WIDE>(self.pd.q.val());
+        self.dvalid.d.next = self.pvalid.q.val() & (self.pidx.q.val() == self.dec.q.val());
+        if self.decide.val() {
+            self.dvalid.d.next = self.pvalid.q.val() & (self.pidx.q.val() == self.dec1.q.val());
+        }
+        // ---- The row's end: the marker, the next row.
         if self.finish.val() {
             self.busy.d.next = false;
             self.el.d.next = self.el.q.val() + 1;
@@ -1438,22 +1143,65 @@ impl Logic for RowCheck {
             self.sof_cur.d.next = self.sof_el.val();
             self.eof_cur.d.next = self.eof_el.val();
             self.dec.d.next = 0.into();
+            self.dec1.d.next = 1.into();
             self.kept.d.next = 0.into();
             self.crd.d.next = 0.into();
             self.crd1.d.next = false;
             self.crd2.d.next = false;
-            self.cfill.d.next = 0.into();
-            self.cwi.d.next = 0.into();
-            self.cri.d.next = 0.into();
+            self.cwr.d.next = 0.into();
+            self.pvalid.d.next = false;
+            self.pn.d.next = 0.into();
+            for i in 0..CUR_RING {
+                self.pn_oh[i].d.next = false;
+                self.dec1_oh[i].d.next = false;
+            }
+            self.pn_oh[0].d.next = true;
+            self.dec1_oh[1].d.next = true;
+            self.dvalid.d.next = false;
+            self.a_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.a_bank.val()) << self.index_bits.val();
+            self.a_left.d.next = self.a_count.val();
+            self.a_rd.d.next = 0.into();
+            self.a_rend.d.next = !self.a_count.val().any();
+            self.a_rd1.d.next = false;
+            self.a_rd2.d.next = false;
+            self.a_wi.d.next = 0.into();
+            self.a_stuck.d.next = false;
+            self.a_lxm.d.next = 0.into();
+            for i in 0..ROW_WINDOW {
+                self.a_held[i].d.next = false;
+            }
+            self.b_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.b_bank.val()) << self.index_bits.val();
+            self.b_left.d.next = self.b_count.val();
+            self.b_rd.d.next = 0.into();
+            self.b_rend.d.next = !self.b_count.val().any();
+            self.b_rd1.d.next = false;
+            self.b_rd2.d.next = false;
+            self.b_wi.d.next = 0.into();
+            self.b_stuck.d.next = false;
+            self.b_lxm.d.next = 0.into();
+            for i in 0..ROW_WINDOW {
+                self.b_held[i].d.next = false;
+            }
         }
+        // No bank free for a row starting on the next clock (all banks in
+        // use: the rows stored and not yet checked, and the row before the
+        // checked one while it is still needed), from the next values of
+        // `wl`, `el`, `prev_needed`.
+        self.used_n.next = self.wl.d.val() - self.el.d.val();
+        if self.prev_needed.d.val() {
+            self.used_n.next = self.wl.d.val() - self.el.d.val() + 1;
+        }
+        self.nofree.d.next = self.used_n.val() >= self.banks.val();
         // Outputs (zero while not valid).
-        self.o_valid.d.next = (self.decide.val() & self.keep.val()) | self.finish.val();
+        // (A compared match that is kept is decided: `decide & keep` is
+        // `dvalid & keep`.)
+        self.o_valid.d.next = (self.dvalid.q.val() & self.keep.val()) | self.finish.val();
         self.o_last.d.next = self.finish.val();
         self.o_x.d.next = 0.into();
         self.o_d.d.next = 0.into();
-        if self.decide.val() & self.keep.val() {
-            self.o_x.d.next = self.head_x.val();
-            self.o_d.d.next = self.head_d.val();
+        if self.dvalid.q.val() & self.keep.val() {
+            self.o_x.d.next = self.qx.q.val();
+            self.o_d.d.next = self.qd.q.val();
         }
         self.o_sof.d.next = self.finish.val() & self.sof_cur.q.val();
         self.o_eof.d.next = self.finish.val() & self.eof_cur.q.val();

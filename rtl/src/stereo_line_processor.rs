@@ -43,8 +43,10 @@
 //!   (a line's last pixel).
 //!   A line has the width of the reference line (at most [`W_MAX`]).
 //! - Status, counters that wrap: `records_dropped` (detector beats that
-//!   found a record queue full), `lines_dropped` (lines the interpolator
-//!   or the row check had no room for: their pixels are not sent),
+//!   found a record queue full), `lines_dropped` (lines the row check
+//!   had no room for, its rows coming faster than it checks them, or the
+//!   interpolator, which the limit on lines in flight below rules out:
+//!   their pixels are not sent),
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
 //!   frame's last rows: the vertical blanking must last two lines),
 //!   `lines_full` (lines with
@@ -60,12 +62,55 @@
 //! out: the detector's [`crate::declivity_detector::marker_latency`], the
 //! queue's [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line
 //! (`line_cycles`), one line period in the row check (it waits for the
-//! next line's matches), the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
+//! next line's matches), [`CHECK_REGISTER_LAG`] between the row check and
+//! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
 //! line periods in the median (it waits for the row two below) and the
 //! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
-//! depth`: `latency_cycles`). After the frame's last line the row check
+//! depth`: `latency_cycles`, the frame's first line). A later line's
+//! latency is more by the largest backlog of the matcher so far in the
+//! frame (see "Lines in flight"). After the frame's last line the row check
 //! and the median flush their last rows by themselves; the next frame may
 //! start once they have (two lines of vertical blanking).
+//!
+//! ## Lines in flight
+//! The interpolator sends one line per `W` clocks, the cameras' rate, so
+//! once its output has fallen behind it never catches up within a frame:
+//! after the matcher has been late by `D` clocks (a stretch of lines slower
+//! to match than their line time, the backlog waiting in the record
+//! queues), the interpolator's output stays `D` later for the rest of the
+//! frame, and when the matcher has caught up its queue holds the lines of
+//! those `D` clocks besides its usual one or two. On venus (434 px) the
+//! matcher's marker left 5.75 line times after its line's last pixel at row
+//! 245 against 2.2–2.9 usually (the record queues then held 3 lines, 184
+//! beats), the interpolator's output stayed 7.9 line times behind from row
+//! 248 on, and at row 305 its queue had to hold five lines: with four it
+//! dropped one. A queue sized for every backlog the record queues allow is
+//! large: they hold 1024 beats per side, the matching of up to eight full
+//! lines (`line_cycles` 921 clocks per 129 beats, 18 for an empty line),
+//! and with the two pairs inside the matcher a backlog of about 9 k clocks,
+//! 21 lines of 434 px and more of narrower ones: a queue of 32 lines and
+//! their 4 k segments (24 `DP16KD` instead of 6).
+//!
+//! Instead the top keeps at most [`LINES_IN_FLIGHT`] = [`LINE_QUEUE`] (8)
+//! lines between the matcher's input and the interpolator's output: a line
+//! counts from its reference marker taken by the matcher to its last pixel
+//! out of the interpolator (or its drop), and while that many are in flight
+//! the reference record queue is held (its `r_valid` to the matcher low; the
+//! limit is reached only on a marker, so whole lines are held). The rest of
+//! a backlog waits in the record queues, where it came from (their
+//! overflow is `records_dropped`). The interpolator then never drops a
+//! line: when one starts, the other lines in its queue are in flight, at
+//! most `LINE_QUEUE - 1`, and their segments, at most `N_MAX - 1` each
+//! (889), leave its reserve free (`SEG_RESERVE` = 130 of 1024). Nothing
+//! waits on itself: the row check holds back only the last row it got (for
+//! the next marker), the matcher and the interpolator finish their lines
+//! by themselves, so with two or more lines allowed one always leaves. The
+//! limit costs no throughput while fewer than eight lines are in flight:
+//! on the eight pairs at most 7 (venus), it never held. `tests/rtl_stereo.rs`
+//! drives it with a synthetic pair (ten rows twice as slow to match as
+//! their line, then light ones): it holds 5970 clocks, the record queues
+//! peak at 515 beats, and no line is lost (without it the interpolator
+//! dropped nine).
 //!
 //! The width given to the interpolator is the last reference line's
 //! (every line of a frame has one width): it is counted as the line comes
@@ -75,7 +120,7 @@ use crate::block_ram::DP16KD_WIDTH;
 use crate::declivity_detector::DeclivityDetector;
 use crate::declivity_matcher::{DeclivityMatcher, GainRule};
 use crate::depth_stage::{DepthCamera, DepthError, DepthStage};
-use crate::interpolator::Interpolator;
+use crate::interpolator::{Interpolator, LINE_QUEUE, SEG_RESERVE};
 use crate::params::*;
 use crate::record_fifo::RecordFifo;
 use crate::row_check::RowCheck;
@@ -88,6 +133,24 @@ pub const STATUS_BITS: usize = 16;
 pub const HEIGHT_BITS: usize = W_MAX_BITS + 1;
 /// Bits of an output beat: the depth above the disparity, 16 bits each.
 pub const OUT_BITS: usize = 2 * DEPTH_BITS;
+/// Lines allowed between the matcher's input and the interpolator's output
+/// (see "Lines in flight" above): the interpolator's line queue.
+pub const LINES_IN_FLIGHT: usize = LINE_QUEUE;
+/// Clocks of the register between the row check's output and the
+/// interpolator's input (the two blocks are placed apart on the die: their
+/// route and the interpolator's first stage did not fit one clock).
+pub const CHECK_REGISTER_LAG: usize = 1;
+/// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
+const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
+// The interpolator admits every line the limit lets through: at a line's
+// admission the other lines in flight, at most `LINES_IN_FLIGHT - 1`, hold
+// at most `N_MAX - 1` segments each, and a line is admitted with
+// `SEG_RESERVE` places free; no deadlock: the row check holds back at most
+// one row (for its successor's marker), so at least one line in flight
+// always moves.
+const _: () = assert!(LINES_IN_FLIGHT <= LINE_QUEUE && LINES_IN_FLIGHT >= 2);
+const _: () = assert!((LINES_IN_FLIGHT - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << SEG_ADDR_BITS);
+const _: () = assert!(LINES_IN_FLIGHT < 1 << FLIGHT_BITS);
 const _: () = assert!(POS_BITS <= DEPTH_BITS);
 
 /// Where a detector beat's fields sit in the record queue's lanes.
@@ -141,6 +204,24 @@ pub struct StereoLineProcessor<const N: usize> {
     p_row: DFF<Bits<HEIGHT_BITS>>,
     m_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
     p_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
+    // The row check's output registered on its way to the interpolator
+    // (CHECK_REGISTER_LAG).
+    k_valid: DFF<Bit>,
+    k_last: DFF<Bit>,
+    k_x: DFF<Bits<POS_BITS>>,
+    k_d: DFF<Bits<POS_BITS>>,
+    k_sof: DFF<Bit>,
+    // The queues' lanes 0-2, built here and then given to each queue in
+    // one assignment: a port assigned twice in one evaluation changes twice,
+    // and under Icarus the queue's logic and this block then wake each
+    // other without end (an event loop, though the logic has no
+    // combinational loop: Verilator and Yosys see none).
+    l_lane0: Signal<Local, Bits<DP16KD_WIDTH>>,
+    l_lane1: Signal<Local, Bits<DP16KD_WIDTH>>,
+    l_lane2: Signal<Local, Bits<DP16KD_WIDTH>>,
+    r_lane0: Signal<Local, Bits<DP16KD_WIDTH>>,
+    r_lane1: Signal<Local, Bits<DP16KD_WIDTH>>,
+    r_lane2: Signal<Local, Bits<DP16KD_WIDTH>>,
     // The reference line's width: pixels counted up to W_MAX, kept at its
     // last pixel.
     l_count: DFF<Bits<WIDTH_BITS>>,
@@ -150,6 +231,13 @@ pub struct StereoLineProcessor<const N: usize> {
     n_pixels_dropped: DFF<Bits<STATUS_BITS>>,
     n_lines_full: DFF<Bits<STATUS_BITS>>,
     n_lines_wide: DFF<Bits<STATUS_BITS>>,
+    // Lines in flight: reference markers the matcher took, less the lines
+    // the interpolator sent (or the row check or the interpolator dropped);
+    // the reference queue held (public for the drivers' diagnostics).
+    pub in_flight: DFF<Bits<FLIGHT_BITS>>,
+    flight_now: Signal<Local, Bits<FLIGHT_BITS>>,
+    pub hold: Signal<Local, Bit>,
+    flight_max: Constant<Bits<FLIGHT_BITS>>,
     w_max: Constant<Bits<WIDTH_BITS>>,
     sh_level: Constant<Bits<8>>,
     sh_depth: Constant<Bits<8>>,
@@ -199,6 +287,12 @@ impl<const N: usize> StereoLineProcessor<N> {
             m_row: Default::default(),
             p_row: Default::default(),
             m_row_now: Default::default(),
+            l_lane0: Default::default(),
+            l_lane1: Default::default(),
+            l_lane2: Default::default(),
+            r_lane0: Default::default(),
+            r_lane1: Default::default(),
+            r_lane2: Default::default(),
             p_row_now: Default::default(),
             l_count: Default::default(),
             width: DFFWithInit::new((W_MAX as u64).into()),
@@ -207,6 +301,15 @@ impl<const N: usize> StereoLineProcessor<N> {
             n_pixels_dropped: Default::default(),
             n_lines_full: Default::default(),
             n_lines_wide: Default::default(),
+            in_flight: Default::default(),
+            k_valid: Default::default(),
+            k_last: Default::default(),
+            k_x: Default::default(),
+            k_d: Default::default(),
+            k_sof: Default::default(),
+            flight_now: Default::default(),
+            hold: Default::default(),
+            flight_max: Constant::new((LINES_IN_FLIGHT as u64).into()),
             w_max: Constant::new((W_MAX as u64).into()),
             sh_level: Constant::new((PIXEL_BITS as u64).into()),
             sh_depth: Constant::new((DEPTH_BITS as u64).into()),
@@ -227,7 +330,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide);
+        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof);
         self.left.clock.next = self.clock.val();
         self.right.clock.next = self.clock.val();
         self.l_queue.clock.next = self.clock.val();
@@ -267,59 +370,64 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         // constants above).
         self.l_queue.w_valid.next = self.left.m_valid.val();
         self.l_queue.w_marker.next = self.left.m_last.val();
-        self.l_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
-        self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val());
-        if self.left.m_last.val() {
-            self.l_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val()) | self.marker_mask.val();
-            if self.left.m_sof.val() {
-                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.sof_mask.val();
-            }
-            if self.left.m_wide.val() {
-                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.wide_mask.val();
-            }
-            if self.left.m_full.val() {
-                self.l_queue.w_lane0.next = self.l_queue.w_lane0.val() | self.full_mask.val();
-            }
-        }
-        self.l_queue.w_lane2.next =
+        self.l_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
+        self.l_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val());
+        self.l_lane2.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left0.val());
         if self.left.m_last.val() {
-            self.l_queue.w_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.left.m_dt.val());
+            self.l_lane1.next = self.l_lane1.val() | self.marker_mask.val();
+            self.l_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.left.m_dt.val());
+            if self.left.m_sof.val() {
+                self.l_lane0.next = self.l_lane0.val() | self.sof_mask.val();
+            }
+            if self.left.m_wide.val() {
+                self.l_lane0.next = self.l_lane0.val() | self.wide_mask.val();
+            }
+            if self.left.m_full.val() {
+                self.l_lane0.next = self.l_lane0.val() | self.full_mask.val();
+            }
         }
+        self.l_queue.w_lane0.next = self.l_lane0.val();
+        self.l_queue.w_lane1.next = self.l_lane1.val();
+        self.l_queue.w_lane2.next = self.l_lane2.val();
         self.l_queue.w_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left2.val());
         self.l_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right1.val());
         self.r_queue.w_valid.next = self.right.m_valid.val();
         self.r_queue.w_marker.next = self.right.m_last.val();
-        self.r_queue.w_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val());
-        self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val());
-        if self.right.m_last.val() {
-            self.r_queue.w_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val()) | self.marker_mask.val();
-            if self.right.m_sof.val() {
-                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.sof_mask.val();
-            }
-            if self.right.m_wide.val() {
-                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.wide_mask.val();
-            }
-            if self.right.m_full.val() {
-                self.r_queue.w_lane0.next = self.r_queue.w_lane0.val() | self.full_mask.val();
-            }
-        }
-        self.r_queue.w_lane2.next =
+        self.r_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.right.m_pos.val());
+        self.r_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.right.m_amp.val());
+        self.r_lane2.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left0.val());
         if self.right.m_last.val() {
-            self.r_queue.w_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.right.m_dt.val());
+            self.r_lane1.next = self.r_lane1.val() | self.marker_mask.val();
+            self.r_lane2.next = bit_cast::<DP16KD_WIDTH, DT_BITS>(self.right.m_dt.val());
+            if self.right.m_sof.val() {
+                self.r_lane0.next = self.r_lane0.val() | self.sof_mask.val();
+            }
+            if self.right.m_wide.val() {
+                self.r_lane0.next = self.r_lane0.val() | self.wide_mask.val();
+            }
+            if self.right.m_full.val() {
+                self.r_lane0.next = self.r_lane0.val() | self.full_mask.val();
+            }
         }
+        self.r_queue.w_lane0.next = self.r_lane0.val();
+        self.r_queue.w_lane1.next = self.r_lane1.val();
+        self.r_queue.w_lane2.next = self.r_lane2.val();
         self.r_queue.w_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left2.val());
         self.r_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right1.val());
 
-        // ---- The queues into the matcher.
+        // ---- The queues into the matcher, the reference side held while
+        // `LINES_IN_FLIGHT` lines are in flight (it can then rise only on the
+        // clock after a reference marker is taken, so lines are held whole).
+        self.hold.next = self.in_flight.q.val() >= self.flight_max.val();
         self.matcher.dispmax.next = self.dispmax.val();
-        self.matcher.r_valid.next = self.l_queue.r_valid.val();
-        self.l_queue.r_ready.next = self.matcher.r_ready.val();
+        self.matcher.r_valid.next = self.l_queue.r_valid.val() & !self.hold.val();
+        self.l_queue.r_ready.next = self.matcher.r_ready.val() & !self.hold.val();
         self.matcher.r_last.next = (self.l_queue.r_lane1.val() & self.marker_mask.val()).any();
         self.matcher.r_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.l_queue.r_lane0.val());
         self.matcher.r_sof.next = (self.l_queue.r_lane0.val() & self.sof_mask.val()).any();
@@ -363,11 +471,16 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.row_check.m_disp.next = self.matcher.m_disp.val();
         self.row_check.m_sof.next = self.matcher.m_sof.val();
         self.row_check.m_eof.next = self.m_row_now.val() == self.height.val() - 1;
-        self.interpolator.a_valid.next = self.row_check.c_valid.val();
-        self.interpolator.a_last.next = self.row_check.c_last.val();
-        self.interpolator.a_x.next = self.row_check.c_x_ref.val();
-        self.interpolator.a_d.next = self.row_check.c_disp.val();
-        self.interpolator.a_sof.next = self.row_check.c_sof.val();
+        self.k_valid.d.next = self.row_check.c_valid.val();
+        self.k_last.d.next = self.row_check.c_last.val();
+        self.k_x.d.next = self.row_check.c_x_ref.val();
+        self.k_d.d.next = self.row_check.c_disp.val();
+        self.k_sof.d.next = self.row_check.c_sof.val();
+        self.interpolator.a_valid.next = self.k_valid.q.val();
+        self.interpolator.a_last.next = self.k_last.q.val();
+        self.interpolator.a_x.next = self.k_x.q.val();
+        self.interpolator.a_d.next = self.k_d.q.val();
+        self.interpolator.a_sof.next = self.k_sof.q.val();
         self.interpolator.a_width.next = self.width.q.val();
 
         // ---- Pixels through the median (the frame's last row marked from
@@ -397,6 +510,24 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.m_tdata.next = (bit_cast::<OUT_BITS, DEPTH_BITS>(self.depth.z_mm.val()) << self.sh_depth.val()) | bit_cast::<OUT_BITS, POS_BITS>(self.depth.z_d.val());
         self.m_tuser.next = self.depth.z_sof.val();
         self.m_tlast.next = self.depth.z_last.val();
+
+        // ---- Lines in flight: one more on a reference marker taken, one
+        // less on a line's last pixel out of the interpolator and on a line
+        // dropped (all three registered outputs or inputs: no loop).
+        self.flight_now.next = self.in_flight.q.val();
+        if self.l_queue.r_valid.val() & self.matcher.r_ready.val() & !self.hold.val() & self.matcher.r_last.val() {
+            self.flight_now.next = self.flight_now.val() + 1;
+        }
+        if self.interpolator.p_valid.val() & self.interpolator.p_last.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        if self.interpolator.overflow.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        if self.row_check.overflow.val() {
+            self.flight_now.next = self.flight_now.val() - 1;
+        }
+        self.in_flight.d.next = self.flight_now.val();
 
         // ---- Status.
         if self.l_queue.dropped.val() | self.r_queue.dropped.val() {

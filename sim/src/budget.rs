@@ -35,7 +35,8 @@
 //! - row check: `P` (it waits for row `y + 1`'s marker) `+ ROW_START_LAG +
 //!   c + 1` to the row's marker out, `c ≤ row_check_cycles(n_above, n,
 //!   n_below)` the engine's clocks for the row;
-//! - interpolator: `SEGMENT_LAG + PIXEL_LAG` to the row's first pixel (the
+//! - interpolator: `CHECK_REGISTER_LAG` (the register from the row check)
+//!   `+ SEGMENT_LAG + PIXEL_LAG` to the row's first pixel (the
 //!   pixels start from the row's marker, not its first match, so
 //!   `ROW_FIRST_LAG` is in no path);
 //! - vertical median: `2·P` (it waits for row `y + 2`) `+ MEDIAN_LAG`;
@@ -54,20 +55,20 @@
 //! ## The frame's end: flush and vertical blanking
 //! The frame's last row `H − 1` is checked right after row `H − 2` (the
 //! row check does not wait for a row below it) and reaches the interpolator
-//! `max(c_last + 1, W')` clocks after row `H − 2` (`c_last` its check's
-//! clocks; the interpolator is still busy with row `H − 2` for `W'`). The
+//! `max(c_last + ROW_RESTART_LAG, W')` clocks after row `H − 2` (`c_last`
+//! its check's clocks, started `ROW_RESTART_LAG` after row `H − 2`'s finish; the interpolator is still busy with row `H − 2` for `W'`). The
 //! median then sends output row `H − 3` in the last row's slot and flushes
 //! rows `H − 2` and `H − 1`, one pixel per clock, back to back. So the
 //! frame's output rows `0 … H − 4` leave one per line period from the
 //! first disparity on, and the last disparity leaves `(H − 4)·P +
-//! max(c_last + 1, W') + 3·W' − 1` clocks after the first.
+//! max(c_last + ROW_RESTART_LAG, W') + 3·W' − 1` clocks after the first.
 //!
 //! The median takes the next frame's pixels only after its flush (the
 //! pixels that come during it are dropped, `pixels_dropped`). The next
 //! frame's row 0 reaches the interpolator once its row 1's marker has left
 //! the matcher, `(V + 2)·P` after this frame's row `H − 1`'s (`V` lines of
 //! vertical blanking), so with the same work per row it needs
-//! `(V + 2)·P + c_first − c ≥ max(c_last + 1, W') + 3·W'`: `c_first` the
+//! `(V + 2)·P + c_first − c ≥ max(c_last + ROW_RESTART_LAG, W') + 3·W'`: `c_first` the
 //! first row's check clocks (no row above), `c` a row's inside the frame
 //! (row `H − 2`'s). The least such `V` is the budget's vertical blanking,
 //! and a frame takes `(H + V)·P` clocks. A next frame whose first rows are
@@ -94,7 +95,7 @@
 //! its three counts, so the worst row inside the frame is
 //! `row_check_cycles(N, N, N)`, the first `row_check_cycles(0, N, N)`, the
 //! last `row_check_cycles(N, N, 0)` — bounds, loose on real rows (the row
-//! check's doc: real rows take about `n + 5`).
+//! check's doc: real rows take about `n + 7`).
 
 use rtl::adaptive_threshold::THRESHOLD_LATENCY;
 use rtl::block_ram::{DP16KD_ADDR_BITS, DP16KD_WIDTH};
@@ -109,7 +110,8 @@ use rtl::params::{
     ROW_ENTRY_BITS, SEG_ADDR_BITS, WIDTH_BITS, W_MAX,
 };
 use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
-use rtl::row_check::{row_check_cycles, row_check_period, ROW_START_LAG};
+use rtl::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
+use rtl::stereo_line_processor::CHECK_REGISTER_LAG;
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
 use rtl::vertical_median::MEDIAN_LAG;
 use serde::Serialize;
@@ -369,6 +371,43 @@ pub struct StageBudget {
     pub memories: Vec<Memory>,
 }
 
+impl StageBudget {
+    /// A stage of `instances` copies, busy `cycles_per_line` clocks a line
+    /// (`formula`), its latency the sum of `latency_terms` between the
+    /// events `latency_span` names; no DSP block, memory or array until
+    /// given (`spare_cycles` is the budget's to set).
+    fn new(name: &'static str, instances: usize, cycles_per_line: u64, formula: String, latency_terms: Vec<Term>, latency_span: &'static str) -> Self {
+        let (latency_cycles, latency_formula) = render(&latency_terms);
+        StageBudget {
+            name,
+            instances,
+            cycles_per_line,
+            formula,
+            latency_cycles,
+            latency_formula,
+            latency_terms,
+            latency_span,
+            spare_cycles: 0,
+            pe_count: None,
+            rows_per_pe: None,
+            dsp_blocks: Some(0),
+            memories: Vec::new(),
+        }
+    }
+
+    fn dsp_blocks(self, dsp_blocks: usize) -> Self {
+        StageBudget { dsp_blocks: Some(dsp_blocks), ..self }
+    }
+
+    fn array(self, pe_count: usize, rows_per_pe: usize) -> Self {
+        StageBudget { pe_count: Some(pe_count), rows_per_pe: Some(rows_per_pe), ..self }
+    }
+
+    fn memories(self, memories: Vec<Memory>) -> Self {
+        StageBudget { memories, ..self }
+    }
+}
+
 /// What the rows of a frame cost the two stages whose clocks depend on the
 /// data, the matcher and the row check: every row's line pair, and the row
 /// check's clocks (start → finish) of a row inside the frame, of its first
@@ -532,21 +571,9 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
         Term::new("(W − 1)", s.width - 1),
         Term::new("marker_latency(W')", marker_latency_estimate(s.width) as usize),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 2,
-        cycles_per_line: cycles,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "a row's first pixel accepted → its marker out",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(2 * 3),
-        memories: vec![
+    StageBudget::new(NAME, 2, cycles, formula, latency_terms, "a row's first pixel accepted → its marker out")
+        .dsp_blocks(2 * 3)
+        .memories(vec![
             Memory::new(
                 NAME,
                 LINE_BUFFER,
@@ -567,8 +594,7 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
                 None,
                 "AdaptiveThreshold::hist0, hist1, one pair per camera",
             ),
-        ],
-    }
+        ])
 }
 
 /// The record queues, one per camera (`rtl::record_fifo`): a line's
@@ -582,21 +608,8 @@ pub fn record_queue_stage(s: &Sizes) -> StageBudget {
         format!("max(n, m) + 1 (one beat a clock: a line's records and its marker) = {beats}")
     };
     let latency_terms = vec![Term::new("RECORD_FIFO_LAG", RECORD_FIFO_LAG)];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 2,
-        cycles_per_line: beats as u64,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "the row's marker out of the detectors → on the matcher's ports (the queue empty)",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(0),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 2, beats as u64, formula, latency_terms, "the row's marker out of the detectors → on the matcher's ports (the queue empty)")
+        .memories(vec![Memory::new(
             NAME,
             RECORD_QUEUE,
             2,
@@ -605,8 +618,7 @@ pub fn record_queue_stage(s: &Sizes) -> StageBudget {
             DP16KD_WIDTH,
             Some(2 * RECORD_FIFO_LANES * dp16kd_of(DP16KD_WIDTH, RECORD_FIFO_DEPTH)),
             "RecordFifo::mem0..mem4 (a record's fields and a marker's flags in five DP16KD lanes), one queue per camera",
-        )],
-    }
+        )])
 }
 
 /// The matcher: systolic array, traceback, record and choice memories.
@@ -627,23 +639,11 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
         Term::new("TAKE_AFTER_MARKER", TAKE_AFTER_MARKER as usize),
         Term::new(format!("line_cycles({args}, K)"), line_cycles(n, m, stop, k, s.cells)),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
     let record_bits = (POS_BITS + 1) + 6 * LEVEL_BITS;
     let record_rams = dp16kd_of(POS_BITS + 1, 1 << DIAG_BITS) + 6 * dp16kd_of(LEVEL_BITS, 1 << DIAG_BITS);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: cycles,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "the pair's second marker on the matcher's ports → the pair's marker out",
-        spare_cycles: 0,
-        pe_count: Some(s.cells),
-        rows_per_pe: Some(ROWS_PER_CELL),
-        dsp_blocks: Some(0),
-        memories: vec![
+    StageBudget::new(NAME, 1, cycles, formula, latency_terms, "the pair's second marker on the matcher's ports → the pair's marker out")
+        .array(s.cells, ROWS_PER_CELL)
+        .memories(vec![
             Memory::new(
                 NAME,
                 RECORD_MEMORY,
@@ -665,19 +665,21 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
                 "SystolicMatcher::lo_ram, hi_ram (low, high rows), one word of 2-bit choices per anti-diagonal",
             ),
             Memory::new(NAME, "traceback stack", 1, 1, 1 << INDEX_BITS, 2 * INDEX_BITS, None, "Traceback::stack_i, stack_j"),
-        ],
-    }
+        ])
 }
 
 /// The row check (`rtl::row_check`, the default mode's consistency check
 /// against the rows above and below): one line of delay.
+/// The row check stage's name.
+const ROW_CHECK_NAME: &str = "row check";
+
 pub fn row_check_stage(s: &Sizes) -> StageBudget {
-    const NAME: &str = "row check";
+    const NAME: &str = ROW_CHECK_NAME;
     let c = s.load.check;
     let check = s.check_text("row_check_cycles(N, N, N)", "c (the row's measured clocks)");
     let (cycles, formula) = render(&[
         Term::new(check.clone(), c),
-        Term::new("1 (the engine takes the next row the clock after it finished)", 1),
+        Term::new("ROW_RESTART_LAG (the engine takes the next row this long after it finished)", ROW_RESTART_LAG),
     ]);
     let formula = if s.worst {
         format!("{formula} (a bound; row_check_period() = {} for N = N_MAX)", row_check_period())
@@ -690,21 +692,8 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
         Term::new(check, c),
         Term::new("1 (the marker leaves the clock after the finish)", 1),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: cycles,
-        formula,
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "row y's marker out of the matcher → row y's marker out of the row check",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(0),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 1, cycles, formula, latency_terms, "row y's marker out of the matcher → row y's marker out of the row check")
+        .memories(vec![Memory::new(
             NAME,
             ROW_MEMORY,
             3,
@@ -713,38 +702,28 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
             ROW_ENTRY_BITS,
             Some(3 * dp16kd_of(ROW_ENTRY_BITS, 1 << ROW_ADDR_BITS)),
             "RowCheck::cur_mem, a_mem, b_mem (the checked row, the rows above and below: three read ports), four banks of N_MAX matches (X, d)",
-        )],
-    }
+        )])
 }
 
 /// The interpolator: one disparity per reference pixel per clock
 /// (`rtl::interpolator`).
 pub fn interpolator_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "interpolator";
-    let latency_terms = vec![Term::new("SEGMENT_LAG", SEGMENT_LAG), Term::new("PIXEL_LAG", PIXEL_LAG)];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
+    let latency_terms = vec![
+        Term::new("CHECK_REGISTER_LAG", CHECK_REGISTER_LAG),
+        Term::new("SEGMENT_LAG", SEGMENT_LAG),
+        Term::new("PIXEL_LAG", PIXEL_LAG),
+    ];
     // The segment memory's fields (`Interpolator::seg_*`), one BlockRam each.
     let shape_bits = SEGMENT_BITS - WIDTH_BITS - 3 * POS_BITS - RECIP_BITS;
     let seg_rams = [WIDTH_BITS, POS_BITS, POS_BITS, POS_BITS, shape_bits, RECIP_BITS].iter().map(|&b| dp16kd_of(b, 1 << SEG_ADDR_BITS)).sum();
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: s.stored_width as u64,
-        formula: "W' (one pixel per clock, lines back to back)".to_string(),
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "the row check's marker out → the row's first disparity out (its pixels start from the marker)",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(2),
-        memories: vec![
+    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock, lines back to back)".to_string(), latency_terms, "the row check's marker out → the row's first disparity out (its pixels start from the marker)")
+        .dsp_blocks(2)
+        .memories(vec![
             Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, Some(seg_rams), "Interpolator::seg_* (one block RAM per field)"),
             Memory::new(NAME, "reciprocal table", 1, 1, 1 << RECIP_INDEX_BITS, RECIP_BITS, None, "Interpolator::recip (ROM)"),
             Memory::new(NAME, "line queue", 1, 1, LINE_QUEUE, LINE_BITS, None, "Interpolator::q_* (LUT RAM)"),
-        ],
-    }
+        ])
 }
 
 /// The vertical median of five rows (`rtl::vertical_median`): two lines of
@@ -755,21 +734,8 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
         Term::new("2·P (the median of rows y − 2 … y + 2 waits for row y + 2, two line periods later)", 2 * s.line_period as usize),
         Term::new("MEDIAN_LAG", MEDIAN_LAG),
     ];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: s.stored_width as u64,
-        formula: "W' (one pixel per clock)".to_string(),
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "row y's first disparity into the median → output row y's first median out",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(0),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "row y's first disparity into the median → output row y's first median out")
+        .memories(vec![Memory::new(
             NAME,
             MEDIAN_LINE_BUFFER,
             1,
@@ -778,8 +744,7 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
             POS_BITS,
             Some(MEDIAN_LINE_BUFFERS * dp16kd_of(POS_BITS, W_MAX)),
             "VerticalMedian::line0..line3 (rows k − 4 … k − 1 of the MEDIAN_TAPS = 5 taps, one DP16KD each)",
-        )],
-    }
+        )])
 }
 
 /// The depth stage (`rtl::depth_stage`, eq. 1): one depth per disparity per
@@ -787,21 +752,9 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
 pub fn depth_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "depth stage";
     let latency_terms = vec![Term::new("DEPTH_LAG", DEPTH_LAG)];
-    let (latency_cycles, latency_formula) = render(&latency_terms);
-    StageBudget {
-        name: NAME,
-        instances: 1,
-        cycles_per_line: s.stored_width as u64,
-        formula: "W' (one pixel per clock)".to_string(),
-        latency_cycles,
-        latency_formula,
-        latency_terms,
-        latency_span: "a median out → its depth on the output",
-        spare_cycles: 0,
-        pe_count: None,
-        rows_per_pe: None,
-        dsp_blocks: Some(1),
-        memories: vec![Memory::new(
+    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "a median out → its depth on the output")
+        .dsp_blocks(1)
+        .memories(vec![Memory::new(
             NAME,
             DEPTH_TABLE,
             1,
@@ -810,8 +763,7 @@ pub fn depth_stage(s: &Sizes) -> StageBudget {
             DEPTH_WORD_BITS,
             None,
             "DepthStage::depth_rom (SyncROM: each entry K/m_i above its slope)",
-        )],
-    }
+        )])
 }
 
 /// Memories, DSP blocks and processing elements of the stages, summed.
@@ -920,7 +872,7 @@ pub struct Budget {
     /// `latency + (W' − 1)`.
     pub latency_last_pixel_cycles: u64,
     /// The frame's first disparity out → its last,
-    /// `(H − 4)·P + max(c_last + 1, W') + 3·W' − 1`.
+    /// `(H − 4)·P + max(c_last + ROW_RESTART_LAG, W') + 3·W' − 1`.
     pub output_span_cycles: u64,
     pub output_span_formula: String,
     /// The frame's first pixel accepted → its last disparity out,
@@ -1055,10 +1007,11 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     let (latency_cycles, latency_formula) = render(&latency_terms);
 
     // The frame's end (module doc, "The frame's end").
-    let last_check = if sizes.worst { "max(row_check_cycles(N, N, 0) + 1, W')" } else { "max(c_last + 1, W')" };
+    let last_check = if sizes.worst { "max(row_check_cycles(N, N, 0) + ROW_RESTART_LAG, W')" } else { "max(c_last + ROW_RESTART_LAG, W')" };
+    let last_check_cycles = (load.last_check + ROW_RESTART_LAG).max(wp);
     let (output_span_cycles, output_span_formula) = render(&[
         Term::new("(H − 4)·P (output rows 0 … H − 4, one a line period)", (h - MIN_HEIGHT) * p),
-        Term::new(format!("{last_check} (the last row, checked right after row H − 2, follows it into the interpolator)"), (load.last_check + 1).max(wp)),
+        Term::new(format!("{last_check} (the last row, checked right after row H − 2, follows it into the interpolator)"), last_check_cycles),
         Term::new("3·W' (output row H − 3 in the last row's slot, then the median's flush of rows H − 2 and H − 1, back to back)", 3 * wp),
         Term::minus("1", 1),
     ]);
@@ -1079,7 +1032,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     };
     let end = |first: Term| -> Vec<Term> {
         vec![
-            Term::new(last_check, (load.last_check + 1).max(wp)),
+            Term::new(last_check, last_check_cycles),
             Term::new("3·W' (the last row and the median's flush)", 3 * wp),
             Term::new(if sizes.worst { "row_check_cycles(N, N, N)" } else { "c" }, load.check),
             first,
@@ -1110,8 +1063,13 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     }
     if slowest.name != stages[0].name && line_period > input {
         let queue_lines = RECORD_FIFO_DEPTH / (r.n_max + 1);
+        let behind = if slowest.name == ROW_CHECK_NAME {
+            "the row check falls behind and drops a row (lines_dropped) that arrives before it has finished the row two before it (its clocks are a bound, loose on real rows: about n + 7)".to_string()
+        } else {
+            format!("the matcher falls behind and the record queues ({RECORD_FIFO_DEPTH} beats a camera, {queue_lines} lines of N records) absorb a run of such lines before records are dropped (records_dropped), and a row check behind drops rows (lines_dropped)")
+        };
         notes.push(format!(
-            "the {} is slower than W + hblank: the numbers assume the input paced to P = {line_period} (hblank ≥ {}); with a faster input the matcher falls behind and the record queues ({RECORD_FIFO_DEPTH} beats a camera, {queue_lines} lines of N records) absorb a run of such lines before records are dropped (records_dropped), and a row check behind drops rows (lines_dropped)",
+            "the {} is slower than W + hblank: the numbers assume the input paced to P = {line_period} (hblank ≥ {}); with a faster input {behind}",
             slowest.name,
             slowest.cycles_per_line.saturating_sub(r.width as u64)
         ));
@@ -1135,7 +1093,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     if sizes.worst {
         let (n, _, stop, k) = worst_matcher_line(r.n_max);
         notes.push(format!(
-            "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles grows with n, m and k and falls with the stop diagonal; the path of every diagonal pair reaches all bounds at once); its k = N matches checked against rows of N: row_check_cycles(N, N, N) = {} inside the frame, row_check_cycles(0, N, N) = {} for the first row, row_check_cycles(N, N, 0) = {} for the last — bounds, loose on real rows (about n + 5 clocks, rtl::row_check)",
+            "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles grows with n, m and k and falls with the stop diagonal; the path of every diagonal pair reaches all bounds at once); its k = N matches checked against rows of N: row_check_cycles(N, N, N) = {} inside the frame, row_check_cycles(0, N, N) = {} for the first row, row_check_cycles(N, N, 0) = {} for the last — bounds, loose on real rows (about n + 7 clocks, rtl::row_check)",
             load.check, load.first_check, load.last_check
         ));
     } else {
@@ -1437,7 +1395,7 @@ mod tests {
     fn the_worst_row_load_is_rtls_bounds() {
         let w = RowLoad::worst(N_MAX);
         assert_eq!((w.n, w.m, w.stop_diag, w.k), worst_matcher_line(N_MAX));
-        assert_eq!(w.check + 1, row_check_period());
+        assert_eq!(w.check + ROW_RESTART_LAG, row_check_period());
         let b = budget(&request(1024, N_MAX, N_CELLS)).unwrap();
         let rc = b.stages.iter().find(|s| s.name == "row check").unwrap();
         assert_eq!(rc.cycles_per_line, row_check_period() as u64);

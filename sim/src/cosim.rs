@@ -1249,8 +1249,10 @@ fn parse_tb_outputs(
 pub enum Simulator {
     /// Icarus Verilog: `iverilog -g2012` and `vvp`.
     Icarus,
-    /// Verilator: what `verilator --binary` does (`--cc --exe --main
-    /// --timing`, then `make`/`g++`), with the runtime objects cached.
+    /// Verilator: for a trace, what `verilator --binary` does (`--cc --exe
+    /// --main --timing`, then `make`/`g++`) with the Verilog testbench; for
+    /// a frame (`sim::stereo_cosim`), `--cc --exe` with a C++ driver of
+    /// ours; the runtime objects cached.
     Verilator,
 }
 
@@ -1481,7 +1483,7 @@ fn run_in(
             (compile, (out, t1.elapsed()))
         }
         Simulator::Verilator => {
-            verilator_build(opts, dir)?;
+            verilator_build(opts, dir, &TB_BUILD)?;
             let compile = t0.elapsed();
             let t1 = Instant::now();
             let out = run_tool(
@@ -1526,34 +1528,65 @@ fn run_in(
 
 /// The object files of Verilator's C++ runtime, the same for every design
 /// built with the same options; compiling them is most of a small design's
-/// build time, so they are kept between runs.
+/// build time, so they are kept between runs. `verilated_timing.o` only
+/// with `--timing`.
 const VERILATOR_RUNTIME: [&str; 3] = ["verilated.o", "verilated_threads.o", "verilated_timing.o"];
 
-/// `verilator --binary` split in two: Verilate (`--cc --exe --main
-/// --timing`, what `--binary` implies), then `make` with the runtime
-/// objects taken from the cache when present.
-pub(crate) fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), CosimError> {
+/// What [`verilator_build`] builds in `<dir>/obj`.
+pub(crate) struct VerilatorBuild<'a> {
+    /// The module Verilated (`--top-module`); its class and makefile are
+    /// `V<top>`.
+    pub top: &'a str,
+    /// Verilator's arguments besides the common ones (`--cc --exe`,
+    /// warnings, top module, `-Mdir obj`, `-o`): `--main --timing` for a
+    /// Verilog testbench, none for a C++ `main` of ours.
+    pub args: &'a [&'a str],
+    /// Whether `args` hold `--timing` (the runtime then has a timing object).
+    pub timing: bool,
+    /// The input files in the work directory: Verilog and C++ sources.
+    pub files: &'a [&'a str],
+    /// The binary's name in `obj`.
+    pub binary: &'a str,
+}
+
+/// The Verilog testbench build of [`run`]: `verilator --binary` (`--cc
+/// --exe --main --timing`) of module `tb` in `tb.v`, `top.v` and the
+/// primitives' models.
+const TB_BUILD: VerilatorBuild<'static> = VerilatorBuild {
+    top: "tb",
+    args: &["--main", "--timing"],
+    timing: true,
+    files: &["tb.v", "top.v", MODELS_FILE],
+    binary: "Vtb",
+};
+
+/// `verilator --build` split in two: Verilate (`--cc --exe` and
+/// `build.args`), then `make` with the runtime objects taken from the cache
+/// when present.
+pub(crate) fn verilator_build(opts: &Options, dir: &WorkDir, build: &VerilatorBuild) -> Result<(), CosimError> {
     let opt = &opts.verilator_cxx_opt;
+    let runtime: &[&str] = if build.timing { &VERILATOR_RUNTIME } else { &VERILATOR_RUNTIME[..2] };
     run_tool(
         &opts.verilator,
         Command::new(&opts.verilator)
-            .args(["--cc", "--exe", "--main", "--timing"])
+            .args(["--cc", "--exe"])
+            .args(build.args)
             .args(["-Wno-fatal", "-Wno-lint", "-Wno-style"])
-            .args(["--top-module", "tb", "-Mdir", "obj", "-o", "Vtb"])
-            .args(["tb.v", "top.v", MODELS_FILE]),
+            .args(["--top-module", build.top, "-Mdir", "obj", "-o", build.binary])
+            .args(build.files),
         dir,
     )?;
     let obj = dir.path.join("obj");
     let cache = if opts.verilator_runtime_cache {
-        verilator_cache_dir(opts)
+        verilator_cache_dir(opts, build.timing)
     } else {
         None
     };
     let cached = cache
         .as_ref()
-        .is_some_and(|c| VERILATOR_RUNTIME.iter().all(|f| c.join(f).is_file()));
+        .is_some_and(|c| runtime.iter().all(|f| c.join(f).is_file()));
     if let (true, Some(c)) = (cached, &cache) {
-        for f in VERILATOR_RUNTIME {
+        for f in runtime {
             // A fresh copy is newer than the runtime sources: make keeps it.
             std::fs::copy(c.join(f), obj.join(f)).map_err(io_err(&c.join(f)))?;
         }
@@ -1561,7 +1594,7 @@ pub(crate) fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), Cosim
     run_tool(
         "make",
         Command::new("make")
-            .args(["-s", "-C", "obj", "-f", "Vtb.mk"])
+            .args(["-s", "-C", "obj", "-f", &format!("V{}.mk", build.top)])
             .args(["-j", &opts.build_jobs.max(1).to_string()])
             .arg(format!("OPT_FAST={opt}"))
             .arg(format!("OPT_SLOW={opt}"))
@@ -1571,7 +1604,7 @@ pub(crate) fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), Cosim
     if let (false, Some(c)) = (cached, &cache) {
         // Best effort: a failure only costs the next run the full build.
         if std::fs::create_dir_all(c).is_ok() {
-            for f in VERILATOR_RUNTIME {
+            for f in runtime {
                 let tmp = c.join(format!("{f}.{}.tmp", std::process::id()));
                 if std::fs::copy(obj.join(f), &tmp).is_ok() {
                     let _ = std::fs::rename(&tmp, c.join(f));
@@ -1584,8 +1617,9 @@ pub(crate) fn verilator_build(opts: &Options, dir: &WorkDir) -> Result<(), Cosim
 }
 
 /// The cache directory of Verilator's runtime objects for this Verilator
-/// (its `--version` and command), C++ compiler (`CXX`) and `-O` flag.
-pub(crate) fn verilator_cache_dir(opts: &Options) -> Option<PathBuf> {
+/// (its `--version` and command), C++ compiler (`CXX`), `-O` flag (the
+/// runtime is compiled with `OPT_GLOBAL`) and `--timing` or not.
+pub(crate) fn verilator_cache_dir(opts: &Options, timing: bool) -> Option<PathBuf> {
     use std::hash::{Hash, Hasher};
     let version = Command::new(&opts.verilator)
         .arg("--version")
@@ -1596,8 +1630,9 @@ pub(crate) fn verilator_cache_dir(opts: &Options) -> Option<PathBuf> {
     opts.verilator.hash(&mut h);
     opts.verilator_cxx_opt.hash(&mut h);
     std::env::var("CXX").ok().hash(&mut h);
+    let tag = if timing { "" } else { "-notiming" };
     let root = opts.work_root.clone().unwrap_or_else(std::env::temp_dir);
-    Some(root.join(format!("cosim-verilator-runtime-{:016x}", h.finish())))
+    Some(root.join(format!("cosim-verilator-runtime{tag}-{:016x}", h.finish())))
 }
 
 /// Runs the design under Icarus Verilog on the trace's inputs and returns

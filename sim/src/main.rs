@@ -191,11 +191,12 @@ the vertical median of five rows, the depth stage for the default camera), the t
 streaming one pixel per clock from the same clock with --hblank idle clocks after each line, and \
 compare the disparity map with golden's default mode in hardware parity. --engine rust-hdl (the \
 default) runs the rust-hdl model itself, about 1-2 thousand clocks per second: a 384x288 pair takes \
-one to two minutes. --engine verilator runs the processor's generated Verilog under Verilator with \
-the same camera model in a Verilog testbench (the cosim_stereo tests check that it gives the \
+one to two minutes. --engine verilator runs the processor's generated Verilog under Verilator, \
+driven clock by clock by a C++ main with the same camera model (the cosim_stereo tests check that it gives the \
 model's run clock for clock): about 100 thousand clocks per second or more, a pair in a second or \
 two, after a build of one to two minutes that is kept (in the temporary directory, keyed by the \
-design) for later runs; --engine icarus does the same under Icarus Verilog, slowly. --rows runs a \
+design) for later runs; --engine icarus does the same under Icarus Verilog (the camera model in a \
+Verilog testbench), slowly. --rows runs a \
 band (as a frame of its own).
 
 Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels (left \
@@ -243,6 +244,14 @@ struct RtlDepthArgs {
     /// What simulates the line processor clock by clock.
     #[arg(long, value_enum, default_value_t = sim::stereo::Engine::RustHdl)]
     engine: sim::stereo::Engine,
+    /// Write a VCD waveform of every signal of the line processor (a clock of 10 ns) while the
+    /// rows given by --lines go through it: from the first pixel of the first row in to the last
+    /// disparity of the last row out (rust-hdl engine, which then runs about ten times slower; with the 64-cell matcher a line of 384 px makes about a hundred megabytes).
+    #[arg(long, requires = "lines")]
+    vcd: Option<PathBuf>,
+    /// Rows of the frame (of the band, with --rows) to trace in the VCD, as A..B (rows A to B-1).
+    #[arg(long, value_parser = parse_range, requires = "vcd")]
+    lines: Option<std::ops::Range<usize>>,
 }
 
 #[derive(Args, Debug)]
@@ -904,7 +913,13 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
     let (l, r) = (band(l)?, band(r)?);
     let bar = lines_bar(l.height(), "rtl line processor".into(), a.pair.json);
     let name = a.pair.left.display().to_string();
-    let (report, rtl, gold, depth) = sim::stereo::run_pair(&name, &l, &r, a.pair.dispmax, a.hblank, a.engine, |n| bar.set_position(n as u64))?;
+    if let Some(lines) = &a.lines {
+        if lines.is_empty() || lines.end > l.height() {
+            return Err(SimError::Argument(format!("--lines {}..{}: not rows of the frame run ({} rows)", lines.start, lines.end, l.height())));
+        }
+    }
+    let vcd = a.vcd.as_deref().zip(a.lines.as_ref());
+    let (report, rtl, gold, depth) = sim::stereo::run_pair(&name, &l, &r, a.pair.dispmax, a.hblank, a.engine, vcd, |n| bar.set_position(n as u64))?;
     bar.finish_and_clear();
 
     let out = a.out.clone().unwrap_or_else(|| {
@@ -945,6 +960,9 @@ fn rtl_depth(a: RtlDepthArgs) -> Result<(), SimError> {
         println!("  simulation          {} clocks in {:.1} s, {:.0} clocks/s ({}; build {:.1} s)", r.cycles, r.seconds, r.sim_cycles_per_s, r.engine, r.build_seconds);
         for (p, what) in &files {
             println!("  {:<44} {what}", p.display());
+        }
+        if let (Some(p), Some(lines)) = (&a.vcd, &a.lines) {
+            println!("  {:<44} waveform of rows {}..{}", p.display(), lines.start, lines.end);
         }
     }
     Ok(())

@@ -70,15 +70,37 @@ pub struct RowCheckSim {
     pub crowded: u64,
 }
 
-/// One clock's input beat.
+/// One clock's input beat (the row check's `m_*` ports).
 #[derive(Debug, Clone, Copy, Default)]
-struct Beat {
-    valid: bool,
-    last: bool,
-    x: u64,
-    d: u64,
-    sof: bool,
-    eof: bool,
+pub struct Beat {
+    pub valid: bool,
+    pub last: bool,
+    pub x: u64,
+    pub d: u64,
+    pub sof: bool,
+    pub eof: bool,
+}
+
+/// The rows as clocks of input: each row's matches (each followed by its
+/// `gap` idle clocks), its marker, then idle clocks up to its `period`.
+/// Returns the beats and the index of each row's marker among them.
+pub fn row_beats(rows: &[TimedRow]) -> (Vec<Beat>, Vec<usize>) {
+    let mut beats: Vec<Beat> = Vec::new();
+    let mut marker_at = Vec::with_capacity(rows.len());
+    for r in rows {
+        let first = beats.len();
+        for &(x, d) in &r.matches {
+            beats.push(Beat { valid: true, x, d, ..Beat::default() });
+            beats.extend(std::iter::repeat_n(Beat::default(), r.gap));
+        }
+        marker_at.push(beats.len());
+        beats.push(Beat { valid: true, last: true, sof: r.sof, eof: r.eof, ..Beat::default() });
+        let end = first + r.period;
+        if beats.len() < end {
+            beats.resize(end, Beat::default());
+        }
+    }
+    (beats, marker_at)
 }
 
 /// One clock's output.
@@ -148,21 +170,7 @@ impl RowCheckSim {
     /// has come out (dropped rows, counted in `overflows`, do not) or
     /// nothing can come any more.
     pub fn run_timed(&mut self, rows: &[TimedRow]) -> RowRun {
-        let mut beats: Vec<Beat> = Vec::new();
-        let mut marker_at = Vec::with_capacity(rows.len());
-        for r in rows {
-            let first = beats.len();
-            for &(x, d) in &r.matches {
-                beats.push(Beat { valid: true, x, d, ..Beat::default() });
-                beats.extend(std::iter::repeat_n(Beat::default(), r.gap));
-            }
-            marker_at.push(beats.len());
-            beats.push(Beat { valid: true, last: true, sof: r.sof, eof: r.eof, ..Beat::default() });
-            let end = first + r.period;
-            if beats.len() < end {
-                beats.resize(end, Beat::default());
-            }
-        }
+        let (beats, marker_at) = row_beats(rows);
         let start = self.cycle;
         let dropped_before = self.overflows;
         let n: usize = rows.iter().map(|r| r.matches.len()).sum();

@@ -42,9 +42,179 @@ pub struct StereoRun {
     pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
+    /// The queues between the detectors and the pixels, as seen clock by
+    /// clock (diagnostics).
+    pub probe: QueueProbe,
+}
+
+/// The datapath's line queues as the driver saw them clock by clock, from
+/// the blocks' own signals: when each line passed each stage, the peaks of
+/// what each queue held, and the state of all of them on every dropped
+/// line (diagnostics: which buffer overflowed, and what was behind it).
+#[derive(Debug, Clone, Default)]
+pub struct QueueProbe {
+    /// Clock of each reference line's last pixel taken from the camera.
+    pub line_in: Vec<u64>,
+    /// Clock of each line's marker out of the matcher.
+    pub matched: Vec<u64>,
+    /// Clock of each row's marker out of the row check (into the
+    /// interpolator).
+    pub checked: Vec<u64>,
+    /// Clock of each line's last pixel out of the interpolator.
+    pub interpolated: Vec<u64>,
+    /// The peaks of the state below over the run.
+    pub peak: QueueState,
+    /// The clock (as [`QueueState::cycle`]) of the peak of the
+    /// interpolator's lines.
+    pub peak_interp_cycle: u64,
+    /// The state on each clock a line was dropped (the interpolator's or
+    /// the row check's `overflow`).
+    pub drops: Vec<QueueState>,
+}
+
+/// What the queues held on one clock.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct QueueState {
+    pub cycle: u64,
+    /// Which block dropped a line on this clock.
+    pub interpolator_overflow: bool,
+    pub row_check_overflow: bool,
+    /// Lines (markers) taken from the reference camera, out of the matcher,
+    /// out of the row check, out of the interpolator, so far.
+    pub lines_in: usize,
+    pub lines_matched: usize,
+    pub lines_checked: usize,
+    pub lines_interpolated: usize,
+    /// Per side (left, right): beats in the record queue (written, not yet
+    /// taken by the matcher) and line markers among them.
+    pub record_beats: [u64; 2],
+    pub record_lines: [u64; 2],
+    /// The interpolator's lines (`q_used`: admitted, last pixel not yet
+    /// issued) and segments (`seg_used`: written, not yet read).
+    pub interp_lines: u64,
+    pub interp_segments: u64,
+    /// Rows in the row check: markers in, not yet out (the dropped ones
+    /// counted until the end).
+    pub row_check_rows: u64,
+    /// The line processor's count of lines in flight (reference markers
+    /// the matcher took, less lines sent or dropped after it), and the
+    /// clocks so far on which its limit held a beat of the reference
+    /// queue back.
+    pub in_flight: u64,
+    pub held_clocks: u64,
+}
+
+impl QueueState {
+    fn max(&self, o: &QueueState) -> QueueState {
+        let m2 = |a: [u64; 2], b: [u64; 2]| [a[0].max(b[0]), a[1].max(b[1])];
+        QueueState {
+            cycle: self.cycle.max(o.cycle),
+            interpolator_overflow: self.interpolator_overflow | o.interpolator_overflow,
+            row_check_overflow: self.row_check_overflow | o.row_check_overflow,
+            lines_in: self.lines_in.max(o.lines_in),
+            lines_matched: self.lines_matched.max(o.lines_matched),
+            lines_checked: self.lines_checked.max(o.lines_checked),
+            lines_interpolated: self.lines_interpolated.max(o.lines_interpolated),
+            record_beats: m2(self.record_beats, o.record_beats),
+            record_lines: m2(self.record_lines, o.record_lines),
+            interp_lines: self.interp_lines.max(o.interp_lines),
+            interp_segments: self.interp_segments.max(o.interp_segments),
+            row_check_rows: self.row_check_rows.max(o.row_check_rows),
+            in_flight: self.in_flight.max(o.in_flight),
+            held_clocks: self.held_clocks.max(o.held_clocks),
+        }
+    }
+}
+
+impl<const N: usize> StereoSim<N> {
+    /// Counts this clock's events into `state` and `probe` (after the
+    /// clock's inputs settled, before its edge).
+    fn probe_clock(&self, state: &mut QueueState, probe: &mut QueueProbe) {
+        let u = &*self.uut;
+        let cycle = self.cycle;
+        state.cycle = cycle;
+        // (A beat's marker bit, decoded, is the matcher's `r_last`/`o_last`.)
+        let queues = [(&u.l_queue, u.matcher.r_last.val()), (&u.r_queue, u.matcher.o_last.val())];
+        for (k, (q, marker_out)) in queues.iter().enumerate() {
+            if q.w_valid.val() {
+                state.record_beats[k] += 1;
+                if q.w_marker.val() {
+                    state.record_lines[k] += 1;
+                }
+            }
+            if q.r_valid.val() && q.r_ready.val() {
+                state.record_beats[k] -= 1;
+                if *marker_out {
+                    state.record_lines[k] -= 1;
+                }
+            }
+        }
+        if u.l_tvalid.val() && u.l_tready.val() && u.l_tlast.val() {
+            state.lines_in += 1;
+            probe.line_in.push(cycle);
+        }
+        if u.matcher.m_valid.val() && u.matcher.m_last.val() {
+            state.lines_matched += 1;
+            state.row_check_rows += 1;
+            probe.matched.push(cycle);
+        }
+        if u.row_check.c_valid.val() && u.row_check.c_last.val() {
+            state.lines_checked += 1;
+            state.row_check_rows -= 1;
+            probe.checked.push(cycle);
+        }
+        if u.interpolator.p_valid.val() && u.interpolator.p_last.val() {
+            state.lines_interpolated += 1;
+            probe.interpolated.push(cycle);
+        }
+        state.interp_lines = u.interpolator.q_used.q.val().to_u64();
+        state.interp_segments = u.interpolator.seg_used.q.val().to_u64();
+        state.in_flight = u.in_flight.q.val().to_u64();
+        if u.hold.val() && u.l_queue.r_valid.val() {
+            state.held_clocks += 1;
+        }
+        state.interpolator_overflow = u.interpolator.overflow.val();
+        state.row_check_overflow = u.row_check.overflow.val();
+        if state.interp_lines > probe.peak.interp_lines {
+            probe.peak_interp_cycle = cycle;
+        }
+        probe.peak = probe.peak.max(state);
+        if state.interpolator_overflow || state.row_check_overflow {
+            probe.drops.push(*state);
+        }
+    }
+}
+
+/// An output line being received: its disparities and depths so far.
+#[derive(Debug, Clone, Default)]
+pub struct PendingLine {
+    disparities: Vec<u32>,
+    depths: Vec<u16>,
 }
 
 impl StereoRun {
+    /// Takes an output beat (`m_tdata` = `word`, with `m_tuser`, `m_tlast`)
+    /// sampled on clock `clock` into `pending`, and the line into the run at
+    /// its `tlast`; returns whether a line was completed.
+    pub fn push_beat(&mut self, clock: u64, word: u64, tuser: bool, tlast: bool, pending: &mut PendingLine) -> bool {
+        self.first_out.get_or_insert(clock);
+        self.last_out = Some(clock);
+        if pending.disparities.is_empty() {
+            self.sof.push(tuser);
+            self.line_cycles.push((clock, clock));
+        }
+        if let Some(l) = self.line_cycles.last_mut() {
+            l.1 = clock;
+        }
+        pending.disparities.push((word & ((1 << DEPTH_BITS) - 1)) as u32);
+        pending.depths.push((word >> DEPTH_BITS) as u16);
+        if tlast {
+            self.rows.push(std::mem::take(&mut pending.disparities));
+            self.depth_rows.push(std::mem::take(&mut pending.depths));
+        }
+        tlast
+    }
+
     /// Clocks from the first pixel in to the first disparity out.
     pub fn latency_cycles(&self) -> Option<u64> {
         self.first_out.map(|o| o - self.first_in)
@@ -79,6 +249,28 @@ pub struct StereoSim<const N: usize> {
     pub cycle: u64,
     /// Eq. 6's bound, `1/2^POS_FRAC_BITS` px.
     pub dispmax: u32,
+    vcd: Option<StereoVcd>,
+}
+
+/// A waveform being written ([`StereoSim::trace_lines_to`]).
+struct StereoVcd {
+    probe: Option<rust_hdl::core::vcd_probe::VCDProbe<std::io::BufWriter<std::fs::File>>>,
+    /// The frame's rows whose clocks are recorded.
+    lines: std::ops::Range<usize>,
+}
+
+impl StereoVcd {
+    /// Records the block's signals at `time` (ns, a clock of 10 ns) if
+    /// `active`.
+    fn sample<const N: usize>(&mut self, active: bool, time: u64, u: &StereoLineProcessor<N>) {
+        if !active {
+            return;
+        }
+        if let Some(mut probe) = self.probe.take() {
+            let _ = probe.timestamp(time);
+            self.probe = Some(write_vcd_change(probe, u));
+        }
+    }
 }
 
 /// Passes over the logic before `simulate` is asked whether it settled
@@ -141,7 +333,7 @@ impl<const N: usize> StereoSim<N> {
     /// (`1/2^POS_FRAC_BITS` px) and the depth stage's `camera`, eq. 6's
     /// bound `dispmax` in the same unit.
     pub fn new(rule: GainRule, jump: Option<u64>, camera: DepthCamera, dispmax: u32) -> Result<Self, rtl::depth_stage::DepthError> {
-        Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax })
+        Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax, vcd: None })
     }
 
     /// The default mode's line processor (as [`StereoLineProcessor::robust`]).
@@ -154,15 +346,27 @@ impl<const N: usize> StereoSim<N> {
     /// clocks after each line), until `height` lines have left or nothing
     /// has left for `quiet` clocks after the last pixel in. `progress` is
     /// called with the number of lines out after each.
+    /// Writes a VCD waveform (every signal of the line processor, a clock
+    /// of 10 ns) to `path` during the next [`run`](Self::run): from the clock
+    /// the left camera offers the first pixel of row `lines.start` to the
+    /// clock the output line `lines.end − 1` leaves, so that the lines'
+    /// pixels, records, matches and disparities are all in it.
+    pub fn trace_lines_to(&mut self, path: &std::path::Path, lines: std::ops::Range<usize>) -> std::io::Result<()> {
+        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        let probe = write_vcd_header(file, &*self.uut);
+        self.vcd = Some(StereoVcd { probe: Some(probe), lines });
+        Ok(())
+    }
+
     pub fn run(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, mut progress: impl FnMut(usize)) -> StereoRun {
         let quiet = QUIET_CLOCKS;
         let mut run = StereoRun { width: left.width().min(rtl::params::W_MAX), ..StereoRun::default() };
         let mut cams = [Camera { image: left, x: 0, y: 0, idle: 0 }, Camera { image: right, x: 0, y: 0, idle: 0 }];
-        let mut row: Vec<u32> = Vec::with_capacity(run.width);
-        let mut depth_row: Vec<u16> = Vec::with_capacity(run.width);
+        let mut row = PendingLine::default();
         let mut first_in = None;
         let mut last_activity = 0u64;
         let height = left.height();
+        let mut state = QueueState::default();
         loop {
             let u = &mut *self.uut;
             u.clock.next = false.into();
@@ -182,6 +386,12 @@ impl<const N: usize> StereoSim<N> {
                 l.next = tlast;
             }
             settle(u, SETTLE_LOW);
+            let tracing = self.vcd.as_ref().is_some_and(|v| cams[0].y >= v.lines.start && run.rows.len() < v.lines.end);
+            if let Some(v) = &mut self.vcd {
+                v.sample(tracing, self.cycle * 10, &self.uut);
+            }
+            self.probe_clock(&mut state, &mut run.probe);
+            let u = &mut *self.uut;
             let taken = [offers[0].is_some() && u.l_tready.val(), offers[1].is_some() && u.r_tready.val()];
             if (offers[0].is_some() && !taken[0]) || (offers[1].is_some() && !taken[1]) {
                 run.stall_cycles += 1;
@@ -193,27 +403,16 @@ impl<const N: usize> StereoSim<N> {
                 last_activity = self.cycle;
             }
             if u.m_tvalid.val() {
-                run.first_out.get_or_insert(self.cycle);
-                run.last_out = Some(self.cycle);
                 last_activity = self.cycle;
-                if row.is_empty() {
-                    run.sof.push(u.m_tuser.val());
-                    run.line_cycles.push((self.cycle, self.cycle));
-                }
-                if let Some(l) = run.line_cycles.last_mut() {
-                    l.1 = self.cycle;
-                }
-                let word = u.m_tdata.val().to_u64();
-                row.push((word & ((1 << DEPTH_BITS) - 1)) as u32);
-                depth_row.push((word >> DEPTH_BITS) as u16);
-                if u.m_tlast.val() {
-                    run.rows.push(std::mem::take(&mut row));
-                    run.depth_rows.push(std::mem::take(&mut depth_row));
+                if run.push_beat(self.cycle, u.m_tdata.val().to_u64(), u.m_tuser.val(), u.m_tlast.val(), &mut row) {
                     progress(run.rows.len());
                 }
             }
             u.clock.next = true.into();
             settle(u, SETTLE_HIGH);
+            if let Some(v) = &mut self.vcd {
+                v.sample(tracing, self.cycle * 10 + 5, &self.uut);
+            }
             self.cycle += 1;
             for (cam, &t) in cams.iter_mut().zip(&taken) {
                 cam.advance(t, hblank);
@@ -223,6 +422,8 @@ impl<const N: usize> StereoSim<N> {
                 break;
             }
         }
+        // Dropping the probe flushes and closes the waveform.
+        self.vcd = None;
         let u = &*self.uut;
         run.first_in = first_in.unwrap_or(0);
         run.cycles = self.cycle;
@@ -343,6 +544,12 @@ pub struct StereoReport {
     pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
+    /// The most lines in flight between the matcher's input and the
+    /// interpolator's output (at most `LINES_IN_FLIGHT`), and the clocks
+    /// on which that limit held the reference queue back: probed inside the
+    /// rust-hdl model, `null` from the Verilog engines.
+    pub lines_in_flight_peak: Option<u64>,
+    pub held_cycles: Option<u64>,
 }
 
 /// What runs the line processor clock by clock.
@@ -353,9 +560,10 @@ pub enum Engine {
     #[default]
     #[value(name = "rust-hdl")]
     RustHdl,
-    /// Its generated Verilog under Verilator, the cameras driven by the same
-    /// model in the testbench (`sim::stereo_cosim`): hundreds of thousands of
-    /// clocks per second after a build of a few minutes, kept for later runs.
+    /// Its generated Verilog under Verilator, driven directly by a C++ `main`
+    /// holding the same camera model (`sim::stereo_cosim::frame_driver`):
+    /// over a hundred thousand clocks per second after a build of a few
+    /// minutes, kept for later runs.
     Verilator,
     /// Its generated Verilog under Icarus Verilog (slow; a few lines).
     Icarus,
@@ -373,7 +581,9 @@ impl Engine {
 }
 
 /// Runs a pair through the line processor (default mode: [`GainRule::Robust`],
-/// the edge jump, the default camera) on `engine` and compares with golden; returns the
+/// the edge jump, the default camera) on `engine` and compares with golden
+/// (with `vcd`, the rust-hdl engine writes a waveform of the frame's rows
+/// in the range to the file, as [`StereoSim::trace_lines_to`]); returns the
 /// report, the rtl's map and golden's (px, row-major, 0 = none) and the
 /// rtl's depths (mm, row-major, 0 = none).
 pub fn run_pair(
@@ -383,6 +593,7 @@ pub fn run_pair(
     dispmax: f64,
     hblank: usize,
     engine: Engine,
+    vcd: Option<(&std::path::Path, &std::ops::Range<usize>)>,
     progress: impl FnMut(usize),
 ) -> Result<(StereoReport, Vec<f64>, Vec<f64>, Vec<u16>), crate::SimError> {
     let lsb = crate::budget::dispmax_lsb(dispmax)?;
@@ -396,9 +607,15 @@ pub fn run_pair(
     if (left.width(), left.height()) != (right.width(), right.height()) {
         return Err(golden::GoldenError::SizeMismatch { left_w: left.width(), left_h: left.height(), right_w: right.width(), right_h: right.height() }.into());
     }
+    if vcd.is_some() && engine != Engine::RustHdl {
+        return Err(crate::SimError::Argument(format!("a waveform (--vcd) is written by the rust-hdl engine only, not by {}", engine.name())));
+    }
     let (run, seconds, build_seconds) = match engine {
         Engine::RustHdl => {
             let mut sim = StereoSim::<{ rtl::params::N_CELLS }>::robust(lsb);
+            if let Some((path, lines)) = vcd {
+                sim.trace_lines_to(path, lines.clone()).map_err(|source| crate::SimError::Io { path: path.to_path_buf(), source })?;
+            }
             let t0 = std::time::Instant::now();
             let run = sim.run(left, right, hblank, progress);
             (run, t0.elapsed().as_secs_f64(), 0.0)
@@ -434,6 +651,8 @@ pub fn run_pair(
         pixels_dropped: run.pixels_dropped,
         lines_full: run.lines_full,
         lines_wide: run.lines_wide,
+        lines_in_flight_peak: (engine == Engine::RustHdl).then_some(run.probe.peak.in_flight),
+        held_cycles: (engine == Engine::RustHdl).then_some(run.probe.peak.held_clocks),
     };
     let mut depth = vec![0u16; left.width() * left.height()];
     for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
@@ -467,7 +686,7 @@ pub struct RtlEvalReport {
 /// truth.
 pub fn evaluate_pair_rtl(pair: &crate::io::PairData, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, crate::SimError> {
     use crate::eval::dense_scores;
-    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, progress)?;
+    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, None, progress)?;
     let gt = &pair.gt_left;
     let all = dense_scores(&rtl, gt, None);
     Ok(RtlEvalReport {

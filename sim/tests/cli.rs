@@ -334,3 +334,43 @@ fn rtl_match_rejects_bad_inputs_with_a_clear_message() {
         assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
     }
 }
+
+#[test]
+fn rtl_depth_writes_a_waveform_from_the_first_pixel_in_to_the_traced_row_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = shifted_pair(40, 3, 4);
+    l.save(p.join("l.png")).unwrap();
+    r.save(p.join("r.png")).unwrap();
+    let o = declivity(&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--vcd", "w.vcd", "--lines", "0..1", "--json", "--out", "o"], p);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    assert_eq!(v["lines_out"], 3, "{out}");
+    let vcd = std::fs::read_to_string(p.join("w.vcd")).expect("the waveform");
+    let times: Vec<u64> = vcd.lines().filter_map(|l| l.strip_prefix('#')).map(|t| t.parse().expect("a timestamp")).collect();
+    assert_eq!(times.first(), Some(&0), "row 0's first pixel enters on clock 0");
+    let first_out = v["latency_cycles"].as_u64().expect("a disparity came out");
+    let last = *times.last().expect("clocks were recorded");
+    assert!(last / 10 >= first_out + 39, "the trace ends at clock {} before row 0's 40 outputs from clock {first_out} left", last / 10);
+    let m_tvalid = vcd.lines().find(|l| l.ends_with(" m_tvalid $end")).and_then(|l| l.split_whitespace().nth(3)).expect("m_tvalid is traced").to_string();
+    assert!(vcd.lines().any(|l| l == format!("1{m_tvalid}")), "m_tvalid rises in the trace");
+}
+
+#[test]
+fn rtl_depth_rejects_a_waveform_outside_the_rows_or_from_verilator() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = tsukuba_pair();
+    let cases: [(&[&str], &str); 3] = [
+        (&["rtl", "depth", &l, &r, "--dispmax", "16", "--rows", "100..104", "--vcd", "w.vcd", "--lines", "3..6"], "not rows of the frame run"),
+        (&["rtl", "depth", &l, &r, "--dispmax", "16", "--rows", "100..104", "--vcd", "w.vcd", "--lines", "0..1", "--engine", "verilator"], "rust-hdl engine only"),
+        (&["rtl", "depth", &l, &r, "--dispmax", "16", "--vcd", "w.vcd"], "--lines"),
+    ];
+    for (args, needle) in cases {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    }
+}

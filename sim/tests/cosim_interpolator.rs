@@ -106,7 +106,7 @@ fn cosim_interpolator_vectors_are_current_and_carry_pixels() {
     // Pixels of every admitted line, one dropped line, and lines' ends:
     // the comparison below is not about an idle bus.
     // 30 + 12 + 9 + 12 + 5 + 1 + W_MAX + (40 + 100 + … + 340) pixels,
-    // then LINE_QUEUE lines of 300 (the fifth of the burst is dropped).
+    // then LINE_QUEUE lines of 300 (the burst has one more, which is dropped).
     assert_eq!(count(&corner, "p_valid"), 69 + W_MAX + 1140 + LINE_QUEUE * 300);
     assert_eq!(count(&corner, "overflow"), 1);
     assert_eq!(count(&real, "p_valid"), 6 * 450);

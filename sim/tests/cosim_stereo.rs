@@ -70,7 +70,7 @@ mod frames {
     use rtl::params::N_CELLS;
     use sim::cosim::{Options, Simulator};
     use sim::stereo::{StereoRun, StereoSim};
-    use sim::stereo_cosim::{differences, run_frame};
+    use sim::stereo_cosim::{differences, run_frame, FRAME_BEATS_FILE, FRAME_SUMMARY_FILE};
 
     /// Rows `rows` of `img`.
     fn crop(img: &GreyImage, rows: std::ops::Range<usize>) -> GreyImage {
@@ -118,6 +118,33 @@ mod frames {
     fn cosim_icarus_runs_four_lines_of_tsukuba_exactly_as_the_model() {
         let (left, right, dispmax) = pair("tsukuba");
         check::<{ super::CELLS }>(Simulator::Icarus, &crop(&left, 100..104), &crop(&right, 100..104), 16, dispmax, "tsukuba rows 100..104");
+    }
+
+    /// Verilator's C++ driver and Icarus's Verilog testbench (the camera
+    /// model written twice) write the same files byte for byte on two lines
+    /// of tsukuba with the 16 cells of the lint test, blanking between the
+    /// lines, and both runs are the model's.
+    #[test]
+    fn cosim_verilator_driver_writes_the_icarus_testbench_files_byte_for_byte() {
+        let (left, right, dispmax) = pair("tsukuba");
+        let (left, right) = (crop(&left, 120..122), crop(&right, 120..122));
+        let design = sim::verilog::generate_with(sim::verilog::Top::Stereo, super::CELLS, rtl::declivity_matcher::GainRule::Robust).expect("a supported size");
+        let opts = Options { keep: true, ..Options::default() };
+        let (want, _) = model::<{ super::CELLS }>(&left, &right, 7, dispmax);
+        let mut files = Vec::new();
+        for simulator in [Simulator::Icarus, Simulator::Verilator] {
+            let got = run_frame(simulator, &design, &left, &right, 7, dispmax, &opts).unwrap_or_else(|e| panic!("{e}"));
+            let diff = differences(&want, &got.run);
+            assert!(diff.is_empty(), "{} differs from the rust-hdl model: {diff:#?}", simulator.name());
+            let dir = got.work_dir.expect("kept");
+            let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+            files.push((read(FRAME_BEATS_FILE), read(FRAME_SUMMARY_FILE)));
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+        assert!(files[0].0.lines().count() == 2 * left.width(), "two lines of beats");
+        assert_eq!(files[0].1, files[1].1, "summary");
+        let first = files[0].0.lines().zip(files[1].0.lines()).position(|(a, b)| a != b);
+        assert!(files[0].0 == files[1].0, "beats differ (icarus, verilator), first at line {first:?}");
     }
 
     #[test]
