@@ -319,6 +319,9 @@ pub struct DeclivityMatcher<const N: usize> {
     dt_sum: Signal<Local, Bits<DT_SUM_BITS>>,
     sc_idx: Signal<Local, Bits<INDEX_BITS>>,
     nm: Signal<Local, Bits<SWEEP_BITS>>,
+    // The waiting pair's 2·(n + m) and fold, registered at the handoff.
+    pend_nm2: DFF<Bits<SWEEP_BITS>>,
+    pend_fold_q: DFF<Bit>,
     sweep_base: Signal<Local, Bits<SWEEP_BITS>>,
     pend_fold: Signal<Local, Bit>,
     sc_half: Signal<Local, Bits<SWEEP_HALF_BITS>>,
@@ -340,6 +343,7 @@ pub struct DeclivityMatcher<const N: usize> {
     eng_sweep: Constant<Bits<2>>,
     eng_trace: Constant<Bits<2>>,
     sweep_tail: Constant<Bits<SWEEP_BITS>>,
+    sweep_tail1: Constant<Bits<SWEEP_BITS>>,
     cells_h: Constant<Bits<SWEEP_HALF_BITS>>,
     engine_lag: Constant<Bits<SWEEP_BITS>>,
     cells_c: Constant<Bits<COUNT_BITS>>,
@@ -517,6 +521,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             dt_sum: Default::default(),
             sc_idx: Default::default(),
             nm: Default::default(),
+            pend_nm2: Default::default(),
+            pend_fold_q: Default::default(),
             sweep_base: Default::default(),
             pend_fold: Default::default(),
             sc_half: Default::default(),
@@ -537,6 +543,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
             sweep_tail: Constant::new(((ENGINE_LAG - 5) as u64).into()),
+            sweep_tail1: Constant::new(((ENGINE_LAG - 4) as u64).into()),
             cells_h: Constant::new((N as u64).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             cells_c: Constant::new((N as u64).into()),
@@ -569,7 +576,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, pend_nm2, pend_fold_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_hi_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_first_hi, c_hi_e, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -686,7 +693,15 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         }
         self.dt_sum.next = bit_cast::<DT_SUM_BITS, MATCH_DT_BITS>(self.r_dt_m.val())
             + bit_cast::<DT_SUM_BITS, MATCH_DT_BITS>(self.o_dt_m.val());
+        // n + m of the pair handed off, twice, and whether it folds (more
+        // reference declivities than cells: the high rows are used, the
+        // columns pass the array a second time), registered with the pair
+        // so that the engine's take adds only the tail.
+        self.nm.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
+            + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.o_count.q.val());
         if self.handoff.val() {
+            self.pend_nm2.d.next = self.nm.val() + self.nm.val();
+            self.pend_fold_q.d.next = self.r_count.q.val() > self.cells_c.val();
             self.pend.d.next = true;
             self.pend_bank.d.next = self.lbank.q.val();
             self.pend_n.d.next = self.r_count.q.val();
@@ -708,7 +723,9 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // The line's constants from the taken pair's d_t sum, every clock
         // (no load enable: the engine's `take` stays near the engine; the
         // constants reach the array a clock after `e_dt_sum`, long before
-        // the sweep's first column).
+        // the sweep's first column). below2 = ⌈2·gmax⌉ = ⌈(d_t,ref +
+        // d_t,other) / 2^DT_FRAC_BITS⌉: the integer part, plus one when a
+        // fraction bit is set.
         self.below2_reg.d.next = bit_cast::<DIST_BITS, DT_SUM_INT_BITS>(
             self.e_dt_sum.q.val().get_bits::<DT_SUM_INT_BITS>(self.dt_frac.val().index()),
         );
@@ -722,14 +739,13 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val())
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val());
         self.take.next = (self.eng.q.val() == self.eng_idle.val()) & self.pend.q.val();
-        self.nm.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.pend_n.q.val())
-            + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.pend_m.q.val());
-        self.sweep_base.next = self.nm.val() + self.nm.val() + self.sweep_tail.val();
-        // More reference declivities than cells: the high rows are used, the
-        // columns pass the array a second time.
-        self.pend_fold.next = self.pend_n.q.val() > self.cells_c.val();
-        // ⌈2·gmax⌉ = ⌈(d_t,ref + d_t,other) / 2^DT_FRAC_BITS⌉: the integer
-        // part, plus one when a fraction bit is set.
+        // The sweep's tail, one more with the fold (2·(n + m) waits in
+        // pend_nm2, summed at the handoff).
+        self.pend_fold.next = self.pend_fold_q.q.val();
+        self.sweep_base.next = self.sweep_tail.val();
+        if self.pend_fold.val() {
+            self.sweep_base.next = self.sweep_tail1.val();
+        }
         if self.take.val() {
             self.pend.d.next = false;
             self.eng.d.next = self.eng_sweep.val();
@@ -739,10 +755,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.sc.d.next = 0.into();
             // The sweep's last clock less one: 2·(n + m) + [n > N] + the
             // tail; see `sweep_cycles`.
-            self.sweep_end_m1.d.next = self.sweep_base.val();
-            if self.pend_fold.val() {
-                self.sweep_end_m1.d.next = self.sweep_base.val() + 1;
-            }
+            self.sweep_end_m1.d.next = self.pend_nm2.q.val() + self.sweep_base.val();
             self.e_fold.d.next = self.pend_fold.val();
             self.e_dt_sum.d.next = self.pend_dt_sum.q.val();
             self.e_wide.d.next = self.pend_wide.q.val();
