@@ -49,8 +49,8 @@
 //! A node whose column is in the cell's slot at clock `t` has its `P` in
 //! `p` and its choice on `choice_word` from clock `t +` [`CELL_DEPTH`]: stage A
 //! (`X_i - X_j`, level differences), B (distances, search area), C (tests
-//! of eq. 7), S (the distances' sum), D
-//! (gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
+//! of eq. 7), S (the distances kept), D
+//! (their sum and the gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
 //! The node below, `(i+1, j)`, is two clocks behind in the next cell, so its
 //! stage G reads this `P` on `up_p` as soon as it is out; the node to the
 //! right, `(i, j+1)`, is two clocks behind in this cell, and its stage H
@@ -180,14 +180,17 @@ pub struct GainCell {
     c2_hi: DFF<Bit>,
     c2_node: DFF<Bit>,
     c2_both: DFF<Bit>,
+    c2_keep_l: DFF<Bit>,
+    c2_keep_r: DFF<Bit>,
     c2_l: DFF<Bits<DIST_BITS>>,
     c2_r: DFF<Bits<DIST_BITS>>,
-    // Stage S: the distances' sum.
+    // Stage S: the distances the gain subtracts.
     s_valid: DFF<Bit>,
     s_hi: DFF<Bit>,
     s_node: DFF<Bit>,
     s_both: DFF<Bit>,
-    s_dist: DFF<Bits<DIST_SUM_BITS>>,
+    s_l: DFF<Bits<DIST_BITS>>,
+    s_r: DFF<Bits<DIST_BITS>>,
     // Stage D: the local gain.
     d_valid: DFF<Bit>,
     d_hi: DFF<Bit>,
@@ -225,6 +228,7 @@ pub struct GainCell {
     r_sum: Signal<Local, Bits<DIST_BITS>>,
     lb: Signal<Local, Bit>,
     rb: Signal<Local, Bit>,
+    dist_sum: Signal<Local, Bits<DIST_SUM_BITS>>,
     dist16: Signal<Local, Bits<16>>,
     dist_gain: Signal<Local, Bits<32>>,
     f_sel: Signal<Local, Bits<GAIN_BITS>>,
@@ -339,13 +343,16 @@ impl GainCell {
             c2_hi: Default::default(),
             c2_node: Default::default(),
             c2_both: Default::default(),
+            c2_keep_l: Default::default(),
+            c2_keep_r: Default::default(),
             c2_l: Default::default(),
             c2_r: Default::default(),
             s_valid: Default::default(),
             s_hi: Default::default(),
             s_node: Default::default(),
             s_both: Default::default(),
-            s_dist: Default::default(),
+            s_l: Default::default(),
+            s_r: Default::default(),
             d_valid: Default::default(),
             d_hi: Default::default(),
             d_node: Default::default(),
@@ -377,6 +384,7 @@ impl GainCell {
             r_sum: Default::default(),
             lb: Default::default(),
             rb: Default::default(),
+            dist_sum: Default::default(),
             dist16: Default::default(),
             dist_gain: Default::default(),
             f_sel: Default::default(),
@@ -403,7 +411,7 @@ impl Logic for GainCell {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_dist, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
+            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_keep_l, c2_keep_r, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_l, s_r, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
         );
 
         // ---- The reference declivities, from the broadcast.
@@ -536,9 +544,9 @@ impl Logic for GainCell {
             self.b_r2.d.next = self.r_sum.val();
         }
 
-        // ---- C: eq. 7's tests, `d < gmax ⇔ 2d < ⌈2·gmax⌉`, and the
-        // distances the gain subtracts, each registered or cleared (a
-        // register's synchronous reset, no logic).
+        // ---- C: eq. 7's tests, `d < gmax ⇔ 2d < ⌈2·gmax⌉`, and whether the
+        // gain subtracts each distance (registered: stage S clears the
+        // other by a register's synchronous reset, driven by a register).
         self.lb.next = self.b_l2.q.val() < self.below2.val();
         self.rb.next = self.b_r2.q.val() < self.below2.val();
         self.c2_valid.d.next = self.b_valid.q.val();
@@ -546,29 +554,34 @@ impl Logic for GainCell {
             self.c2_hi.d.next = self.b_hi.q.val();
             self.c2_node.d.next = self.b_ok.q.val() & (self.lb.val() | self.rb.val());
             self.c2_both.d.next = self.lb.val() & self.rb.val();
-            self.c2_l.d.next = 0.into();
-            if self.lb.val() | !self.one_sided.val() {
-                self.c2_l.d.next = self.b_l2.q.val();
-            }
-            self.c2_r.d.next = 0.into();
-            if self.rb.val() | !self.one_sided.val() {
-                self.c2_r.d.next = self.b_r2.q.val();
-            }
+            self.c2_keep_l.d.next = self.lb.val() | !self.one_sided.val();
+            self.c2_keep_r.d.next = self.rb.val() | !self.one_sided.val();
+            self.c2_l.d.next = self.b_l2.q.val();
+            self.c2_r.d.next = self.b_r2.q.val();
         }
 
-        // ---- S: the distances' sum.
+        // ---- S: the distances the gain subtracts, each registered or
+        // cleared (no logic: the clear is a register's synchronous reset).
         self.s_valid.d.next = self.c2_valid.q.val();
         if self.c2_valid.q.val() {
             self.s_hi.d.next = self.c2_hi.q.val();
             self.s_node.d.next = self.c2_node.q.val();
             self.s_both.d.next = self.c2_both.q.val();
-            self.s_dist.d.next = bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.c2_l.q.val())
-                + bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.c2_r.q.val());
+            self.s_l.d.next = 0.into();
+            if self.c2_keep_l.q.val() {
+                self.s_l.d.next = self.c2_l.q.val();
+            }
+            self.s_r.d.next = 0.into();
+            if self.c2_keep_r.q.val() {
+                self.s_r.d.next = self.c2_r.q.val();
+            }
         }
 
         // ---- D: g = f(gmax) - (lpd + rpd) in gain units (a product by a
         // power of two: a shift in hardware, cheap in rust-hdl's simulation).
-        self.dist16.next = bit_cast::<16, DIST_SUM_BITS>(self.s_dist.q.val());
+        self.dist_sum.next = bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.s_l.q.val())
+            + bit_cast::<DIST_SUM_BITS, DIST_BITS>(self.s_r.q.val());
+        self.dist16.next = bit_cast::<16, DIST_SUM_BITS>(self.dist_sum.val());
         self.dist_gain.next = self.dist16.val() * self.gain_unit_per_dist.val();
         self.f_sel.next = self.f1.val();
         if self.s_both.q.val() {
