@@ -15,6 +15,7 @@
 
 pub mod params;
 pub mod pixel_window;
+pub mod skid_buffer;
 pub mod adaptive_threshold;
 pub mod declivity_detector;
 pub mod declivity_tracker;

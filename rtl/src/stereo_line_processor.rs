@@ -3,11 +3,13 @@
 //! pipelined behind the one before.
 //!
 //! ```text
-//! left  ─► DeclivityDetector ─► RecordFifo ─┐
-//!                                           ├─► DeclivityMatcher ─► RowCheck ─► Interpolator
-//! right ─► DeclivityDetector ─► RecordFifo ─┘                      ─► VerticalMedian ─► DepthStage ─► out
+//! left  ─► SkidBuffer ─► DeclivityDetector ─► RecordFifo ─┐
+//!                                                         ├─► DeclivityMatcher ─► RowCheck ─► Interpolator
+//! right ─► SkidBuffer ─► DeclivityDetector ─► RecordFifo ─┘                      ─► VerticalMedian ─► DepthStage ─► out
 //! ```
 //!
+//! - Each camera comes in through a [`SkidBuffer`], a register slice, so
+//!   that its `tready` is a register.
 //! - Each camera has its own [`DeclivityDetector`] (eq. 2–3): line n is
 //!   detected while line n − 1 is matched and line n − 2 interpolated.
 //! - A [`RecordFifo`] per side holds the records while the matcher is busy
@@ -29,9 +31,10 @@
 //! ## Ports
 //! - In, per camera (`l_` left = reference, `r_` right), AXI4-Stream video:
 //!   `tdata` (grey level), `tvalid`, `tuser` (start of frame, on a line's
-//!   first pixel), `tlast` (end of line); out `tready` (the detector's:
-//!   high except between lines of widths below the detector's
-//!   `MIN_LINE_PERIOD`).
+//!   first pixel), `tlast` (end of line); out `tready` (the register
+//!   slice's, a register: it follows the detector's, high except between
+//!   lines of widths below the detector's `MIN_LINE_PERIOD`, one clock
+//!   later).
 //! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits; `height`:
 //!   the frame's rows (its last row ends the frame for the row check and
 //!   the median, which then flush it).
@@ -59,7 +62,8 @@
 //! average; a line's matching may take longer than its line time as long as
 //! the record queues ([`crate::record_fifo::RECORD_FIFO_DEPTH`] beats)
 //! absorb it. Latency from a line's last pixel in to its first disparity
-//! out: the detector's [`crate::declivity_detector::marker_latency`], the
+//! out: the register slice's [`crate::skid_buffer::SKID_LAG`], the
+//! detector's [`crate::declivity_detector::marker_latency`], the
 //! queue's [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line
 //! (`line_cycles`), one line period in the row check (it waits for the
 //! next line's matches), [`CHECK_REGISTER_LAG`] between the row check and
@@ -124,6 +128,7 @@ use crate::interpolator::{Interpolator, LINE_QUEUE, SEG_RESERVE};
 use crate::params::*;
 use crate::record_fifo::RecordFifo;
 use crate::row_check::RowCheck;
+use crate::skid_buffer::SkidBuffer;
 use crate::vertical_median::VerticalMedian;
 use rust_hdl::prelude::*;
 
@@ -189,6 +194,9 @@ pub struct StereoLineProcessor<const N: usize> {
     pub pixels_dropped: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_full: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_wide: Signal<Out, Bits<STATUS_BITS>>,
+    // The cameras' register slices (SKID_LAG), then their detectors.
+    pub l_skid: SkidBuffer<PIXEL_BITS>,
+    pub r_skid: SkidBuffer<PIXEL_BITS>,
     pub left: DeclivityDetector,
     pub right: DeclivityDetector,
     pub l_queue: RecordFifo,
@@ -275,6 +283,8 @@ impl<const N: usize> StereoLineProcessor<N> {
             pixels_dropped: Default::default(),
             lines_full: Default::default(),
             lines_wide: Default::default(),
+            l_skid: Default::default(),
+            r_skid: Default::default(),
             left: Default::default(),
             right: Default::default(),
             l_queue: Default::default(),
@@ -331,6 +341,8 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof);
+        self.l_skid.clock.next = self.clock.val();
+        self.r_skid.clock.next = self.clock.val();
         self.left.clock.next = self.clock.val();
         self.right.clock.next = self.clock.val();
         self.l_queue.clock.next = self.clock.val();
@@ -341,19 +353,31 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.median.clock.next = self.clock.val();
         self.depth.clock.next = self.clock.val();
 
-        // ---- The cameras into their detectors.
-        self.left.s_tdata.next = self.l_tdata.val();
-        self.left.s_tvalid.next = self.l_tvalid.val();
-        self.left.s_tuser.next = self.l_tuser.val();
-        self.left.s_tlast.next = self.l_tlast.val();
-        self.l_tready.next = self.left.s_tready.val();
-        self.right.s_tdata.next = self.r_tdata.val();
-        self.right.s_tvalid.next = self.r_tvalid.val();
-        self.right.s_tuser.next = self.r_tuser.val();
-        self.right.s_tlast.next = self.r_tlast.val();
-        self.r_tready.next = self.right.s_tready.val();
-        // The reference line's width, counted up to W_MAX.
-        if self.l_tvalid.val() & self.left.s_tready.val() {
+        // ---- The cameras through their register slices into their
+        // detectors.
+        self.l_skid.s_tdata.next = self.l_tdata.val();
+        self.l_skid.s_tvalid.next = self.l_tvalid.val();
+        self.l_skid.s_tuser.next = self.l_tuser.val();
+        self.l_skid.s_tlast.next = self.l_tlast.val();
+        self.l_tready.next = self.l_skid.s_tready.val();
+        self.left.s_tdata.next = self.l_skid.m_tdata.val();
+        self.left.s_tvalid.next = self.l_skid.m_tvalid.val();
+        self.left.s_tuser.next = self.l_skid.m_tuser.val();
+        self.left.s_tlast.next = self.l_skid.m_tlast.val();
+        self.l_skid.m_tready.next = self.left.s_tready.val();
+        self.r_skid.s_tdata.next = self.r_tdata.val();
+        self.r_skid.s_tvalid.next = self.r_tvalid.val();
+        self.r_skid.s_tuser.next = self.r_tuser.val();
+        self.r_skid.s_tlast.next = self.r_tlast.val();
+        self.r_tready.next = self.r_skid.s_tready.val();
+        self.right.s_tdata.next = self.r_skid.m_tdata.val();
+        self.right.s_tvalid.next = self.r_skid.m_tvalid.val();
+        self.right.s_tuser.next = self.r_skid.m_tuser.val();
+        self.right.s_tlast.next = self.r_skid.m_tlast.val();
+        self.r_skid.m_tready.next = self.right.s_tready.val();
+        // The reference line's width, counted up to W_MAX as the camera's
+        // beats are accepted.
+        if self.l_tvalid.val() & self.l_skid.s_tready.val() {
             if self.l_count.q.val() < self.w_max.val() {
                 self.l_count.d.next = self.l_count.q.val() + 1;
             }

@@ -28,7 +28,8 @@
 //! three line periods `P` after its own. From row `y`'s first pixel in
 //! (rows every `P` clocks, every row the same work):
 //!
-//! - detector: `(W − 1) + marker_latency(W')` to the row's marker;
+//! - detector: `SKID_LAG` (the camera's register slice) `+ (W − 1) +
+//!   marker_latency(W')` to the row's marker;
 //! - record queue: `RECORD_FIFO_LAG` to the matcher's ports;
 //! - matcher: `TAKE_AFTER_MARKER + line_cycles(n, m, s, k, K)` to the
 //!   pair's marker;
@@ -111,6 +112,7 @@ use rtl::params::{
 };
 use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
 use rtl::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
+use rtl::skid_buffer::SKID_LAG;
 use rtl::stereo_line_processor::CHECK_REGISTER_LAG;
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
 use rtl::vertical_median::MEDIAN_LAG;
@@ -568,6 +570,7 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
         )
     };
     let latency_terms = vec![
+        Term::new("SKID_LAG", SKID_LAG),
         Term::new("(W − 1)", s.width - 1),
         Term::new("marker_latency(W')", marker_latency_estimate(s.width) as usize),
     ];

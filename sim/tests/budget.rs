@@ -16,6 +16,7 @@ use std::sync::{Arc, Mutex};
 use rtl::declivity_matcher::{DeclivityMatcher, GainRule, TAKE_AFTER_MARKER};
 use rtl::params::{DT_FRAC_BITS, N_CELLS, N_MAX, POS_FRAC_BITS, W_MAX};
 use rtl::row_check::ROW_FIRST_LAG;
+use rtl::skid_buffer::SKID_LAG;
 use rtl::stereo_line_processor::CHECK_REGISTER_LAG;
 use rtl::depth_stage::DepthCamera;
 use sim::budget::{budget, budget_with_load, matcher_cycles_per_line, Budget, BudgetRequest, RowLoad, StageBudget, MARKER_AFTER_NEXT_TAKE};
@@ -75,8 +76,10 @@ fn detector_clocks_measured_in_simulation_equal_the_budget() {
         assert_eq!(run.stalls_inside_lines, 0, "W {width}: a stall inside a line");
         let b = budget(&request(width, 16, 8)).expect("a valid request");
         let det = stage(&b, "declivity detector");
-        // First pixel in to marker out, engines idle (the first line).
-        let latency = run.lines[0].marker_cycle - run.first_pixel_cycle[0];
+        // First pixel in to marker out, engines idle (the first line); the
+        // top's register slice in front of the detector is not in the
+        // block (the whole line processor's runs below count it).
+        let latency = run.lines[0].marker_cycle - run.first_pixel_cycle[0] + SKID_LAG as u64;
         assert_eq!(latency, det.latency_cycles, "W {width}: first pixel → marker ({})", det.latency_formula);
         // Steady state: the most clocks between consecutive line starts.
         let spacing = run.first_pixel_cycle.windows(2).skip(DETECTOR_WARM_UP).map(|w| w[1] - w[0]).max().expect("lines");
@@ -285,9 +288,11 @@ fn stage_latencies_equal_the_clocks_measured_on_their_blocks() {
     let interpolator = lines[0].first_cycle - markers[0];
     assert_eq!(lines[0].last_cycle - lines[0].first_cycle, width as u64 - 1, "one pixel a clock");
     let b = budget(&BudgetRequest { height: 100, ..request(width, n, CELLS) }).expect("valid");
-    // The top's register between the row check and the interpolator is
-    // not in the block: the whole line processor's runs below count it.
+    // The top's registers between the row check and the interpolator and
+    // in front of the detector are not in the blocks: the whole line
+    // processor's runs below count them.
     let interpolator = interpolator + CHECK_REGISTER_LAG as u64;
+    let detector = detector + SKID_LAG as u64;
     for (name, measured) in [("declivity detector", detector), ("matcher", matcher), ("interpolator", interpolator)] {
         let s = stage(&b, name);
         assert_eq!(measured, s.latency_cycles, "{name}: {} ({})", s.latency_span, s.latency_formula);
