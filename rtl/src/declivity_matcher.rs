@@ -228,8 +228,12 @@ pub struct DeclivityMatcher<const N: usize> {
     sc: DFF<Bits<SWEEP_BITS>>,
     sweep_end_m1: DFF<Bits<SWEEP_BITS>>,
     sweep_done: DFF<Bit>,
-    // The taken pair's d_t sum (loaded on `take`) and the line's constants
-    // computed from it every clock.
+    // `take`, registered: it loads the taken pair's d_t sum and flags a
+    // clock later, near where they are used (the pair's `pend_*` registers
+    // hold until the clock after), so that `take` stays near the engine.
+    take_q: DFF<Bit>,
+    // The taken pair's d_t sum (loaded on `take_q`) and the line's
+    // constants computed from it every clock.
     e_dt_sum: DFF<Bits<DT_SUM_BITS>>,
     below2_reg: DFF<Bits<DIST_BITS>>,
     dm1_reg: DFF<Bits<{ POS_BITS + 1 }>>,
@@ -437,6 +441,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             sc: Default::default(),
             sweep_end_m1: Default::default(),
             sweep_done: Default::default(),
+            take_q: Default::default(),
             e_dt_sum: Default::default(),
             below2_reg: Default::default(),
             dm1_reg: Default::default(),
@@ -576,7 +581,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, pend_nm2, pend_fold_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, pend_nm2, pend_fold_q, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_hi_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_first_hi, c_hi_e, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -722,8 +727,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // ---- Engine.
         // The line's constants from the taken pair's d_t sum, every clock
         // (no load enable: the engine's `take` stays near the engine; the
-        // constants reach the array a clock after `e_dt_sum`, long before
-        // the sweep's first column). below2 = ⌈2·gmax⌉ = ⌈(d_t,ref +
+        // constants reach the array a clock after `e_dt_sum`, two after the
+        // take, long before the sweep's first column). below2 = ⌈2·gmax⌉ = ⌈(d_t,ref +
         // d_t,other) / 2^DT_FRAC_BITS⌉: the integer part, plus one when a
         // fraction bit is set.
         self.below2_reg.d.next = bit_cast::<DIST_BITS, DT_SUM_INT_BITS>(
@@ -757,6 +762,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             // tail; see `sweep_cycles`.
             self.sweep_end_m1.d.next = self.pend_nm2.q.val() + self.sweep_base.val();
             self.e_fold.d.next = self.pend_fold.val();
+        }
+        // A clock after the take: the handoff refills `pend_*` at the
+        // earliest on this clock's edge (`pend` fell on the take's).
+        self.take_q.d.next = self.take.val();
+        if self.take_q.q.val() {
             self.e_dt_sum.d.next = self.pend_dt_sum.q.val();
             self.e_wide.d.next = self.pend_wide.q.val();
             self.e_full.d.next = self.pend_full.q.val();
