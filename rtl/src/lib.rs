@@ -32,6 +32,7 @@ pub mod record_fifo;
 pub mod interpolator;
 pub mod stereo_line_processor;
 pub mod row_check;
+pub mod neighbour_window;
 pub mod vertical_median;
 pub mod depth_stage;
 

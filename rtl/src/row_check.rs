@@ -19,7 +19,8 @@
 //!   the last row's marker rows `h - 2` and `h - 1` leave back to back).
 //!   Its matches are read in order into an 8-entry prefetch ring; each
 //!   neighbour is read in order into a window ring ([`ROW_WINDOW`]
-//!   entries, each held with its bounds `X ± DX`, `d ± DD`). Two pipeline
+//!   entries, each held with its bounds `X ± DX`, `d ± DD`), a
+//!   [`NeighbourWindow`] each. Two pipeline
 //!   stages check one match per clock:
 //!   - the **compare stage** presents a match and compares it with every
 //!     held entry of both windows (each comparison is the borrow of one
@@ -92,6 +93,7 @@
 //! 276, 496, 59 and 66 clocks.)
 
 use crate::block_ram::BlockRam;
+use crate::neighbour_window::NeighbourWindow;
 use crate::params::*;
 use rust_hdl::prelude::*;
 
@@ -116,7 +118,7 @@ const CUR_PTR_BITS: usize = CUR_SLOT_BITS + 1;
 /// Bits of the comparisons' operands and differences: a position plus a
 /// threshold (below `2^(POS_BITS + 1)`), and the borrow of a difference of
 /// two of them (its top bit).
-const WIDE: usize = POS_BITS + 2;
+pub(crate) const WIDE: usize = POS_BITS + 2;
 /// Bits of a row number modulo twice the banks (so that full and empty
 /// differ).
 const ROW_PTR_BITS: usize = ROW_BANK_BITS + 1;
@@ -183,126 +185,18 @@ pub struct RowCheck {
     pub c_count: Signal<Out, Bits<COUNT_BITS>>,
     pub overflow: Signal<Out, Bit>,
     pub crowded: Signal<Out, Bit>,
-    // ---- The window of the row above (see the module doc).
-    a_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
-    a_base: DFF<Bits<ROW_ADDR_BITS>>,
-    a_rd: DFF<Bits<COUNT_BITS>>,
-    // The row's matches not yet read; none (`rend`).
-    a_left: DFF<Bits<COUNT_BITS>>,
-    a_rend: DFF<Bit>,
-    a_rd1: DFF<Bit>,
-    a_rd2: DFF<Bit>,
-    a_wi: DFF<Bits<ROW_WINDOW_BITS>>,
-    // Each slot: held, and its entry's bounds `X + DX`, `X - DX`, `d + DD`,
-    // `d - DD` (the last two modulo `2^WIDE`: see the comparisons); the
-    // newest entry's `X - DX` (0 at a row's start).
-    a_held: [DFF<Bit>; ROW_WINDOW],
-    a_xp: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    a_xm: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    a_dp: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    a_dm: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    a_lxm: DFF<Bits<WIDE>>,
-    // The comparisons with the presented match, registered: each slot left
-    // of its window (`lt`), a confirming entry among slots 0-3 and 4-7
-    // (`okq`); the window full, the newest entry right of it (`beyond`),
-    // the row read and arrived (`loaded`).
-    a_lt: [DFF<Bit>; ROW_WINDOW],
-    a_okq: [DFF<Bit>; 2],
-    a_full: DFF<Bit>,
-    a_beyond: DFF<Bit>,
-    a_loaded: DFF<Bit>,
-    // The window was found crowded for the row's next undecided match (it
-    // stays so until that match is decided: `stuck`).
-    a_stuck: DFF<Bit>,
-    // The comparisons as differences whose top bit is the borrow: `X + DX
-    // - x`, `x - (X - DX)`, `d_q - (d - DD)`, `d + DD - d_q` (negative:
-    // left of the window, right of it, below it, above it).
-    a_sl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    a_sg: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    a_sdl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    a_sdh: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    a_sb: Signal<Local, Bits<WIDE>>,
-    a_okc: [Signal<Local, Bit>; ROW_WINDOW],
-    a_stay: [Signal<Local, Bit>; ROW_WINDOW],
-    a_rx: Signal<Local, Bits<POS_BITS>>,
-    a_rdd: Signal<Local, Bits<POS_BITS>>,
-    a_ex: Signal<Local, Bits<WIDE>>,
-    a_ed: Signal<Local, Bits<WIDE>>,
-    a_nxp: Signal<Local, Bits<WIDE>>,
-    a_nxm: Signal<Local, Bits<WIDE>>,
-    a_ndp: Signal<Local, Bits<WIDE>>,
-    a_ndm: Signal<Local, Bits<WIDE>>,
-    a_pos: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    a_free: Signal<Local, Bit>,
-    a_issue: Signal<Local, Bit>,
-    a_found: Signal<Local, Bit>,
-    a_anylt: Signal<Local, Bit>,
-    a_crowd: Signal<Local, Bit>,
-    a_beyond_c: Signal<Local, Bit>,
-    a_loaded_c: Signal<Local, Bit>,
-    a_stuck_n: Signal<Local, Bit>,
+    // ---- The windows of the rows above and below (see the module doc
+    // and `crate::neighbour_window`), and the counts they start with.
+    above: NeighbourWindow,
+    below: NeighbourWindow,
     a_count: Signal<Local, Bits<COUNT_BITS>>,
-    a_bank: Signal<Local, Bits<ROW_BANK_BITS>>,
-    // ---- The window of the row below (see the module doc).
-    b_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
-    b_base: DFF<Bits<ROW_ADDR_BITS>>,
-    b_rd: DFF<Bits<COUNT_BITS>>,
-    // The row's matches not yet read; none (`rend`).
-    b_left: DFF<Bits<COUNT_BITS>>,
-    b_rend: DFF<Bit>,
-    b_rd1: DFF<Bit>,
-    b_rd2: DFF<Bit>,
-    b_wi: DFF<Bits<ROW_WINDOW_BITS>>,
-    // Each slot: held, and its entry's bounds `X + DX`, `X - DX`, `d + DD`,
-    // `d - DD` (the last two modulo `2^WIDE`: see the comparisons); the
-    // newest entry's `X - DX` (0 at a row's start).
-    b_held: [DFF<Bit>; ROW_WINDOW],
-    b_xp: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    b_xm: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    b_dp: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    b_dm: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    b_lxm: DFF<Bits<WIDE>>,
-    // The comparisons with the presented match, registered: each slot left
-    // of its window (`lt`), a confirming entry among slots 0-3 and 4-7
-    // (`okq`); the window full, the newest entry right of it (`beyond`),
-    // the row read and arrived (`loaded`).
-    b_lt: [DFF<Bit>; ROW_WINDOW],
-    b_okq: [DFF<Bit>; 2],
-    b_full: DFF<Bit>,
-    b_beyond: DFF<Bit>,
-    b_loaded: DFF<Bit>,
-    // The window was found crowded for the row's next undecided match (it
-    // stays so until that match is decided: `stuck`).
-    b_stuck: DFF<Bit>,
-    // The comparisons as differences whose top bit is the borrow: `X + DX
-    // - x`, `x - (X - DX)`, `d_q - (d - DD)`, `d + DD - d_q` (negative:
-    // left of the window, right of it, below it, above it).
-    b_sl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    b_sg: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    b_sdl: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    b_sdh: [Signal<Local, Bits<WIDE>>; ROW_WINDOW],
-    b_sb: Signal<Local, Bits<WIDE>>,
-    b_okc: [Signal<Local, Bit>; ROW_WINDOW],
-    b_stay: [Signal<Local, Bit>; ROW_WINDOW],
-    b_rx: Signal<Local, Bits<POS_BITS>>,
-    b_rdd: Signal<Local, Bits<POS_BITS>>,
-    b_ex: Signal<Local, Bits<WIDE>>,
-    b_ed: Signal<Local, Bits<WIDE>>,
-    b_nxp: Signal<Local, Bits<WIDE>>,
-    b_nxm: Signal<Local, Bits<WIDE>>,
-    b_ndp: Signal<Local, Bits<WIDE>>,
-    b_ndm: Signal<Local, Bits<WIDE>>,
-    b_pos: Signal<Local, Bits<ROW_WINDOW_BITS>>,
-    b_free: Signal<Local, Bit>,
-    b_issue: Signal<Local, Bit>,
-    b_found: Signal<Local, Bit>,
-    b_anylt: Signal<Local, Bit>,
-    b_crowd: Signal<Local, Bit>,
-    b_beyond_c: Signal<Local, Bit>,
-    b_loaded_c: Signal<Local, Bit>,
-    b_stuck_n: Signal<Local, Bit>,
     b_count: Signal<Local, Bits<COUNT_BITS>>,
-    b_bank: Signal<Local, Bits<ROW_BANK_BITS>>,
+    // A window found crowded for the row's next undecided match stays so
+    // until that match is decided (`stuck`).
+    a_stuck: DFF<Bit>,
+    b_stuck: DFF<Bit>,
+    a_stuck_n: Signal<Local, Bit>,
+    b_stuck_n: Signal<Local, Bit>,
     // ---- The checked row's memory copy.
     cur_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
     // ---- Loader: the row being received (admission, its next index), the
@@ -417,14 +311,8 @@ pub struct RowCheck {
     two: Constant<Bits<ROW_PTR_BITS>>,
     n_max: Constant<Bits<COUNT_BITS>>,
     cur_wrap: Constant<Bits<CUR_PTR_BITS>>,
-    count_one: Constant<Bits<COUNT_BITS>>,
     cslot: [Constant<Bits<CUR_SLOT_BITS>>; CUR_RING],
-    wslot: [Constant<Bits<ROW_WINDOW_BITS>>; ROW_WINDOW],
-    dx: Constant<Bits<WIDE>>,
-    dd: Constant<Bits<WIDE>>,
-    ones: Constant<Bits<WIDE>>,
     pos_ones: Constant<Bits<POS_BITS>>,
-    sign_at: Constant<Bits<8>>,
     index_bits: Constant<Bits<8>>,
     pos_bits: Constant<Bits<8>>,
 }
@@ -457,98 +345,14 @@ impl RowCheck {
             c_count: Default::default(),
             overflow: Default::default(),
             crowded: Default::default(),
-            a_mem: Default::default(),
-            a_base: Default::default(),
-            a_rd: Default::default(),
-            a_left: Default::default(),
-            a_rend: Default::default(),
-            a_rd1: Default::default(),
-            a_rd2: Default::default(),
-            a_wi: Default::default(),
-            a_held: Default::default(),
-            a_xp: Default::default(),
-            a_xm: Default::default(),
-            a_dp: Default::default(),
-            a_dm: Default::default(),
-            a_lxm: Default::default(),
-            a_lt: Default::default(),
-            a_okq: Default::default(),
-            a_full: Default::default(),
-            a_beyond: Default::default(),
-            a_loaded: Default::default(),
-            a_stuck: Default::default(),
-            a_sl: Default::default(),
-            a_sg: Default::default(),
-            a_sdl: Default::default(),
-            a_sdh: Default::default(),
-            a_sb: Default::default(),
-            a_okc: Default::default(),
-            a_stay: Default::default(),
-            a_rx: Default::default(),
-            a_rdd: Default::default(),
-            a_ex: Default::default(),
-            a_ed: Default::default(),
-            a_nxp: Default::default(),
-            a_nxm: Default::default(),
-            a_ndp: Default::default(),
-            a_ndm: Default::default(),
-            a_pos: Default::default(),
-            a_free: Default::default(),
-            a_issue: Default::default(),
-            a_found: Default::default(),
-            a_anylt: Default::default(),
-            a_crowd: Default::default(),
-            a_beyond_c: Default::default(),
-            a_loaded_c: Default::default(),
-            a_stuck_n: Default::default(),
+            above: Default::default(),
+            below: Default::default(),
             a_count: Default::default(),
-            a_bank: Default::default(),
-            b_mem: Default::default(),
-            b_base: Default::default(),
-            b_rd: Default::default(),
-            b_left: Default::default(),
-            b_rend: Default::default(),
-            b_rd1: Default::default(),
-            b_rd2: Default::default(),
-            b_wi: Default::default(),
-            b_held: Default::default(),
-            b_xp: Default::default(),
-            b_xm: Default::default(),
-            b_dp: Default::default(),
-            b_dm: Default::default(),
-            b_lxm: Default::default(),
-            b_lt: Default::default(),
-            b_okq: Default::default(),
-            b_full: Default::default(),
-            b_beyond: Default::default(),
-            b_loaded: Default::default(),
-            b_stuck: Default::default(),
-            b_sl: Default::default(),
-            b_sg: Default::default(),
-            b_sdl: Default::default(),
-            b_sdh: Default::default(),
-            b_sb: Default::default(),
-            b_okc: Default::default(),
-            b_stay: Default::default(),
-            b_rx: Default::default(),
-            b_rdd: Default::default(),
-            b_ex: Default::default(),
-            b_ed: Default::default(),
-            b_nxp: Default::default(),
-            b_nxm: Default::default(),
-            b_ndp: Default::default(),
-            b_ndm: Default::default(),
-            b_pos: Default::default(),
-            b_free: Default::default(),
-            b_issue: Default::default(),
-            b_found: Default::default(),
-            b_anylt: Default::default(),
-            b_crowd: Default::default(),
-            b_beyond_c: Default::default(),
-            b_loaded_c: Default::default(),
-            b_stuck_n: Default::default(),
             b_count: Default::default(),
-            b_bank: Default::default(),
+            a_stuck: Default::default(),
+            b_stuck: Default::default(),
+            a_stuck_n: Default::default(),
+            b_stuck_n: Default::default(),
             cur_mem: Default::default(),
             in_line: Default::default(),
             dropping: Default::default(),
@@ -645,14 +449,8 @@ impl RowCheck {
             two: Constant::new(2u64.into()),
             n_max: Constant::new((N_MAX as u64).into()),
             cur_wrap: Constant::new((CUR_RING as u64).into()),
-            count_one: Constant::new(1u64.into()),
             cslot: core::array::from_fn(|i| Constant::new((i as u64).into())),
-            wslot: core::array::from_fn(|i| Constant::new((i as u64).into())),
-            dx: Constant::new(CONSISTENT_DX_LSB.into()),
-            dd: Constant::new(CONSISTENT_DD_LSB.into()),
-            ones: Constant::new(((1u64 << (WIDE - 1)) - 1).into()),
             pos_ones: Constant::new(((1u64 << POS_BITS) - 1).into()),
-            sign_at: Constant::new(((WIDE - 1) as u64).into()),
             index_bits: Constant::new((INDEX_BITS as u64).into()),
             pos_bits: Constant::new((POS_BITS as u64).into()),
         }
@@ -662,7 +460,7 @@ impl RowCheck {
 impl Logic for RowCheck {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, a_base, a_rd, a_left, a_rend, a_rd1, a_rd2, a_wi, a_lxm, a_full, a_beyond, a_loaded, a_stuck, b_base, b_rd, b_left, b_rend, b_rd1, b_rd2, b_wi, b_lxm, b_full, b_beyond, b_loaded, b_stuck, in_line, dropping, widx, wl, sof_pending, nofree, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, start_q, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, dec1, kept, crd, crd1, crd2, cwr, pvalid, pidx, pn, px, pd, dvalid, both_ready, qx, qd, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
+        dff_setup!(self, clock, a_stuck, b_stuck, in_line, dropping, widx, wl, sof_pending, nofree, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, start_q, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, dec1, kept, crd, crd1, crd2, cwr, pvalid, pidx, pn, px, pd, dvalid, both_ready, qx, qd, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
         self.cur_mem.clock.next = self.clock.val();
 
         // ================= Loader =================
@@ -802,230 +600,37 @@ impl Logic for RowCheck {
         // start is registered (it resets most of the engine).
         self.start_q.d.next = !self.busy.q.val() & !self.start_q.q.val() & ((self.pend.val() >= self.two.val()) | (self.pend.val().any() & self.eof_el.val()));
         self.start.next = self.start_q.q.val();
-        self.a_bank.next = self.bank_up.val();
+        self.above.bank.next = self.bank_up.val();
         self.a_count.next = 0.into();
         if !self.sof_el.val() & self.prev_needed.q.val() {
             self.a_count.next = self.cnt_up.val();
         }
-        self.b_bank.next = self.bank_dn.val();
+        self.below.bank.next = self.bank_dn.val();
         self.b_count.next = 0.into();
         if !self.eof_el.val() {
             self.b_count.next = self.cnt_dn.val();
         }
-        // ---- The window of the row above. Its memory copy takes the
-        // loader's writes.
-        self.a_mem.clock.next = self.clock.val();
-        self.a_mem.write_enable.next = self.take_match.val();
-        self.a_mem.write_address.next = self.waddr.val();
-        self.a_mem.write_data.next = self.wdata.val();
-        for i in 0..ROW_WINDOW {
-            self.a_held[i].clock.next = self.clock.val();
-            self.a_xp[i].clock.next = self.clock.val();
-            self.a_xm[i].clock.next = self.clock.val();
-            self.a_dp[i].clock.next = self.clock.val();
-            self.a_dm[i].clock.next = self.clock.val();
-            self.a_lt[i].clock.next = self.clock.val();
-            self.a_xp[i].d.next = self.a_xp[i].q.val();
-            self.a_xm[i].d.next = self.a_xm[i].q.val();
-            self.a_dp[i].d.next = self.a_dp[i].q.val();
-            self.a_dm[i].d.next = self.a_dm[i].q.val();
-        }
-        // An arriving entry's bounds.
-        self.a_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val() >> self.pos_bits.val());
-        self.a_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.a_mem.read_data.val());
-        self.a_ex.next = bit_cast::<WIDE, POS_BITS>(self.a_rx.val());
-        self.a_ed.next = bit_cast::<WIDE, POS_BITS>(self.a_rdd.val());
-        self.a_nxp.next = self.a_ex.val() + self.dx.val();
-        // (`X - DX` and `d - DD` may wrap below zero: subtracted in its
-        // comparison, such a bound never borrows, as if there were none.)
-        self.a_nxm.next = self.a_ex.val() - self.dx.val();
-        self.a_ndp.next = self.a_ed.val() + self.dd.val();
-        self.a_ndm.next = self.a_ed.val() - self.dd.val();
-        // The slots: a decided match's left entries leave (`lt` of the
-        // match in the decision stage), the arriving read lands at `wi`.
-        for i in 0..ROW_WINDOW {
-            self.a_stay[i].next = self.a_held[i].q.val() & !(self.dvalid.q.val() & self.a_lt[i].q.val());
-            self.a_held[i].d.next = self.a_stay[i].val();
-            // A free slot's bounds fail every comparison (so that the
-            // comparisons need not look at `held`).
-            if !self.a_stay[i].val() {
-                self.a_xp[i].d.next = self.ones.val();
-                self.a_xm[i].d.next = self.ones.val();
-            }
-            if self.a_rd2.q.val() & (self.a_wi.q.val() == self.wslot[i].val()) {
-                self.a_held[i].d.next = true;
-                self.a_xp[i].d.next = self.a_nxp.val();
-                self.a_xm[i].d.next = self.a_nxm.val();
-                self.a_dp[i].d.next = self.a_ndp.val();
-                self.a_dm[i].d.next = self.a_ndm.val();
-            }
-        }
-        if self.a_rd2.q.val() {
-            self.a_wi.d.next = self.a_wi.q.val() + 1;
-            self.a_lxm.d.next = self.a_nxm.val();
-        }
-        // A read is issued while its slot (after the reads in flight) is
-        // free: the held slots are one run ending before `wi`.
-        self.a_pos.next = self.a_wi.q.val();
-        if self.a_rd1.q.val() | self.a_rd2.q.val() {
-            self.a_pos.next = self.a_wi.q.val() + 1;
-        }
-        if self.a_rd1.q.val() & self.a_rd2.q.val() {
-            self.a_pos.next = self.a_wi.q.val() + 2;
-        }
-        self.a_free.next = false;
-        for i in 0..ROW_WINDOW {
-            if self.a_pos.val() == self.wslot[i].val() {
-                self.a_free.next = !self.a_stay[i].val();
-            }
-        }
-        self.a_issue.next = !self.a_rend.q.val() & self.a_free.val();
-        self.a_rd1.d.next = self.a_issue.val();
-        self.a_rd2.d.next = self.a_rd1.q.val();
-        if self.a_issue.val() {
-            self.a_rd.d.next = self.a_rd.q.val() + 1;
-            self.a_left.d.next = self.a_left.q.val() - 1;
-            self.a_rend.d.next = self.a_left.q.val() == self.count_one.val();
-        }
-        self.a_mem.read_address.next = self.a_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.a_rd.q.val());
-        // The comparisons with the presented match (registered; a free
-        // slot, its position bounds all ones, is neither left of the window
-        // nor confirming). Each is the borrow of a subtraction (one carry
-        // chain).
-        for i in 0..ROW_WINDOW {
-            self.a_sl[i].next = self.a_xp[i].q.val() - self.px.q.val();
-            self.a_sg[i].next = self.px.q.val() - self.a_xm[i].q.val();
-            self.a_sdl[i].next = self.pd.q.val() - self.a_dm[i].q.val();
-            self.a_sdh[i].next = self.a_dp[i].q.val() - self.pd.q.val();
-            self.a_lt[i].d.next = self.a_sl[i].val().get_bit(self.sign_at.val().index());
-            self.a_okc[i].next = !self.a_sl[i].val().get_bit(self.sign_at.val().index()) & !self.a_sg[i].val().get_bit(self.sign_at.val().index()) & !self.a_sdl[i].val().get_bit(self.sign_at.val().index()) & !self.a_sdh[i].val().get_bit(self.sign_at.val().index());
-        }
-        self.a_okq[0].clock.next = self.clock.val();
-        self.a_okq[1].clock.next = self.clock.val();
-        self.a_okq[0].d.next = self.a_okc[0].val() | self.a_okc[1].val() | self.a_okc[2].val() | self.a_okc[3].val();
-        self.a_okq[1].d.next = self.a_okc[4].val() | self.a_okc[5].val() | self.a_okc[6].val() | self.a_okc[7].val();
-        self.a_full.d.next = self.a_held[0].q.val() & self.a_held[1].q.val() & self.a_held[2].q.val() & self.a_held[3].q.val() & self.a_held[4].q.val() & self.a_held[5].q.val() & self.a_held[6].q.val() & self.a_held[7].q.val();
-        self.a_sb.next = self.px.q.val() - self.a_lxm.q.val();
-        // (The newest entry, once it has left, was left of an earlier
-        // match's window, so never right of this one's.)
-        self.a_beyond_c.next = self.a_sb.val().get_bit(self.sign_at.val().index());
-        self.a_loaded_c.next = self.a_rend.q.val() & !self.a_rd1.q.val() & !self.a_rd2.q.val();
-        self.a_beyond.d.next = self.a_beyond_c.val();
-        self.a_loaded.d.next = self.a_loaded_c.val();
-        // The decision stage's view: a confirming entry; crowded (full of
-        // entries none of which leaves, none right of the window, the row
-        // not all read and arrived: the match would wait for ever; it is
-        // then `stuck` until decided).
-        self.a_found.next = self.a_okq[0].q.val() | self.a_okq[1].q.val();
-        self.a_anylt.next = self.a_lt[0].q.val() | self.a_lt[1].q.val() | self.a_lt[2].q.val() | self.a_lt[3].q.val() | self.a_lt[4].q.val() | self.a_lt[5].q.val() | self.a_lt[6].q.val() | self.a_lt[7].q.val();
-        self.a_crowd.next = self.dvalid.q.val() & self.a_full.q.val() & !self.a_anylt.val() & !self.a_beyond.q.val() & !self.a_loaded.q.val() & !self.a_found.val();
-        // ---- The window of the row below. Its memory copy takes the
-        // loader's writes.
-        self.b_mem.clock.next = self.clock.val();
-        self.b_mem.write_enable.next = self.take_match.val();
-        self.b_mem.write_address.next = self.waddr.val();
-        self.b_mem.write_data.next = self.wdata.val();
-        for i in 0..ROW_WINDOW {
-            self.b_held[i].clock.next = self.clock.val();
-            self.b_xp[i].clock.next = self.clock.val();
-            self.b_xm[i].clock.next = self.clock.val();
-            self.b_dp[i].clock.next = self.clock.val();
-            self.b_dm[i].clock.next = self.clock.val();
-            self.b_lt[i].clock.next = self.clock.val();
-            self.b_xp[i].d.next = self.b_xp[i].q.val();
-            self.b_xm[i].d.next = self.b_xm[i].q.val();
-            self.b_dp[i].d.next = self.b_dp[i].q.val();
-            self.b_dm[i].d.next = self.b_dm[i].q.val();
-        }
-        // An arriving entry's bounds.
-        self.b_rx.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val() >> self.pos_bits.val());
-        self.b_rdd.next = bit_cast::<POS_BITS, ROW_ENTRY_BITS>(self.b_mem.read_data.val());
-        self.b_ex.next = bit_cast::<WIDE, POS_BITS>(self.b_rx.val());
-        self.b_ed.next = bit_cast::<WIDE, POS_BITS>(self.b_rdd.val());
-        self.b_nxp.next = self.b_ex.val() + self.dx.val();
-        // (`X - DX` and `d - DD` may wrap below zero: subtracted in its
-        // comparison, such a bound never borrows, as if there were none.)
-        self.b_nxm.next = self.b_ex.val() - self.dx.val();
-        self.b_ndp.next = self.b_ed.val() + self.dd.val();
-        self.b_ndm.next = self.b_ed.val() - self.dd.val();
-        // The slots: a decided match's left entries leave (`lt` of the
-        // match in the decision stage), the arriving read lands at `wi`.
-        for i in 0..ROW_WINDOW {
-            self.b_stay[i].next = self.b_held[i].q.val() & !(self.dvalid.q.val() & self.b_lt[i].q.val());
-            self.b_held[i].d.next = self.b_stay[i].val();
-            // A free slot's bounds fail every comparison (so that the
-            // comparisons need not look at `held`).
-            if !self.b_stay[i].val() {
-                self.b_xp[i].d.next = self.ones.val();
-                self.b_xm[i].d.next = self.ones.val();
-            }
-            if self.b_rd2.q.val() & (self.b_wi.q.val() == self.wslot[i].val()) {
-                self.b_held[i].d.next = true;
-                self.b_xp[i].d.next = self.b_nxp.val();
-                self.b_xm[i].d.next = self.b_nxm.val();
-                self.b_dp[i].d.next = self.b_ndp.val();
-                self.b_dm[i].d.next = self.b_ndm.val();
-            }
-        }
-        if self.b_rd2.q.val() {
-            self.b_wi.d.next = self.b_wi.q.val() + 1;
-            self.b_lxm.d.next = self.b_nxm.val();
-        }
-        // A read is issued while its slot (after the reads in flight) is
-        // free: the held slots are one run ending before `wi`.
-        self.b_pos.next = self.b_wi.q.val();
-        if self.b_rd1.q.val() | self.b_rd2.q.val() {
-            self.b_pos.next = self.b_wi.q.val() + 1;
-        }
-        if self.b_rd1.q.val() & self.b_rd2.q.val() {
-            self.b_pos.next = self.b_wi.q.val() + 2;
-        }
-        self.b_free.next = false;
-        for i in 0..ROW_WINDOW {
-            if self.b_pos.val() == self.wslot[i].val() {
-                self.b_free.next = !self.b_stay[i].val();
-            }
-        }
-        self.b_issue.next = !self.b_rend.q.val() & self.b_free.val();
-        self.b_rd1.d.next = self.b_issue.val();
-        self.b_rd2.d.next = self.b_rd1.q.val();
-        if self.b_issue.val() {
-            self.b_rd.d.next = self.b_rd.q.val() + 1;
-            self.b_left.d.next = self.b_left.q.val() - 1;
-            self.b_rend.d.next = self.b_left.q.val() == self.count_one.val();
-        }
-        self.b_mem.read_address.next = self.b_base.q.val() + bit_cast::<ROW_ADDR_BITS, COUNT_BITS>(self.b_rd.q.val());
-        // The comparisons with the presented match (registered; a free
-        // slot, its position bounds all ones, is neither left of the window
-        // nor confirming). Each is the borrow of a subtraction (one carry
-        // chain).
-        for i in 0..ROW_WINDOW {
-            self.b_sl[i].next = self.b_xp[i].q.val() - self.px.q.val();
-            self.b_sg[i].next = self.px.q.val() - self.b_xm[i].q.val();
-            self.b_sdl[i].next = self.pd.q.val() - self.b_dm[i].q.val();
-            self.b_sdh[i].next = self.b_dp[i].q.val() - self.pd.q.val();
-            self.b_lt[i].d.next = self.b_sl[i].val().get_bit(self.sign_at.val().index());
-            self.b_okc[i].next = !self.b_sl[i].val().get_bit(self.sign_at.val().index()) & !self.b_sg[i].val().get_bit(self.sign_at.val().index()) & !self.b_sdl[i].val().get_bit(self.sign_at.val().index()) & !self.b_sdh[i].val().get_bit(self.sign_at.val().index());
-        }
-        self.b_okq[0].clock.next = self.clock.val();
-        self.b_okq[1].clock.next = self.clock.val();
-        self.b_okq[0].d.next = self.b_okc[0].val() | self.b_okc[1].val() | self.b_okc[2].val() | self.b_okc[3].val();
-        self.b_okq[1].d.next = self.b_okc[4].val() | self.b_okc[5].val() | self.b_okc[6].val() | self.b_okc[7].val();
-        self.b_full.d.next = self.b_held[0].q.val() & self.b_held[1].q.val() & self.b_held[2].q.val() & self.b_held[3].q.val() & self.b_held[4].q.val() & self.b_held[5].q.val() & self.b_held[6].q.val() & self.b_held[7].q.val();
-        self.b_sb.next = self.px.q.val() - self.b_lxm.q.val();
-        // (The newest entry, once it has left, was left of an earlier
-        // match's window, so never right of this one's.)
-        self.b_beyond_c.next = self.b_sb.val().get_bit(self.sign_at.val().index());
-        self.b_loaded_c.next = self.b_rend.q.val() & !self.b_rd1.q.val() & !self.b_rd2.q.val();
-        self.b_beyond.d.next = self.b_beyond_c.val();
-        self.b_loaded.d.next = self.b_loaded_c.val();
-        // The decision stage's view: a confirming entry; crowded (full of
-        // entries none of which leaves, none right of the window, the row
-        // not all read and arrived: the match would wait for ever; it is
-        // then `stuck` until decided).
-        self.b_found.next = self.b_okq[0].q.val() | self.b_okq[1].q.val();
-        self.b_anylt.next = self.b_lt[0].q.val() | self.b_lt[1].q.val() | self.b_lt[2].q.val() | self.b_lt[3].q.val() | self.b_lt[4].q.val() | self.b_lt[5].q.val() | self.b_lt[6].q.val() | self.b_lt[7].q.val();
-        self.b_crowd.next = self.dvalid.q.val() & self.b_full.q.val() & !self.b_anylt.val() & !self.b_beyond.q.val() & !self.b_loaded.q.val() & !self.b_found.val();
+        // ---- The windows of the rows above and below: each copy of the
+        // row memory takes the loader's writes; each window starts with the
+        // engine's row and compares its entries with the presented match.
+        self.above.clock.next = self.clock.val();
+        self.above.w_enable.next = self.take_match.val();
+        self.above.w_address.next = self.waddr.val();
+        self.above.w_data.next = self.wdata.val();
+        self.above.start.next = self.start.val();
+        self.above.count.next = self.a_count.val();
+        self.above.px.next = self.px.q.val();
+        self.above.pd.next = self.pd.q.val();
+        self.above.dvalid.next = self.dvalid.q.val();
+        self.below.clock.next = self.clock.val();
+        self.below.w_enable.next = self.take_match.val();
+        self.below.w_address.next = self.waddr.val();
+        self.below.w_data.next = self.wdata.val();
+        self.below.start.next = self.start.val();
+        self.below.count.next = self.b_count.val();
+        self.below.px.next = self.px.q.val();
+        self.below.pd.next = self.pd.q.val();
+        self.below.dvalid.next = self.dvalid.q.val();
         // ---- The checked row's prefetch ring: a read while fewer than
         // CUR_RING of the row's matches are read and undecided (`crd - dec`
         // is 0 ..= CUR_RING: it is CUR_RING when the two agree on the ring's
@@ -1071,18 +676,18 @@ impl Logic for RowCheck {
         // dropped once both windows are complete (`both_ready`: each has its
         // newest entry right of the match's window, or its row all read and
         // arrived, or is stuck: crowded, which counts as complete, flagged).
-        self.keep.next = self.a_found.val() | self.b_found.val();
+        self.keep.next = self.above.found.val() | self.below.found.val();
         self.decide.next = self.dvalid.q.val() & (self.keep.val() | self.both_ready.q.val());
         self.crowded_q.d.next = self.decide.val() & !self.keep.val() & (self.a_stuck.q.val() | self.b_stuck.q.val());
-        self.a_stuck_n.next = self.a_stuck.q.val() | self.a_crowd.val();
-        self.b_stuck_n.next = self.b_stuck.q.val() | self.b_crowd.val();
+        self.a_stuck_n.next = self.a_stuck.q.val() | self.above.crowd.val();
+        self.b_stuck_n.next = self.b_stuck.q.val() | self.below.crowd.val();
         if self.decide.val() {
             self.a_stuck_n.next = false;
             self.b_stuck_n.next = false;
         }
         self.a_stuck.d.next = self.a_stuck_n.val();
         self.b_stuck.d.next = self.b_stuck_n.val();
-        self.both_ready.d.next = (self.a_beyond_c.val() | self.a_loaded_c.val() | self.a_stuck_n.val()) & (self.b_beyond_c.val() | self.b_loaded_c.val() | self.b_stuck_n.val());
+        self.both_ready.d.next = (self.above.complete.val() | self.a_stuck_n.val()) & (self.below.complete.val() | self.b_stuck_n.val());
         self.finish.next = self.busy.q.val() & (self.dec.q.val() == self.n_cur.q.val());
         if self.decide.val() {
             self.dec.d.next = self.dec.q.val() + 1;
@@ -1158,30 +763,8 @@ impl Logic for RowCheck {
             self.pn_oh[0].d.next = true;
             self.dec1_oh[1].d.next = true;
             self.dvalid.d.next = false;
-            self.a_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.a_bank.val()) << self.index_bits.val();
-            self.a_left.d.next = self.a_count.val();
-            self.a_rd.d.next = 0.into();
-            self.a_rend.d.next = !self.a_count.val().any();
-            self.a_rd1.d.next = false;
-            self.a_rd2.d.next = false;
-            self.a_wi.d.next = 0.into();
             self.a_stuck.d.next = false;
-            self.a_lxm.d.next = 0.into();
-            for i in 0..ROW_WINDOW {
-                self.a_held[i].d.next = false;
-            }
-            self.b_base.d.next = bit_cast::<ROW_ADDR_BITS, ROW_BANK_BITS>(self.b_bank.val()) << self.index_bits.val();
-            self.b_left.d.next = self.b_count.val();
-            self.b_rd.d.next = 0.into();
-            self.b_rend.d.next = !self.b_count.val().any();
-            self.b_rd1.d.next = false;
-            self.b_rd2.d.next = false;
-            self.b_wi.d.next = 0.into();
             self.b_stuck.d.next = false;
-            self.b_lxm.d.next = 0.into();
-            for i in 0..ROW_WINDOW {
-                self.b_held[i].d.next = false;
-            }
         }
         // No bank free for a row starting on the next clock (all banks in
         // use: the rows stored and not yet checked, and the row before the
