@@ -40,6 +40,8 @@ use rust_hdl::prelude::*;
 /// the block RAMs' write ports (written at that clock's end): the record as
 /// it comes, the end-level sum, the levels, the register beside the RAMs.
 pub const WRITE_LAG: usize = 4;
+/// Grey levels a record carries: three on each side of the declivity.
+const LEVELS: usize = 6;
 
 #[derive(LogicBlock)]
 pub struct RecordMemory {
@@ -67,61 +69,32 @@ pub struct RecordMemory {
     // The position with the polarity above it (one block RAM, not a
     // 1-bit LUT RAM whose read would sit on the address path).
     pos_mem: BlockRam<{ POS_BITS + 1 }, DIAG_BITS>,
-    lev0_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
-    lev1_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
-    lev2_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
-    lev3_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
-    lev4_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
-    lev5_mem: BlockRam<LEVEL_BITS, DIAG_BITS>,
+    lev_mem: [BlockRam<LEVEL_BITS, DIAG_BITS>; LEVELS],
     // The write as it comes.
     wi_enable: DFF<Bit>,
     wi_addr: DFF<Bits<DIAG_BITS>>,
     wi_pos: DFF<Bits<POS_BITS>>,
     wi_falling: DFF<Bit>,
-    wi_left0: DFF<Bits<PIXEL_BITS>>,
-    wi_left1: DFF<Bits<PIXEL_BITS>>,
-    wi_left2: DFF<Bits<PIXEL_BITS>>,
-    wi_right0: DFF<Bits<PIXEL_BITS>>,
-    wi_right1: DFF<Bits<PIXEL_BITS>>,
-    wi_right2: DFF<Bits<PIXEL_BITS>>,
+    // The grey levels in the order of `lev0..5`: left 0–2, then right 0–2.
+    wi_lev: [DFF<Bits<PIXEL_BITS>>; LEVELS],
     // The write with the end-level sum `e`.
     wb_enable: DFF<Bit>,
     wb_addr: DFF<Bits<DIAG_BITS>>,
     wb_pos: DFF<Bits<{ POS_BITS + 1 }>>,
     wb_ends: DFF<Bits<LEVEL_BITS>>,
-    wb_left0: DFF<Bits<PIXEL_BITS>>,
-    wb_left1: DFF<Bits<PIXEL_BITS>>,
-    wb_left2: DFF<Bits<PIXEL_BITS>>,
-    wb_right0: DFF<Bits<PIXEL_BITS>>,
-    wb_right1: DFF<Bits<PIXEL_BITS>>,
-    wb_right2: DFF<Bits<PIXEL_BITS>>,
+    wb_lev: [DFF<Bits<PIXEL_BITS>>; LEVELS],
     // The write in the RAMs' format.
     wc_enable: DFF<Bit>,
     wc_addr: DFF<Bits<DIAG_BITS>>,
     wc_pos: DFF<Bits<{ POS_BITS + 1 }>>,
-    wc_lev0: DFF<Bits<LEVEL_BITS>>,
-    wc_lev1: DFF<Bits<LEVEL_BITS>>,
-    wc_lev2: DFF<Bits<LEVEL_BITS>>,
-    wc_lev3: DFF<Bits<LEVEL_BITS>>,
-    wc_lev4: DFF<Bits<LEVEL_BITS>>,
-    wc_lev5: DFF<Bits<LEVEL_BITS>>,
+    wc_lev: [DFF<Bits<LEVEL_BITS>>; LEVELS],
     // The same, beside the RAMs.
     wq_enable: DFF<Bit>,
     wq_addr: DFF<Bits<DIAG_BITS>>,
     wq_pos: DFF<Bits<{ POS_BITS + 1 }>>,
-    wq_lev0: DFF<Bits<LEVEL_BITS>>,
-    wq_lev1: DFF<Bits<LEVEL_BITS>>,
-    wq_lev2: DFF<Bits<LEVEL_BITS>>,
-    wq_lev3: DFF<Bits<LEVEL_BITS>>,
-    wq_lev4: DFF<Bits<LEVEL_BITS>>,
-    wq_lev5: DFF<Bits<LEVEL_BITS>>,
+    wq_lev: [DFF<Bits<LEVEL_BITS>>; LEVELS],
     ends: Signal<Local, Bits<LEVEL_BITS>>,
-    lev0_off: Signal<Local, Bits<LEVEL_BITS>>,
-    lev1_off: Signal<Local, Bits<LEVEL_BITS>>,
-    lev2_off: Signal<Local, Bits<LEVEL_BITS>>,
-    lev3_off: Signal<Local, Bits<LEVEL_BITS>>,
-    lev4_off: Signal<Local, Bits<LEVEL_BITS>>,
-    lev5_off: Signal<Local, Bits<LEVEL_BITS>>,
+    lev_off: [Signal<Local, Bits<LEVEL_BITS>>; LEVELS],
     level_offset: Constant<Bits<LEVEL_BITS>>,
     amp_msb: Constant<Bits<8>>,
     rise_bit: Constant<Bits<8>>,
@@ -154,57 +127,27 @@ impl Default for RecordMemory {
             lev5: Default::default(),
             rising: Default::default(),
             pos_mem: Default::default(),
-            lev0_mem: Default::default(),
-            lev1_mem: Default::default(),
-            lev2_mem: Default::default(),
-            lev3_mem: Default::default(),
-            lev4_mem: Default::default(),
-            lev5_mem: Default::default(),
+            lev_mem: Default::default(),
             wi_enable: Default::default(),
             wi_addr: Default::default(),
             wi_pos: Default::default(),
             wi_falling: Default::default(),
-            wi_left0: Default::default(),
-            wi_left1: Default::default(),
-            wi_left2: Default::default(),
-            wi_right0: Default::default(),
-            wi_right1: Default::default(),
-            wi_right2: Default::default(),
+            wi_lev: Default::default(),
             wb_enable: Default::default(),
             wb_addr: Default::default(),
             wb_pos: Default::default(),
             wb_ends: Default::default(),
-            wb_left0: Default::default(),
-            wb_left1: Default::default(),
-            wb_left2: Default::default(),
-            wb_right0: Default::default(),
-            wb_right1: Default::default(),
-            wb_right2: Default::default(),
+            wb_lev: Default::default(),
             wc_enable: Default::default(),
             wc_addr: Default::default(),
             wc_pos: Default::default(),
-            wc_lev0: Default::default(),
-            wc_lev1: Default::default(),
-            wc_lev2: Default::default(),
-            wc_lev3: Default::default(),
-            wc_lev4: Default::default(),
-            wc_lev5: Default::default(),
+            wc_lev: Default::default(),
             wq_enable: Default::default(),
             wq_addr: Default::default(),
             wq_pos: Default::default(),
-            wq_lev0: Default::default(),
-            wq_lev1: Default::default(),
-            wq_lev2: Default::default(),
-            wq_lev3: Default::default(),
-            wq_lev4: Default::default(),
-            wq_lev5: Default::default(),
+            wq_lev: Default::default(),
             ends: Default::default(),
-            lev0_off: Default::default(),
-            lev1_off: Default::default(),
-            lev2_off: Default::default(),
-            lev3_off: Default::default(),
-            lev4_off: Default::default(),
-            lev5_off: Default::default(),
+            lev_off: Default::default(),
             level_offset: Constant::new(LEVEL_OFFSET.into()),
             amp_msb: Constant::new(((AMP_BITS - 1) as u64).into()),
             rise_bit: Constant::new((POS_BITS as u64).into()),
@@ -218,64 +161,61 @@ impl Logic for RecordMemory {
     #[hdl_gen]
     fn update(&mut self) {
         self.pos_mem.clock.next = self.clock.val();
-        self.lev0_mem.clock.next = self.clock.val();
-        self.lev1_mem.clock.next = self.clock.val();
-        self.lev2_mem.clock.next = self.clock.val();
-        self.lev3_mem.clock.next = self.clock.val();
-        self.lev4_mem.clock.next = self.clock.val();
-        self.lev5_mem.clock.next = self.clock.val();
-        dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wi_left0, wi_left1, wi_left2, wi_right0, wi_right1, wi_right2, wb_enable, wb_addr, wb_pos, wb_ends, wb_left0, wb_left1, wb_left2, wb_right0, wb_right1, wb_right2, wc_enable, wc_addr, wc_pos, wc_lev0, wc_lev1, wc_lev2, wc_lev3, wc_lev4, wc_lev5, wq_enable, wq_addr, wq_pos, wq_lev0, wq_lev1, wq_lev2, wq_lev3, wq_lev4, wq_lev5);
+        for i in 0..LEVELS {
+            self.lev_mem[i].clock.next = self.clock.val();
+            self.wi_lev[i].clock.next = self.clock.val();
+            self.wb_lev[i].clock.next = self.clock.val();
+            self.wc_lev[i].clock.next = self.clock.val();
+            self.wq_lev[i].clock.next = self.clock.val();
+        }
+        dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wb_enable, wb_addr, wb_pos, wb_ends, wc_enable, wc_addr, wc_pos, wq_enable, wq_addr, wq_pos);
 
         self.wi_enable.d.next = self.w_enable.val();
         self.wi_addr.d.next = self.w_addr.val();
         self.wi_pos.d.next = self.w_pos.val();
         self.wi_falling.d.next = self.w_amp.val().get_bit(self.amp_msb.val().index());
-        self.wi_left0.d.next = self.w_left0.val();
-        self.wi_left1.d.next = self.w_left1.val();
-        self.wi_left2.d.next = self.w_left2.val();
-        self.wi_right0.d.next = self.w_right0.val();
-        self.wi_right1.d.next = self.w_right1.val();
-        self.wi_right2.d.next = self.w_right2.val();
+        self.wi_lev[0].d.next = self.w_left0.val();
+        self.wi_lev[1].d.next = self.w_left1.val();
+        self.wi_lev[2].d.next = self.w_left2.val();
+        self.wi_lev[3].d.next = self.w_right0.val();
+        self.wi_lev[4].d.next = self.w_right1.val();
+        self.wi_lev[5].d.next = self.w_right2.val();
 
         // Second stage: the end-level sum `e` (0 in the paper's rule),
         // registered with the record.
         self.ends.next = 0.into();
         if self.relative.val() {
-            self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_left0.q.val())
-                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_right0.q.val());
+            self.ends.next = bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_lev[0].q.val())
+                + bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wi_lev[3].q.val());
         }
         self.wb_ends.d.next = self.ends.val();
         self.wb_pos.d.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.wi_pos.q.val())
             .replace_bit(self.rise_bit.val().index(), !self.wi_falling.q.val());
-        self.wb_left0.d.next = self.wi_left0.q.val();
-        self.wb_left1.d.next = self.wi_left1.q.val();
-        self.wb_left2.d.next = self.wi_left2.q.val();
-        self.wb_right0.d.next = self.wi_right0.q.val();
-        self.wb_right1.d.next = self.wi_right1.q.val();
-        self.wb_right2.d.next = self.wi_right2.q.val();
+        for i in 0..LEVELS {
+            self.wb_lev[i].d.next = self.wi_lev[i].q.val();
+        }
         self.wb_enable.d.next = self.wi_enable.q.val();
         self.wb_addr.d.next = self.wi_addr.q.val();
         // Third stage: each level `(2·I + LEVEL_OFFSET) - e`, in the RAMs'
         // format. `2·I < LEVEL_OFFSET`, a power of two: the sum is `I` one
         // bit up with the offset's bit set, no adder.
-        self.lev0_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left0.q.val()) << self.one.val())
+        // (The shifts unrolled: rust-hdl's hdl_gen cannot shift inside a
+        // loop over its index.)
+        self.lev_off[0].next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_lev[0].q.val()) << self.one.val())
             | self.level_offset.val();
-        self.wc_lev0.d.next = self.lev0_off.val() - self.wb_ends.q.val();
-        self.lev1_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left1.q.val()) << self.one.val())
+        self.lev_off[1].next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_lev[1].q.val()) << self.one.val())
             | self.level_offset.val();
-        self.wc_lev1.d.next = self.lev1_off.val() - self.wb_ends.q.val();
-        self.lev2_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_left2.q.val()) << self.one.val())
+        self.lev_off[2].next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_lev[2].q.val()) << self.one.val())
             | self.level_offset.val();
-        self.wc_lev2.d.next = self.lev2_off.val() - self.wb_ends.q.val();
-        self.lev3_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right0.q.val()) << self.one.val())
+        self.lev_off[3].next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_lev[3].q.val()) << self.one.val())
             | self.level_offset.val();
-        self.wc_lev3.d.next = self.lev3_off.val() - self.wb_ends.q.val();
-        self.lev4_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right1.q.val()) << self.one.val())
+        self.lev_off[4].next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_lev[4].q.val()) << self.one.val())
             | self.level_offset.val();
-        self.wc_lev4.d.next = self.lev4_off.val() - self.wb_ends.q.val();
-        self.lev5_off.next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_right2.q.val()) << self.one.val())
+        self.lev_off[5].next = (bit_cast::<LEVEL_BITS, PIXEL_BITS>(self.wb_lev[5].q.val()) << self.one.val())
             | self.level_offset.val();
-        self.wc_lev5.d.next = self.lev5_off.val() - self.wb_ends.q.val();
+        for i in 0..LEVELS {
+            self.wc_lev[i].d.next = self.lev_off[i].val() - self.wb_ends.q.val();
+        }
         self.wc_pos.d.next = self.wb_pos.q.val();
         self.wc_enable.d.next = self.wb_enable.q.val();
         self.wc_addr.d.next = self.wb_addr.q.val();
@@ -283,47 +223,24 @@ impl Logic for RecordMemory {
         self.wq_pos.d.next = self.wc_pos.q.val();
         self.wq_enable.d.next = self.wc_enable.q.val();
         self.wq_addr.d.next = self.wc_addr.q.val();
-        self.wq_lev0.d.next = self.wc_lev0.q.val();
-        self.wq_lev1.d.next = self.wc_lev1.q.val();
-        self.wq_lev2.d.next = self.wc_lev2.q.val();
-        self.wq_lev3.d.next = self.wc_lev3.q.val();
-        self.wq_lev4.d.next = self.wc_lev4.q.val();
-        self.wq_lev5.d.next = self.wc_lev5.q.val();
         self.pos_mem.write_data.next = self.wq_pos.q.val();
         self.pos_mem.write_address.next = self.wq_addr.q.val();
-        self.lev0_mem.write_data.next = self.wq_lev0.q.val();
-        self.lev0_mem.write_address.next = self.wq_addr.q.val();
-        self.lev1_mem.write_data.next = self.wq_lev1.q.val();
-        self.lev1_mem.write_address.next = self.wq_addr.q.val();
-        self.lev2_mem.write_data.next = self.wq_lev2.q.val();
-        self.lev2_mem.write_address.next = self.wq_addr.q.val();
-        self.lev3_mem.write_data.next = self.wq_lev3.q.val();
-        self.lev3_mem.write_address.next = self.wq_addr.q.val();
-        self.lev4_mem.write_data.next = self.wq_lev4.q.val();
-        self.lev4_mem.write_address.next = self.wq_addr.q.val();
-        self.lev5_mem.write_data.next = self.wq_lev5.q.val();
-        self.lev5_mem.write_address.next = self.wq_addr.q.val();
         self.pos_mem.write_enable.next = self.wq_enable.q.val();
-        self.lev0_mem.write_enable.next = self.wq_enable.q.val();
-        self.lev1_mem.write_enable.next = self.wq_enable.q.val();
-        self.lev2_mem.write_enable.next = self.wq_enable.q.val();
-        self.lev3_mem.write_enable.next = self.wq_enable.q.val();
-        self.lev4_mem.write_enable.next = self.wq_enable.q.val();
-        self.lev5_mem.write_enable.next = self.wq_enable.q.val();
         self.pos_mem.read_address.next = self.r_addr.val();
-        self.lev0_mem.read_address.next = self.r_addr.val();
-        self.lev1_mem.read_address.next = self.r_addr.val();
-        self.lev2_mem.read_address.next = self.r_addr.val();
-        self.lev3_mem.read_address.next = self.r_addr.val();
-        self.lev4_mem.read_address.next = self.r_addr.val();
-        self.lev5_mem.read_address.next = self.r_addr.val();
+        for i in 0..LEVELS {
+            self.wq_lev[i].d.next = self.wc_lev[i].q.val();
+            self.lev_mem[i].write_data.next = self.wq_lev[i].q.val();
+            self.lev_mem[i].write_address.next = self.wq_addr.q.val();
+            self.lev_mem[i].write_enable.next = self.wq_enable.q.val();
+            self.lev_mem[i].read_address.next = self.r_addr.val();
+        }
         self.pos.next = self.pos_mem.read_data.val().get_bits::<POS_BITS>(self.bit0.val().index());
-        self.lev0.next = self.lev0_mem.read_data.val();
-        self.lev1.next = self.lev1_mem.read_data.val();
-        self.lev2.next = self.lev2_mem.read_data.val();
-        self.lev3.next = self.lev3_mem.read_data.val();
-        self.lev4.next = self.lev4_mem.read_data.val();
-        self.lev5.next = self.lev5_mem.read_data.val();
+        self.lev0.next = self.lev_mem[0].read_data.val();
+        self.lev1.next = self.lev_mem[1].read_data.val();
+        self.lev2.next = self.lev_mem[2].read_data.val();
+        self.lev3.next = self.lev_mem[3].read_data.val();
+        self.lev4.next = self.lev_mem[4].read_data.val();
+        self.lev5.next = self.lev_mem[5].read_data.val();
         self.rising.next = self.pos_mem.read_data.val().get_bit(self.rise_bit.val().index());
     }
 }
