@@ -655,7 +655,7 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
                 (1 << DIAG_BITS) / 2,
                 record_bits,
                 Some(2 * record_rams),
-                "RecordMemory::pos_mem, lev0_mem..lev5_mem (position and polarity, six levels), one per view",
+                "RecordMemory::pos_mem, lev_mem[0..5] (position and polarity, six levels), one per view",
             ),
             Memory::new(
                 NAME,
@@ -704,7 +704,7 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
             1 << INDEX_BITS,
             ROW_ENTRY_BITS,
             Some(3 * dp16kd_of(ROW_ENTRY_BITS, 1 << ROW_ADDR_BITS)),
-            "RowCheck::cur_mem, a_mem, b_mem (the checked row, the rows above and below: three read ports), four banks of N_MAX matches (X, d)",
+            "RowCheck::cur_mem, above.mem, below.mem (the checked row, the rows above and below: three read ports; NeighbourWindow::mem), four banks of N_MAX matches (X, d)",
         )])
 }
 
