@@ -1465,7 +1465,7 @@ mod tests {
         assert!(b.wide && b.stored_width == W_MAX);
         assert_eq!(b.input_cycles_per_line, W_MAX as u64 + 476);
         assert!(b.notes.iter().any(|n| n.contains("wide") && n.contains("W_MAX")), "{:?}", b.notes);
-        assert_eq!(b.stages[0].latency_cycles, (W_MAX + 476 - 1) as u64 + marker_latency_estimate(W_MAX));
+        assert_eq!(b.stages[0].latency_cycles, SKID_LAG as u64 + (W_MAX + 476 - 1) as u64 + marker_latency_estimate(W_MAX));
     }
 
     #[test]
