@@ -38,6 +38,7 @@
 //! the stream stay aligned.
 
 use crate::params::*;
+use crate::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS, MUL_PRODUCT_BITS};
 use crate::pixel_window::PixelWindow;
 use rust_hdl::prelude::*;
 
@@ -85,11 +86,14 @@ pub struct DeclivityTracker {
     pub item_tag3: Signal<Out, Bits<32>>,
     // The window on the pixel stream.
     window: PixelWindow,
+    // g² and g²·(2x + 1) in DSP blocks, each fed a clock ahead of the
+    // register it replaces (`DspMultiplier`: its input registers).
+    square: DspMultiplier,
+    weight: DspMultiplier,
     // Gradient pipeline: g at taps 2–4, g² at taps 3–4, g²(2x+1) at tap 4.
     g2: DFF<Bits<AMP_BITS>>,
     g3: DFF<Bits<AMP_BITS>>,
     g4: DFF<Bits<AMP_BITS>>,
-    gabs2: DFF<Bits<PIXEL_BITS>>,
     gsq3: DFF<Bits<S0_BITS>>,
     gsq4: DFF<Bits<S0_BITS>>,
     w4: DFF<Bits<S1_BITS>>,
@@ -137,11 +141,8 @@ pub struct DeclivityTracker {
     o_tag2: DFF<Bits<32>>,
     o_tag3: DFF<Bits<32>>,
     // Combinational values of the centre.
-    gabs: Signal<Local, Bits<16>>,
-    sq_full: Signal<Local, Bits<32>>,
-    odd_x: Signal<Local, Bits<16>>,
-    sq16: Signal<Local, Bits<16>>,
-    w_full: Signal<Local, Bits<32>>,
+    gabs: Signal<Local, Bits<MUL_OPERAND_BITS>>,
+    odd_x: Signal<Local, Bits<MUL_OPERAND_BITS>>,
     seen_eff: Signal<Local, Bit>,
     count_eff: Signal<Local, Bits<COUNT_BITS>>,
     full_eff: Signal<Local, Bit>,
@@ -195,10 +196,11 @@ impl Default for DeclivityTracker {
             item_tag2: Default::default(),
             item_tag3: Default::default(),
             window: Default::default(),
+            square: Default::default(),
+            weight: Default::default(),
             g2: Default::default(),
             g3: Default::default(),
             g4: Default::default(),
-            gabs2: Default::default(),
             gsq3: Default::default(),
             gsq4: Default::default(),
             w4: Default::default(),
@@ -236,10 +238,7 @@ impl Default for DeclivityTracker {
             o_tag2: Default::default(),
             o_tag3: Default::default(),
             gabs: Default::default(),
-            sq_full: Default::default(),
             odd_x: Default::default(),
-            sq16: Default::default(),
-            w_full: Default::default(),
             seen_eff: Default::default(),
             count_eff: Default::default(),
             full_eff: Default::default(),
@@ -277,7 +276,7 @@ impl Logic for DeclivityTracker {
     fn update(&mut self) {
         self.window.clock.next = self.clock.val();
         dff_setup!(
-            self, clock, g2, g3, g4, gabs2, gsq3, gsq4, w4, nz4, up4, char4, at_thr3, at_thr4, run_thr, seen, rising, start, start_level, left0, left1, left2, s0, s1,
+            self, clock, g2, g3, g4, gsq3, gsq4, w4, nz4, up4, char4, at_thr3, at_thr4, run_thr, seen, rising, start, start_level, left0, left1, left2, s0, s1,
             end_reg, upd1, upd2, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
             o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
         );
@@ -300,23 +299,31 @@ impl Logic for DeclivityTracker {
         }
         self.g3.d.next = self.g2.q.val();
         self.g4.d.next = self.g3.q.val();
-        // |g(x)| registered beside g(x), as the difference of the larger and
-        // the smaller level (no negation in front of the multiplier).
-        self.gabs2.d.next = 0.into();
+        // |g(x)| (the difference of the larger and the smaller level: no
+        // negation in front of the multiplier) into the square's input
+        // registers, where g(x) is registered: g² comes out at tap 2.
+        self.gabs.next = 0.into();
         if self.window.valid1.val() & !self.window.last1.val() {
-            self.gabs2.d.next = self.window.pix0.val() - self.window.pix1.val();
+            self.gabs.next = bit_cast::<MUL_OPERAND_BITS, PIXEL_BITS>(self.window.pix0.val() - self.window.pix1.val());
             if self.window.pix1.val() > self.window.pix0.val() {
-                self.gabs2.d.next = self.window.pix1.val() - self.window.pix0.val();
+                self.gabs.next = bit_cast::<MUL_OPERAND_BITS, PIXEL_BITS>(self.window.pix1.val() - self.window.pix0.val());
             }
         }
-        self.gabs.next = bit_cast::<16, PIXEL_BITS>(self.gabs2.q.val());
-        self.sq_full.next = self.gabs.val() * self.gabs.val();
-        self.gsq3.d.next = bit_cast::<S0_BITS, 32>(self.sq_full.val());
+        self.square.clock.next = self.clock.val();
+        self.square.a.next = self.gabs.val();
+        self.square.b.next = self.gabs.val();
+        self.gsq3.d.next = bit_cast::<S0_BITS, MUL_PRODUCT_BITS>(self.square.p.val());
         self.gsq4.d.next = self.gsq3.q.val();
-        self.odd_x.next = bit_cast::<16, X_BITS>(self.window.x3.val()) + bit_cast::<16, X_BITS>(self.window.x3.val()) + 1;
-        self.sq16.next = bit_cast::<16, S0_BITS>(self.gsq3.q.val());
-        self.w_full.next = self.sq16.val() * self.odd_x.val();
-        self.w4.d.next = bit_cast::<S1_BITS, 32>(self.w_full.val());
+        // g²(x) and 2x + 1 into the weight's input registers where gsq3 and
+        // tap 3 take them (x at tap 3 is x at tap 2 one clock earlier: the
+        // window shifts on every clock).
+        self.odd_x.next = bit_cast::<MUL_OPERAND_BITS, X_BITS>(self.window.x2.val())
+            + bit_cast::<MUL_OPERAND_BITS, X_BITS>(self.window.x2.val())
+            + 1;
+        self.weight.clock.next = self.clock.val();
+        self.weight.a.next = bit_cast::<MUL_OPERAND_BITS, MUL_PRODUCT_BITS>(self.square.p.val());
+        self.weight.b.next = self.odd_x.val();
+        self.w4.d.next = bit_cast::<S1_BITS, MUL_PRODUCT_BITS>(self.weight.p.val());
 
         // ---- The centre: pixel x at tap 4.
         self.seen_eff.next = self.seen.q.val() & !self.window.first4.val();

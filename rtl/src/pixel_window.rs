@@ -12,7 +12,7 @@
 //!   (`⌊d_t⌋`), `in_wide`, `in_sof`.
 //! - Out: the taps the tracker reads, named by field and tap: `pix0..pix6`,
 //!   `valid1`, `valid4`, `last1`, `last3`, `last4`, `first4`, `first5`,
-//!   `x3`, `x4`, `dt4`, `thr2`, `wide4`, `sof4`.
+//!   `x2`, `x4`, `dt4`, `thr2`, `wide4`, `sof4`.
 //!
 //! ## Timing
 //! Shifts on every clock, bubbles (`in_valid` low) included; registered
@@ -72,7 +72,7 @@ pub struct PixelWindow {
     pub last4: Signal<Out, Bit>,
     pub first4: Signal<Out, Bit>,
     pub first5: Signal<Out, Bit>,
-    pub x3: Signal<Out, Bits<X_BITS>>,
+    pub x2: Signal<Out, Bits<X_BITS>>,
     pub x4: Signal<Out, Bits<X_BITS>>,
     pub dt4: Signal<Out, Bits<DT_BITS>>,
     pub thr2: Signal<Out, Bits<DT_INT_BITS>>,
@@ -108,7 +108,7 @@ impl Default for PixelWindow {
             last4: Default::default(),
             first4: Default::default(),
             first5: Default::default(),
-            x3: Default::default(),
+            x2: Default::default(),
             x4: Default::default(),
             dt4: Default::default(),
             thr2: Default::default(),
@@ -151,7 +151,7 @@ impl Logic for PixelWindow {
         self.last4.next = t[4].last;
         self.first4.next = t[4].first;
         self.first5.next = t[5].first;
-        self.x3.next = t[3].x.into();
+        self.x2.next = t[2].x.into();
         self.x4.next = t[4].x.into();
         self.dt4.next = t[4].dt.into();
         self.thr2.next = t[2].thr.into();
@@ -174,7 +174,7 @@ impl Logic for PixelWindow {
         self.last4.connect();
         self.first4.connect();
         self.first5.connect();
-        self.x3.connect();
+        self.x2.connect();
         self.x4.connect();
         self.dt4.connect();
         self.thr2.connect();
@@ -196,7 +196,7 @@ fn window_verilog() -> String {
         ("valid", "in_valid", 1, &[1, 4]),
         ("last", "in_last", 1, &[1, 3, 4]),
         ("first", "in_first", 1, &[4, 5]),
-        ("x", "in_x", X_BITS, &[3, 4]),
+        ("x", "in_x", X_BITS, &[2, 4]),
         ("dt", "in_dt", DT_BITS, &[4]),
         ("thr", "in_thr", DT_INT_BITS, &[2]),
         ("wide", "in_wide", 1, &[4]),
