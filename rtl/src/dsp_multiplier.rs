@@ -106,3 +106,45 @@ MULT18X18D #(
         pins = pins.join(", "),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_product_of_each_clock_s_operands_is_out_one_clock_later() {
+        let mut uut = DspMultiplier::default();
+        uut.connect_all();
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut ops = vec![(0u64, 0u64), (0xffff, 0xffff), (1, 0xffff), (0xffff, 1), (255, 255), (255, 2047)];
+        for _ in 0..200 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            ops.push((s & 0xffff, (s >> 16) & 0xffff));
+        }
+        let mut before: Option<(u64, u64)> = None;
+        for &(a, b) in &ops {
+            uut.a.next = a.into();
+            uut.b.next = b.into();
+            assert!(simulate(&mut uut, 100));
+            // Before the edge: the operands offered a clock ago (zero at start).
+            let (pa, pb) = before.unwrap_or((0, 0));
+            assert_eq!(uut.p.val().to_u64(), pa * pb, "{pa} × {pb}");
+            crate::tick(&mut uut, |u| &mut u.clock);
+            before = Some((a, b));
+        }
+    }
+
+    #[test]
+    fn the_verilog_instantiates_one_mult18x18d_with_both_input_registers_and_every_product_pin() {
+        let v = mult18x18d_instance();
+        assert_eq!(v.matches("MULT18X18D #(").count(), 1);
+        assert!(v.contains(r#".REG_INPUTA_CLK("CLK0")"#) && v.contains(r#".REG_INPUTB_CLK("CLK0")"#));
+        assert!(v.contains(r#".REG_OUTPUT_CLK("NONE")"#) && v.contains(r#".REG_PIPELINE_CLK("NONE")"#));
+        for k in 0..2 * MULT18_BITS {
+            assert!(v.contains(&format!(".P{k}(")), "P{k} connected");
+        }
+        assert!(v.contains(".A15(a[15])") && v.contains(".A16(1'b0)") && v.contains(".P31(p[31])"));
+    }
+}
