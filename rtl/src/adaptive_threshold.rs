@@ -36,6 +36,7 @@
 //! leaves `d_t` within half an LSB plus about 0.001 of golden's f64 value.
 //! The floor `5.6/√12` is [`DT_FLOOR`]; a line of one pixel (`n = 0`) gets it.
 
+use crate::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS, MUL_PRODUCT_BITS};
 use crate::params::*;
 use rust_hdl::prelude::*;
 
@@ -119,7 +120,10 @@ pub struct AdaptiveThreshold {
     rem: DFF<Bits<REM_BITS>>,
     quotient: DFF<Bits<MEDIAN_Q_BITS>>,
     step: DFF<Bits<STEP_BITS>>,
-    product: DFF<Bits<32>>,
+    // `q·K` in a DSP block, its input registers loaded with the quotient's
+    // next value, so the product of the final quotient is out in Scale.
+    scale: DspMultiplier,
+    product: DFF<Bits<MUL_PRODUCT_BITS>>,
     sum: DFF<Bits<DT_ACC_BITS>>,
     dt_reg: DFF<Bits<DT_BITS>>,
     done_reg: DFF<Bit>,
@@ -128,15 +132,12 @@ pub struct AdaptiveThreshold {
     below_v: Signal<Local, Bits<HIST_COUNT_BITS>>,
     num: Signal<Local, Bits<HIST_COUNT_BITS>>,
     bin: Signal<Local, Bits<HIST_ADDR_BITS>>,
-    wide_q: Signal<Local, Bits<16>>,
-    wide_k: Signal<Local, Bits<16>>,
-    prod_full: Signal<Local, Bits<32>>,
     term2: Signal<Local, Bits<DT_ACC_BITS>>,
     acc: Signal<Local, Bits<DT_ACC_BITS>>,
     rounded: Signal<Local, Bits<DT_ACC_BITS>>,
     // Constants of the fixed-point scaling.
     k_half: Constant<Bits<DT_ACC_BITS>>,
-    k_frac: Constant<Bits<16>>,
+    k_frac: Constant<Bits<MUL_OPERAND_BITS>>,
     dt_floor: Constant<Bits<DT_ACC_BITS>>,
     round_half: Constant<Bits<DT_ACC_BITS>>,
     round_shift: Constant<Bits<8>>,
@@ -201,6 +202,7 @@ impl Default for AdaptiveThreshold {
             rem: Default::default(),
             quotient: Default::default(),
             step: Default::default(),
+            scale: Default::default(),
             product: Default::default(),
             sum: Default::default(),
             dt_reg: Default::default(),
@@ -210,9 +212,6 @@ impl Default for AdaptiveThreshold {
             below_v: Default::default(),
             num: Default::default(),
             bin: Default::default(),
-            wide_q: Default::default(),
-            wide_k: Default::default(),
-            prod_full: Default::default(),
             term2: Default::default(),
             acc: Default::default(),
             rounded: Default::default(),
@@ -295,9 +294,6 @@ impl Logic for AdaptiveThreshold {
         self.reach.next = self.cum.q.val() + self.cum.q.val();
         self.below_v.next = self.cum.q.val() - self.hv.q.val();
         self.num.next = self.n.q.val() - self.below_v.val() - self.below_v.val();
-        self.wide_q.next = bit_cast::<16, MEDIAN_Q_BITS>(self.quotient.q.val());
-        self.wide_k.next = self.k_frac.val();
-        self.prod_full.next = self.wide_q.val() * self.wide_k.val();
         self.term2.next = 0.into();
         self.acc.next = 0.into();
         self.rounded.next = 0.into();
@@ -358,7 +354,7 @@ impl Logic for AdaptiveThreshold {
                 }
             }
             ThresholdState::Scale => {
-                self.product.d.next = self.prod_full.val();
+                self.product.d.next = self.scale.p.val();
                 self.state.d.next = ThresholdState::Sum;
             }
             ThresholdState::Sum => {
@@ -427,6 +423,11 @@ impl Logic for AdaptiveThreshold {
                 self.state.d.next = ThresholdState::Divide;
             }
         }
+        // The quotient's next value, read after every assignment to it
+        // (read before them, the Verilog would see the default).
+        self.scale.clock.next = self.clock.val();
+        self.scale.a.next = bit_cast::<MUL_OPERAND_BITS, MEDIAN_Q_BITS>(self.quotient.d.val());
+        self.scale.b.next = self.k_frac.val();
     }
 }
 
