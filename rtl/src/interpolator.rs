@@ -80,6 +80,7 @@
 //! between matches only delays them.
 
 use crate::block_ram::BlockRam;
+use crate::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS};
 use crate::params::*;
 use rust_hdl::prelude::*;
 
@@ -276,8 +277,6 @@ pub struct Interpolator {
     p1_ramp: DFF<Bit>,
     p1_neg: DFF<Bit>,
     p1_base: DFF<Bits<POS_BITS>>,
-    p1_v: DFF<Bits<16>>,
-    p1_recip: DFF<Bits<RECIP_BITS>>,
     p1_dd: DFF<Bits<POS_BITS>>,
     p2_valid: DFF<Bit>,
     p2_last: DFF<Bit>,
@@ -295,8 +294,6 @@ pub struct Interpolator {
     p3_ramp: DFF<Bit>,
     p3_neg: DFF<Bit>,
     p3_base: DFF<Bits<POS_BITS>>,
-    p3_t: DFF<Bits<16>>,
-    p3_dd: DFF<Bits<POS_BITS>>,
     p4_valid: DFF<Bit>,
     p4_last: DFF<Bit>,
     p4_sof: DFF<Bit>,
@@ -355,9 +352,12 @@ pub struct Interpolator {
     cur_recip: Signal<Local, Bits<RECIP_BITS>>,
     q_rp_next: Signal<Local, Bits<QUEUE_PTR_BITS>>,
     x16: Signal<Local, Bits<POS_BITS>>,
-    wide_dd: Signal<Local, Bits<16>>,
-    prod_v: Signal<Local, Bits<32>>,
-    prod_t: Signal<Local, Bits<32>>,
+    // The two products in DSP blocks whose input registers are P1's `v`,
+    // `recip` and P3's `t`, `|Δd|` (`DspMultiplier`).
+    mul_v: DspMultiplier,
+    mul_t: DspMultiplier,
+    v_in: Signal<Local, Bits<MUL_OPERAND_BITS>>,
+    t_in: Signal<Local, Bits<MUL_OPERAND_BITS>>,
     rounded: Signal<Local, Bits<32>>,
     // ---- Constants.
     frac_round: Constant<Bits<{ POS_BITS + 1 }>>,
@@ -527,8 +527,6 @@ impl Interpolator {
             p1_ramp: Default::default(),
             p1_neg: Default::default(),
             p1_base: Default::default(),
-            p1_v: Default::default(),
-            p1_recip: Default::default(),
             p1_dd: Default::default(),
             p2_valid: Default::default(),
             p2_last: Default::default(),
@@ -546,8 +544,6 @@ impl Interpolator {
             p3_ramp: Default::default(),
             p3_neg: Default::default(),
             p3_base: Default::default(),
-            p3_t: Default::default(),
-            p3_dd: Default::default(),
             p4_valid: Default::default(),
             p4_last: Default::default(),
             p4_sof: Default::default(),
@@ -605,9 +601,10 @@ impl Interpolator {
             cur_recip: Default::default(),
             q_rp_next: Default::default(),
             x16: Default::default(),
-            wide_dd: Default::default(),
-            prod_v: Default::default(),
-            prod_t: Default::default(),
+            mul_v: Default::default(),
+            mul_t: Default::default(),
+            v_in: Default::default(),
+            t_in: Default::default(),
             rounded: Default::default(),
             frac_round: Constant::new(((1u64 << POS_FRAC_BITS) - 1).into()),
             frac_bits: c8(POS_FRAC_BITS as u64),
@@ -658,7 +655,7 @@ impl Default for Interpolator {
 impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_v, p1_recip, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p3_t, p3_dd, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
         self.recip.clock.next = self.clock.val();
         self.seg_last.clock.next = self.clock.val();
         self.seg_ax.clock.next = self.clock.val();
@@ -1016,8 +1013,11 @@ impl Logic for Interpolator {
         self.p1_ramp.d.next = self.p0_ramp.q.val();
         self.p1_neg.d.next = self.p0_neg.q.val();
         self.p1_base.d.next = self.p0_base.q.val();
-        self.p1_v.d.next = bit_cast::<16, POS_BITS>(self.p0_u.q.val()) << self.p0_lz.q.val();
-        self.p1_recip.d.next = self.p0_recip.q.val();
+        // P1's v and recip: the input registers of `mul_v`.
+        self.v_in.next = bit_cast::<MUL_OPERAND_BITS, POS_BITS>(self.p0_u.q.val()) << self.p0_lz.q.val();
+        self.mul_v.clock.next = self.clock.val();
+        self.mul_v.a.next = self.v_in.val();
+        self.mul_v.b.next = self.p0_recip.q.val();
         self.p1_dd.d.next = self.p0_dd.q.val();
         // P2: v · recip (a DSP block; the product registered).
         self.p2_valid.d.next = self.p1_valid.q.val();
@@ -1027,8 +1027,7 @@ impl Logic for Interpolator {
         self.p2_ramp.d.next = self.p1_ramp.q.val();
         self.p2_neg.d.next = self.p1_neg.q.val();
         self.p2_base.d.next = self.p1_base.q.val();
-        self.prod_v.next = self.p1_v.q.val() * self.p1_recip.q.val();
-        self.p2_prod.d.next = self.prod_v.val();
+        self.p2_prod.d.next = self.mul_v.p.val();
         self.p2_dd.d.next = self.p1_dd.q.val();
         // P3: the weight t = v · recip / 2^(POS_BITS - 1), below 1.
         self.p3_valid.d.next = self.p2_valid.q.val();
@@ -1038,11 +1037,14 @@ impl Logic for Interpolator {
         self.p3_ramp.d.next = self.p2_ramp.q.val();
         self.p3_neg.d.next = self.p2_neg.q.val();
         self.p3_base.d.next = self.p2_base.q.val();
-        self.p3_t.d.next = bit_cast::<16, 32>(self.p2_prod.q.val() >> self.t_shift.val());
+        // P3's t and |Δd|: the input registers of `mul_t`.
+        self.t_in.next = bit_cast::<MUL_OPERAND_BITS, 32>(self.p2_prod.q.val() >> self.t_shift.val());
         if (self.p2_prod.q.val() >> self.t_over.val()).any() {
-            self.p3_t.d.next = self.t_max.val();
+            self.t_in.next = self.t_max.val();
         }
-        self.p3_dd.d.next = self.p2_dd.q.val();
+        self.mul_t.clock.next = self.clock.val();
+        self.mul_t.a.next = self.t_in.val();
+        self.mul_t.b.next = bit_cast::<MUL_OPERAND_BITS, POS_BITS>(self.p2_dd.q.val());
         // P4: t · |Δd| (a DSP block; the product registered).
         self.p4_valid.d.next = self.p3_valid.q.val();
         self.p4_last.d.next = self.p3_last.q.val();
@@ -1051,9 +1053,7 @@ impl Logic for Interpolator {
         self.p4_ramp.d.next = self.p3_ramp.q.val();
         self.p4_neg.d.next = self.p3_neg.q.val();
         self.p4_base.d.next = self.p3_base.q.val();
-        self.wide_dd.next = bit_cast::<16, POS_BITS>(self.p3_dd.q.val());
-        self.prod_t.next = self.p3_t.q.val() * self.wide_dd.val();
-        self.p4_prod.d.next = self.prod_t.val();
+        self.p4_prod.d.next = self.mul_t.p.val();
         // P5: the step, rounded.
         self.p5_valid.d.next = self.p4_valid.q.val();
         self.p5_last.d.next = self.p4_last.q.val();
