@@ -68,7 +68,8 @@
 //! (`line_cycles`), one line period in the row check (it waits for the
 //! next line's matches), [`CHECK_REGISTER_LAG`] between the row check and
 //! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
-//! line periods in the median (it waits for the row two below) and the
+//! line periods in the median (it waits for the row two below),
+//! [`MEDIAN_REGISTER_LAG`] between the median and the depth stage, and the
 //! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
 //! depth`: `latency_cycles`, the frame's first line). A later line's
 //! latency is more by the largest backlog of the matcher so far in the
@@ -145,6 +146,11 @@ pub const LINES_IN_FLIGHT: usize = LINE_QUEUE;
 /// interpolator's input (the two blocks are placed apart on the die: their
 /// route and the interpolator's first stage did not fit one clock).
 pub const CHECK_REGISTER_LAG: usize = 1;
+/// Clocks of the register between the vertical median's output and the
+/// depth stage's input (placed apart on the die: the route from the
+/// median's output register and the depth stage's first stage did not fit
+/// one clock, 10.23 ns on a placed ECP5-85K).
+pub const MEDIAN_REGISTER_LAG: usize = 1;
 /// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
 const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
 // The interpolator admits every line the limit lets through: at a line's
@@ -219,6 +225,12 @@ pub struct StereoLineProcessor<const N: usize> {
     k_x: DFF<Bits<POS_BITS>>,
     k_d: DFF<Bits<POS_BITS>>,
     k_sof: DFF<Bit>,
+    // The median's output registered on its way to the depth stage
+    // (MEDIAN_REGISTER_LAG).
+    v_valid: DFF<Bit>,
+    v_last: DFF<Bit>,
+    v_d: DFF<Bits<POS_BITS>>,
+    v_sof: DFF<Bit>,
     // The queues' lanes 0-2, built here and then given to each queue in
     // one assignment: a port assigned twice in one evaluation changes twice,
     // and under Icarus the queue's logic and this block then wake each
@@ -317,6 +329,10 @@ impl<const N: usize> StereoLineProcessor<N> {
             k_x: Default::default(),
             k_d: Default::default(),
             k_sof: Default::default(),
+            v_valid: Default::default(),
+            v_last: Default::default(),
+            v_d: Default::default(),
+            v_sof: Default::default(),
             flight_now: Default::default(),
             hold: Default::default(),
             flight_max: Constant::new((LINES_IN_FLIGHT as u64).into()),
@@ -340,7 +356,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof);
+        dff_setup!(self, clock, m_row, p_row, l_count, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
         self.l_skid.clock.next = self.clock.val();
         self.r_skid.clock.next = self.clock.val();
         self.left.clock.next = self.clock.val();
@@ -524,10 +540,14 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.median.p_last.next = self.interpolator.p_last.val();
         self.median.p_sof.next = self.interpolator.p_sof.val();
         self.median.p_eof.next = self.p_row_now.val() == self.height.val() - 1;
-        self.depth.p_valid.next = self.median.v_valid.val();
-        self.depth.p_d.next = self.median.v_d.val();
-        self.depth.p_last.next = self.median.v_last.val();
-        self.depth.p_sof.next = self.median.v_sof.val();
+        self.v_valid.d.next = self.median.v_valid.val();
+        self.v_last.d.next = self.median.v_last.val();
+        self.v_d.d.next = self.median.v_d.val();
+        self.v_sof.d.next = self.median.v_sof.val();
+        self.depth.p_valid.next = self.v_valid.q.val();
+        self.depth.p_d.next = self.v_d.q.val();
+        self.depth.p_last.next = self.v_last.q.val();
+        self.depth.p_sof.next = self.v_sof.q.val();
 
         // ---- Out.
         self.m_tvalid.next = self.depth.z_valid.val();
