@@ -450,15 +450,19 @@ impl Logic for DepthStage {
         self.s1_last.d.next = self.p_valid.val() & self.p_last.val();
         self.s1_sof.d.next = self.p_valid.val() & self.p_sof.val();
         self.s1_zero.d.next = !self.p_d.val().any();
-        self.s1_d.d.next = 0.into();
-        if self.p_valid.val() {
-            self.s1_d.d.next = self.p_d.val();
-        }
+        // The disparity of a pixel that is not valid is cleared a clock
+        // later, by the registered valid: `p_valid` then drives only
+        // `s1_valid`, not the clear of a whole register (the line
+        // processor's vertical median, which drives it, sits far away).
+        self.s1_d.d.next = self.p_d.val();
         self.s2_valid.d.next = self.s1_valid.q.val();
         self.s2_last.d.next = self.s1_last.q.val();
         self.s2_sof.d.next = self.s1_sof.q.val();
         self.s2_zero.d.next = self.s1_zero.q.val();
-        self.s2_d.d.next = self.s1_d.q.val();
+        self.s2_d.d.next = 0.into();
+        if self.s1_valid.q.val() {
+            self.s2_d.d.next = self.s1_d.q.val();
+        }
         self.s3_valid.d.next = self.s2_valid.q.val();
         self.s3_last.d.next = self.s2_last.q.val();
         self.s3_sof.d.next = self.s2_sof.q.val();

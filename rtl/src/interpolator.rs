@@ -23,7 +23,10 @@
 //!   memory; at the line's end marker the line's description (its last pixel, the
 //!   held values and where their pixels start, start of frame) goes into
 //!   the line queue, and is shown to the pixel engine once the line's last
-//!   segment can be in the prefetch registers. The segments of a line cover the pixels from
+//!   segment can be in the prefetch registers. The queue (LUT RAM) keeps
+//!   each field twice, read at the read pointer and at its successor from
+//!   registers: no queue address waits for the pixel engine's end-of-line
+//!   comparison, which picks between the two reads a clock later. The segments of a line cover the pixels from
 //!   the first match's `⌈X⌉` to the last one's without gaps, so the pixel
 //!   engine needs no count of them.
 //! - **Prefetch**: the segment memory (block RAMs with their output
@@ -242,12 +245,22 @@ pub struct Interpolator {
     e3_shape: DFF<Bits<SHAPE_BITS>>,
     e3_recip: DFF<Bits<RECIP_BITS>>,
     // ---- The line queue: written at the marker, shown three clocks later.
+    // Each field twice, read at the read pointer and at its successor; the
+    // entry at the pointer's next value is picked after the read registers
+    // by `q_next_q` (the line done a clock ago), so no address waits for the
+    // pixel's comparison.
     q_last_x: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
+    q_last_x_n: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
     q_first_d: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
+    q_first_d_n: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
     q_first_c: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
+    q_first_c_n: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
     q_last_d: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
+    q_last_d_n: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
     q_last_c: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
+    q_last_c_n: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
     q_flags: RAM<Bits<2>, LINE_QUEUE_BITS>,
+    q_flags_n: RAM<Bits<2>, LINE_QUEUE_BITS>,
     q_wp: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp1: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp2: DFF<Bits<QUEUE_PTR_BITS>>,
@@ -256,6 +269,7 @@ pub struct Interpolator {
     q_shown: DFF<Bits<QUEUE_PTR_BITS>>,
     q_rp: DFF<Bits<QUEUE_PTR_BITS>>,
     q_rp1: DFFWithInit<Bits<QUEUE_PTR_BITS>>,
+    q_next_q: DFF<Bit>,
     overflow_q: DFF<Bit>,
     // ---- Pixels: the line being sent, then the pixel pipeline.
     x: DFF<Bits<WIDTH_BITS>>,
@@ -351,6 +365,12 @@ pub struct Interpolator {
     cur_shape: Signal<Local, Bits<SHAPE_BITS>>,
     cur_recip: Signal<Local, Bits<RECIP_BITS>>,
     q_rp_next: Signal<Local, Bits<QUEUE_PTR_BITS>>,
+    q_last_x_out: Signal<Local, Bits<WIDTH_BITS>>,
+    q_first_d_out: Signal<Local, Bits<POS_BITS>>,
+    q_first_c_out: Signal<Local, Bits<WIDTH_BITS>>,
+    q_last_d_out: Signal<Local, Bits<POS_BITS>>,
+    q_last_c_out: Signal<Local, Bits<WIDTH_BITS>>,
+    q_flags_out: Signal<Local, Bits<2>>,
     x16: Signal<Local, Bits<POS_BITS>>,
     // The two products in DSP blocks whose input registers are P1's `v`,
     // `recip` and P3's `t`, `|Δd|` (`DspMultiplier`).
@@ -494,11 +514,17 @@ impl Interpolator {
             e3_shape: Default::default(),
             e3_recip: Default::default(),
             q_last_x: zeroed(),
+            q_last_x_n: zeroed(),
             q_first_d: zeroed(),
+            q_first_d_n: zeroed(),
             q_first_c: zeroed(),
+            q_first_c_n: zeroed(),
             q_last_d: zeroed(),
+            q_last_d_n: zeroed(),
             q_last_c: zeroed(),
+            q_last_c_n: zeroed(),
             q_flags: zeroed(),
+            q_flags_n: zeroed(),
             q_wp: Default::default(),
             q_wp1: Default::default(),
             q_wp2: Default::default(),
@@ -507,6 +533,7 @@ impl Interpolator {
             q_shown: Default::default(),
             q_rp: Default::default(),
             q_rp1: DFFWithInit::new(1u64.into()),
+            q_next_q: Default::default(),
             overflow_q: Default::default(),
             x: Default::default(),
             p0_valid: Default::default(),
@@ -600,6 +627,12 @@ impl Interpolator {
             cur_shape: Default::default(),
             cur_recip: Default::default(),
             q_rp_next: Default::default(),
+            q_last_x_out: Default::default(),
+            q_first_d_out: Default::default(),
+            q_first_c_out: Default::default(),
+            q_last_d_out: Default::default(),
+            q_last_c_out: Default::default(),
+            q_flags_out: Default::default(),
             x16: Default::default(),
             mul_v: Default::default(),
             mul_t: Default::default(),
@@ -655,7 +688,7 @@ impl Default for Interpolator {
 impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, q_next_q, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
         self.recip.clock.next = self.clock.val();
         self.seg_last.clock.next = self.clock.val();
         self.seg_ax.clock.next = self.clock.val();
@@ -664,17 +697,29 @@ impl Logic for Interpolator {
         self.seg_shape.clock.next = self.clock.val();
         self.seg_recip.clock.next = self.clock.val();
         self.q_last_x.read_clock.next = self.clock.val();
+        self.q_last_x_n.read_clock.next = self.clock.val();
         self.q_last_x.write_clock.next = self.clock.val();
+        self.q_last_x_n.write_clock.next = self.clock.val();
         self.q_first_d.read_clock.next = self.clock.val();
+        self.q_first_d_n.read_clock.next = self.clock.val();
         self.q_first_d.write_clock.next = self.clock.val();
+        self.q_first_d_n.write_clock.next = self.clock.val();
         self.q_first_c.read_clock.next = self.clock.val();
+        self.q_first_c_n.read_clock.next = self.clock.val();
         self.q_first_c.write_clock.next = self.clock.val();
+        self.q_first_c_n.write_clock.next = self.clock.val();
         self.q_last_d.read_clock.next = self.clock.val();
+        self.q_last_d_n.read_clock.next = self.clock.val();
         self.q_last_d.write_clock.next = self.clock.val();
+        self.q_last_d_n.write_clock.next = self.clock.val();
         self.q_last_c.read_clock.next = self.clock.val();
+        self.q_last_c_n.read_clock.next = self.clock.val();
         self.q_last_c.write_clock.next = self.clock.val();
+        self.q_last_c_n.write_clock.next = self.clock.val();
         self.q_flags.read_clock.next = self.clock.val();
+        self.q_flags_n.read_clock.next = self.clock.val();
         self.q_flags.write_clock.next = self.clock.val();
+        self.q_flags_n.write_clock.next = self.clock.val();
 
         // ================= Segments =================
         // The first pixel centre at or after the match: ⌈X⌉.
@@ -719,23 +764,36 @@ impl Logic for Interpolator {
         // The marker: the line's description into the queue (shown once its
         // last segment is in the memory).
         self.q_last_x.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_last_x_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
         self.q_first_d.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_first_d_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
         self.q_first_c.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_first_c_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
         self.q_last_d.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_last_d_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
         self.q_last_c.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_last_c_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
         self.q_flags.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_flags_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
         self.q_last_x.write_data.next = self.a_width.val() - 1;
+        self.q_last_x_n.write_data.next = self.a_width.val() - 1;
         self.q_first_d.write_data.next = self.first_d.q.val();
+        self.q_first_d_n.write_data.next = self.first_d.q.val();
         self.q_first_c.write_data.next = self.first_c.q.val();
+        self.q_first_c_n.write_data.next = self.first_c.q.val();
         self.q_last_d.write_data.next = self.prev_d.q.val();
+        self.q_last_d_n.write_data.next = self.prev_d.q.val();
         self.q_last_c.write_data.next = self.prev_c.q.val();
+        self.q_last_c_n.write_data.next = self.prev_c.q.val();
         self.sof_flag.next = 0.into();
         if self.a_sof.val() {
             self.sof_flag.next = self.flag_sof.val();
         }
         self.q_flags.write_data.next = self.sof_flag.val();
+        self.q_flags_n.write_data.next = self.sof_flag.val();
         if !self.has_prev.q.val() {
             self.q_flags.write_data.next = self.sof_flag.val() | self.flag_empty.val();
+            self.q_flags_n.write_data.next = self.sof_flag.val() | self.flag_empty.val();
         }
         self.line_write.next = false;
         self.overflow_q.d.next = false;
@@ -746,11 +804,17 @@ impl Logic for Interpolator {
             self.overflow_q.d.next = self.drop_now.val();
         }
         self.q_last_x.write_enable.next = self.line_write.val();
+        self.q_last_x_n.write_enable.next = self.line_write.val();
         self.q_first_d.write_enable.next = self.line_write.val();
+        self.q_first_d_n.write_enable.next = self.line_write.val();
         self.q_first_c.write_enable.next = self.line_write.val();
+        self.q_first_c_n.write_enable.next = self.line_write.val();
         self.q_last_d.write_enable.next = self.line_write.val();
+        self.q_last_d_n.write_enable.next = self.line_write.val();
         self.q_last_c.write_enable.next = self.line_write.val();
+        self.q_last_c_n.write_enable.next = self.line_write.val();
         self.q_flags.write_enable.next = self.line_write.val();
+        self.q_flags_n.write_enable.next = self.line_write.val();
         if self.line_write.val() {
             self.q_wp.d.next = self.q_wp.q.val() + 1;
         }
@@ -841,14 +905,30 @@ impl Logic for Interpolator {
 
         // ================= Pixels =================
         // The queue's and the memory's outputs show the entries at the read
-        // pointers (the queue is read at its pointer's next value, a clock
-        // ahead; the segments are in the prefetch ring).
+        // pointers (the segments are in the prefetch ring). The queue's
+        // entry at the read pointer: each field is read a clock ago at the
+        // pointer and at its successor, and after a line done (the pointer
+        // moved on) the successor's read is the one shown.
+        self.q_last_x_out.next = self.q_last_x.read_data.val();
+        self.q_first_d_out.next = self.q_first_d.read_data.val();
+        self.q_first_c_out.next = self.q_first_c.read_data.val();
+        self.q_last_d_out.next = self.q_last_d.read_data.val();
+        self.q_last_c_out.next = self.q_last_c.read_data.val();
+        self.q_flags_out.next = self.q_flags.read_data.val();
+        if self.q_next_q.q.val() {
+            self.q_last_x_out.next = self.q_last_x_n.read_data.val();
+            self.q_first_d_out.next = self.q_first_d_n.read_data.val();
+            self.q_first_c_out.next = self.q_first_c_n.read_data.val();
+            self.q_last_d_out.next = self.q_last_d_n.read_data.val();
+            self.q_last_c_out.next = self.q_last_c_n.read_data.val();
+            self.q_flags_out.next = self.q_flags_n.read_data.val();
+        }
         self.line_ready.next = self.q_shown.q.val() != self.q_rp.q.val();
         // (No line: as an empty one. The memories' output registers start
         // undefined in Verilog; nothing reads them before a line is shown.)
-        self.empty_line.next = !self.line_ready.val() | self.q_flags.read_data.val().get_bit(1);
-        self.in_head.next = !self.empty_line.val() & (self.x.q.val() < self.q_first_c.read_data.val());
-        self.in_seg.next = !self.empty_line.val() & !self.in_head.val() & (self.x.q.val() < self.q_last_c.read_data.val());
+        self.empty_line.next = !self.line_ready.val() | self.q_flags_out.val().get_bit(1);
+        self.in_head.next = !self.empty_line.val() & (self.x.q.val() < self.q_first_c_out.val());
+        self.in_seg.next = !self.empty_line.val() & !self.in_head.val() & (self.x.q.val() < self.q_last_c_out.val());
         // The engine's segment, out of the ring.
         self.cur_last.next = self.e0_last.q.val();
         self.cur_ax.next = self.e0_ax.q.val();
@@ -880,7 +960,7 @@ impl Logic for Interpolator {
             self.cur_shape.next = self.e3_shape.q.val();
             self.cur_recip.next = self.e3_recip.q.val();
         }
-        self.line_done.next = self.line_ready.val() & (self.x.q.val() == self.q_last_x.read_data.val());
+        self.line_done.next = self.line_ready.val() & (self.x.q.val() == self.q_last_x_out.val());
         self.seg_done.next = self.line_ready.val() & self.in_seg.val() & (self.x.q.val() == self.cur_last.val());
         if self.line_ready.val() {
             self.x.d.next = self.x.q.val() + 1;
@@ -896,12 +976,19 @@ impl Logic for Interpolator {
         }
         self.q_rp.d.next = self.q_rp_next.val();
         self.q_rp1.d.next = self.q_rp_next.val() + 1;
-        self.q_last_x.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
-        self.q_first_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
-        self.q_first_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
-        self.q_last_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
-        self.q_last_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
-        self.q_flags.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp_next.val());
+        self.q_last_x.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
+        self.q_last_x_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
+        self.q_first_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
+        self.q_first_d_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
+        self.q_first_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
+        self.q_first_c_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
+        self.q_last_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
+        self.q_last_d_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
+        self.q_last_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
+        self.q_last_c_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
+        self.q_flags.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
+        self.q_flags_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
+        self.q_next_q.d.next = self.line_done.val();
         // The prefetch: a read whenever the memory holds an unread segment
         // and the registers will have room for it (counting the two reads
         // on their way, not this clock's pop: four registers let one pop
@@ -986,14 +1073,14 @@ impl Logic for Interpolator {
         }
         self.p0_valid.d.next = self.line_ready.val();
         self.p0_last.d.next = self.line_done.val();
-        self.p0_sof.d.next = self.line_ready.val() & self.q_flags.read_data.val().get_bit(0) & !self.x.q.val().any();
+        self.p0_sof.d.next = self.line_ready.val() & self.q_flags_out.val().get_bit(0) & !self.x.q.val().any();
         self.p0_empty.d.next = self.line_ready.val() & self.empty_line.val();
         self.p0_base.d.next = 0.into();
         if !self.empty_line.val() {
-            self.p0_base.d.next = self.q_last_d.read_data.val();
+            self.p0_base.d.next = self.q_last_d_out.val();
         }
         if self.in_head.val() {
-            self.p0_base.d.next = self.q_first_d.read_data.val();
+            self.p0_base.d.next = self.q_first_d_out.val();
         }
         if self.in_seg.val() {
             self.p0_base.d.next = self.cur_ad.val();
