@@ -140,6 +140,14 @@ pub const SEGMENT_BITS: usize = WIDTH_BITS + 3 * POS_BITS + SHAPE_BITS + RECIP_B
 /// Bits of a line's description in the line queue: its last pixel, the
 /// held values and their pixels, the start-of-frame and empty flags.
 pub const LINE_BITS: usize = 3 * WIDTH_BITS + 2 * POS_BITS + 2;
+/// Where the fields of a line's description start in its word (the two
+/// flags, start of frame and empty line, in bits 0 and 1).
+const LAST_X_AT: usize = 2;
+const FIRST_C_AT: usize = LAST_X_AT + WIDTH_BITS;
+const LAST_C_AT: usize = FIRST_C_AT + WIDTH_BITS;
+const FIRST_D_AT: usize = LAST_C_AT + WIDTH_BITS;
+const LAST_D_AT: usize = FIRST_D_AT + POS_BITS;
+const _: () = assert!(LAST_D_AT + POS_BITS == LINE_BITS);
 /// Segments the prefetch registers hold.
 const PREFETCH: usize = 4;
 /// Bits of a count `0 ..= PREFETCH`.
@@ -245,22 +253,13 @@ pub struct Interpolator {
     e3_shape: DFF<Bits<SHAPE_BITS>>,
     e3_recip: DFF<Bits<RECIP_BITS>>,
     // ---- The line queue: written at the marker, shown three clocks later.
-    // Each field twice, read at the read pointer and at its successor; the
-    // entry at the pointer's next value is picked after the read registers
-    // by `q_next_q` (the line done a clock ago), so no address waits for the
-    // pixel's comparison.
-    q_last_x: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
-    q_last_x_n: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
-    q_first_d: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
-    q_first_d_n: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
-    q_first_c: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
-    q_first_c_n: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
-    q_last_d: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
-    q_last_d_n: RAM<Bits<POS_BITS>, LINE_QUEUE_BITS>,
-    q_last_c: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
-    q_last_c_n: RAM<Bits<WIDTH_BITS>, LINE_QUEUE_BITS>,
-    q_flags: RAM<Bits<2>, LINE_QUEUE_BITS>,
-    q_flags_n: RAM<Bits<2>, LINE_QUEUE_BITS>,
+    // A line's description is one word ([`LINE_BITS`], fields at the
+    // `*_AT` offsets), kept twice: read at the read pointer and at its
+    // successor; the entry at the pointer's next value is picked after the
+    // read registers by `q_next_q` (the line done a clock ago), so no address
+    // waits for the pixel's comparison.
+    q_line: RAM<Bits<LINE_BITS>, LINE_QUEUE_BITS>,
+    q_line_n: RAM<Bits<LINE_BITS>, LINE_QUEUE_BITS>,
     q_wp: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp1: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp2: DFF<Bits<QUEUE_PTR_BITS>>,
@@ -371,6 +370,10 @@ pub struct Interpolator {
     q_last_d_out: Signal<Local, Bits<POS_BITS>>,
     q_last_c_out: Signal<Local, Bits<WIDTH_BITS>>,
     q_flags_out: Signal<Local, Bits<2>>,
+    q_flags_in: Signal<Local, Bits<2>>,
+    q_last_x_in: Signal<Local, Bits<WIDTH_BITS>>,
+    q_word_in: Signal<Local, Bits<LINE_BITS>>,
+    q_word_out: Signal<Local, Bits<LINE_BITS>>,
     x16: Signal<Local, Bits<POS_BITS>>,
     // The two products in DSP blocks whose input registers are P1's `v`,
     // `recip` and P3's `t`, `|Δd|` (`DspMultiplier`).
@@ -415,6 +418,11 @@ pub struct Interpolator {
     t_max: Constant<Bits<16>>,
     half: Constant<Bits<32>>,
     w_shift: Constant<Bits<8>>,
+    last_x_at: Constant<Bits<8>>,
+    first_c_at: Constant<Bits<8>>,
+    last_c_at: Constant<Bits<8>>,
+    first_d_at: Constant<Bits<8>>,
+    last_d_at: Constant<Bits<8>>,
 }
 
 /// A memory whose Verilog starts all zeros, as its Rust model does (an
@@ -513,18 +521,8 @@ impl Interpolator {
             e3_dd: Default::default(),
             e3_shape: Default::default(),
             e3_recip: Default::default(),
-            q_last_x: zeroed(),
-            q_last_x_n: zeroed(),
-            q_first_d: zeroed(),
-            q_first_d_n: zeroed(),
-            q_first_c: zeroed(),
-            q_first_c_n: zeroed(),
-            q_last_d: zeroed(),
-            q_last_d_n: zeroed(),
-            q_last_c: zeroed(),
-            q_last_c_n: zeroed(),
-            q_flags: zeroed(),
-            q_flags_n: zeroed(),
+            q_line: zeroed(),
+            q_line_n: zeroed(),
             q_wp: Default::default(),
             q_wp1: Default::default(),
             q_wp2: Default::default(),
@@ -633,6 +631,10 @@ impl Interpolator {
             q_last_d_out: Default::default(),
             q_last_c_out: Default::default(),
             q_flags_out: Default::default(),
+            q_flags_in: Default::default(),
+            q_last_x_in: Default::default(),
+            q_word_in: Default::default(),
+            q_word_out: Default::default(),
             x16: Default::default(),
             mul_v: Default::default(),
             mul_t: Default::default(),
@@ -674,6 +676,11 @@ impl Interpolator {
             t_max: Constant::new(((1u64 << WEIGHT_FRAC_BITS) - 1).into()),
             half: Constant::new((1u64 << (WEIGHT_FRAC_BITS - 1)).into()),
             w_shift: c8(WEIGHT_FRAC_BITS as u64),
+            last_x_at: c8(LAST_X_AT as u64),
+            first_c_at: c8(FIRST_C_AT as u64),
+            last_c_at: c8(LAST_C_AT as u64),
+            first_d_at: c8(FIRST_D_AT as u64),
+            last_d_at: c8(LAST_D_AT as u64),
         }
     }
 }
@@ -696,30 +703,10 @@ impl Logic for Interpolator {
         self.seg_dd.clock.next = self.clock.val();
         self.seg_shape.clock.next = self.clock.val();
         self.seg_recip.clock.next = self.clock.val();
-        self.q_last_x.read_clock.next = self.clock.val();
-        self.q_last_x_n.read_clock.next = self.clock.val();
-        self.q_last_x.write_clock.next = self.clock.val();
-        self.q_last_x_n.write_clock.next = self.clock.val();
-        self.q_first_d.read_clock.next = self.clock.val();
-        self.q_first_d_n.read_clock.next = self.clock.val();
-        self.q_first_d.write_clock.next = self.clock.val();
-        self.q_first_d_n.write_clock.next = self.clock.val();
-        self.q_first_c.read_clock.next = self.clock.val();
-        self.q_first_c_n.read_clock.next = self.clock.val();
-        self.q_first_c.write_clock.next = self.clock.val();
-        self.q_first_c_n.write_clock.next = self.clock.val();
-        self.q_last_d.read_clock.next = self.clock.val();
-        self.q_last_d_n.read_clock.next = self.clock.val();
-        self.q_last_d.write_clock.next = self.clock.val();
-        self.q_last_d_n.write_clock.next = self.clock.val();
-        self.q_last_c.read_clock.next = self.clock.val();
-        self.q_last_c_n.read_clock.next = self.clock.val();
-        self.q_last_c.write_clock.next = self.clock.val();
-        self.q_last_c_n.write_clock.next = self.clock.val();
-        self.q_flags.read_clock.next = self.clock.val();
-        self.q_flags_n.read_clock.next = self.clock.val();
-        self.q_flags.write_clock.next = self.clock.val();
-        self.q_flags_n.write_clock.next = self.clock.val();
+        self.q_line.read_clock.next = self.clock.val();
+        self.q_line_n.read_clock.next = self.clock.val();
+        self.q_line.write_clock.next = self.clock.val();
+        self.q_line_n.write_clock.next = self.clock.val();
 
         // ================= Segments =================
         // The first pixel centre at or after the match: ⌈X⌉.
@@ -763,38 +750,25 @@ impl Logic for Interpolator {
         }
         // The marker: the line's description into the queue (shown once its
         // last segment is in the memory).
-        self.q_last_x.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_last_x_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_first_d.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_first_d_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_first_c.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_first_c_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_last_d.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_last_d_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_last_c.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_last_c_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_flags.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_flags_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
-        self.q_last_x.write_data.next = self.a_width.val() - 1;
-        self.q_last_x_n.write_data.next = self.a_width.val() - 1;
-        self.q_first_d.write_data.next = self.first_d.q.val();
-        self.q_first_d_n.write_data.next = self.first_d.q.val();
-        self.q_first_c.write_data.next = self.first_c.q.val();
-        self.q_first_c_n.write_data.next = self.first_c.q.val();
-        self.q_last_d.write_data.next = self.prev_d.q.val();
-        self.q_last_d_n.write_data.next = self.prev_d.q.val();
-        self.q_last_c.write_data.next = self.prev_c.q.val();
-        self.q_last_c_n.write_data.next = self.prev_c.q.val();
+        self.q_line.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
+        self.q_line_n.write_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_wp.q.val());
         self.sof_flag.next = 0.into();
         if self.a_sof.val() {
             self.sof_flag.next = self.flag_sof.val();
         }
-        self.q_flags.write_data.next = self.sof_flag.val();
-        self.q_flags_n.write_data.next = self.sof_flag.val();
+        self.q_last_x_in.next = self.a_width.val() - 1;
+        self.q_flags_in.next = self.sof_flag.val();
         if !self.has_prev.q.val() {
-            self.q_flags.write_data.next = self.sof_flag.val() | self.flag_empty.val();
-            self.q_flags_n.write_data.next = self.sof_flag.val() | self.flag_empty.val();
+            self.q_flags_in.next = self.sof_flag.val() | self.flag_empty.val();
         }
+        self.q_word_in.next = bit_cast::<LINE_BITS, 2>(self.q_flags_in.val())
+            | (bit_cast::<LINE_BITS, WIDTH_BITS>(self.q_last_x_in.val()) << self.last_x_at.val())
+            | (bit_cast::<LINE_BITS, WIDTH_BITS>(self.first_c.q.val()) << self.first_c_at.val())
+            | (bit_cast::<LINE_BITS, WIDTH_BITS>(self.prev_c.q.val()) << self.last_c_at.val())
+            | (bit_cast::<LINE_BITS, POS_BITS>(self.first_d.q.val()) << self.first_d_at.val())
+            | (bit_cast::<LINE_BITS, POS_BITS>(self.prev_d.q.val()) << self.last_d_at.val());
+        self.q_line.write_data.next = self.q_word_in.val();
+        self.q_line_n.write_data.next = self.q_word_in.val();
         self.line_write.next = false;
         self.overflow_q.d.next = false;
         if self.a_valid.val() & self.a_last.val() {
@@ -803,18 +777,8 @@ impl Logic for Interpolator {
             self.line_write.next = !self.drop_now.val();
             self.overflow_q.d.next = self.drop_now.val();
         }
-        self.q_last_x.write_enable.next = self.line_write.val();
-        self.q_last_x_n.write_enable.next = self.line_write.val();
-        self.q_first_d.write_enable.next = self.line_write.val();
-        self.q_first_d_n.write_enable.next = self.line_write.val();
-        self.q_first_c.write_enable.next = self.line_write.val();
-        self.q_first_c_n.write_enable.next = self.line_write.val();
-        self.q_last_d.write_enable.next = self.line_write.val();
-        self.q_last_d_n.write_enable.next = self.line_write.val();
-        self.q_last_c.write_enable.next = self.line_write.val();
-        self.q_last_c_n.write_enable.next = self.line_write.val();
-        self.q_flags.write_enable.next = self.line_write.val();
-        self.q_flags_n.write_enable.next = self.line_write.val();
+        self.q_line.write_enable.next = self.line_write.val();
+        self.q_line_n.write_enable.next = self.line_write.val();
         if self.line_write.val() {
             self.q_wp.d.next = self.q_wp.q.val() + 1;
         }
@@ -906,23 +870,19 @@ impl Logic for Interpolator {
         // ================= Pixels =================
         // The queue's and the memory's outputs show the entries at the read
         // pointers (the segments are in the prefetch ring). The queue's
-        // entry at the read pointer: each field is read a clock ago at the
+        // entry at the read pointer: its word is read a clock ago at the
         // pointer and at its successor, and after a line done (the pointer
         // moved on) the successor's read is the one shown.
-        self.q_last_x_out.next = self.q_last_x.read_data.val();
-        self.q_first_d_out.next = self.q_first_d.read_data.val();
-        self.q_first_c_out.next = self.q_first_c.read_data.val();
-        self.q_last_d_out.next = self.q_last_d.read_data.val();
-        self.q_last_c_out.next = self.q_last_c.read_data.val();
-        self.q_flags_out.next = self.q_flags.read_data.val();
+        self.q_word_out.next = self.q_line.read_data.val();
         if self.q_next_q.q.val() {
-            self.q_last_x_out.next = self.q_last_x_n.read_data.val();
-            self.q_first_d_out.next = self.q_first_d_n.read_data.val();
-            self.q_first_c_out.next = self.q_first_c_n.read_data.val();
-            self.q_last_d_out.next = self.q_last_d_n.read_data.val();
-            self.q_last_c_out.next = self.q_last_c_n.read_data.val();
-            self.q_flags_out.next = self.q_flags_n.read_data.val();
+            self.q_word_out.next = self.q_line_n.read_data.val();
         }
+        self.q_flags_out.next = bit_cast::<2, LINE_BITS>(self.q_word_out.val());
+        self.q_last_x_out.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_word_out.val() >> self.last_x_at.val());
+        self.q_first_c_out.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_word_out.val() >> self.first_c_at.val());
+        self.q_last_c_out.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_word_out.val() >> self.last_c_at.val());
+        self.q_first_d_out.next = bit_cast::<POS_BITS, LINE_BITS>(self.q_word_out.val() >> self.first_d_at.val());
+        self.q_last_d_out.next = bit_cast::<POS_BITS, LINE_BITS>(self.q_word_out.val() >> self.last_d_at.val());
         self.line_ready.next = self.q_shown.q.val() != self.q_rp.q.val();
         // (No line: as an empty one. The memories' output registers start
         // undefined in Verilog; nothing reads them before a line is shown.)
@@ -976,18 +936,8 @@ impl Logic for Interpolator {
         }
         self.q_rp.d.next = self.q_rp_next.val();
         self.q_rp1.d.next = self.q_rp_next.val() + 1;
-        self.q_last_x.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
-        self.q_last_x_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
-        self.q_first_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
-        self.q_first_d_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
-        self.q_first_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
-        self.q_first_c_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
-        self.q_last_d.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
-        self.q_last_d_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
-        self.q_last_c.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
-        self.q_last_c_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
-        self.q_flags.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
-        self.q_flags_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
+        self.q_line.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
+        self.q_line_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
         self.q_next_q.d.next = self.line_done.val();
         // The prefetch: a read whenever the memory holds an unread segment
         // and the registers will have room for it (counting the two reads

@@ -725,7 +725,7 @@ pub fn interpolator_stage(s: &Sizes) -> StageBudget {
         .memories(vec![
             Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, Some(seg_rams), "Interpolator::seg_* (one block RAM per field)"),
             Memory::new(NAME, "reciprocal table", 1, 1, 1 << RECIP_INDEX_BITS, RECIP_BITS, None, "Interpolator::recip (ROM)"),
-            Memory::new(NAME, "line queue", 1, 2, LINE_QUEUE, LINE_BITS, None, "Interpolator::q_* and q_*_n (LUT RAM, each field twice: read at the read pointer and at its successor)"),
+            Memory::new(NAME, "line queue", 1, 2, LINE_QUEUE, LINE_BITS, None, "Interpolator::q_line and q_line_n (LUT RAM, one word a line, kept twice: read at the read pointer and at its successor)"),
         ])
 }
 
