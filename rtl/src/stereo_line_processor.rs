@@ -120,10 +120,11 @@
 //! The width given to the interpolator is the last reference line's
 //! (every line of a frame has one width): it is counted as the line comes
 //! in, long before that line's matches leave the matcher, and reaches the
-//! interpolator two clocks after the line's last beat (a register beside the
-//! camera's input, then one beside the interpolator: the route across the
-//! die has a clock of its own); the line's marker comes out of the detector
-//! and the matcher far later than that.
+//! interpolator three clocks after the line's last beat (the accepted beat
+//! registered, the count kept in a register beside the camera's input, then
+//! copied into one beside the interpolator: each route across the die has a
+//! clock of its own); the line's marker comes out of the detector and the
+//! matcher far later than that.
 
 use crate::block_ram::DP16KD_WIDTH;
 use crate::declivity_detector::DeclivityDetector;
@@ -251,6 +252,11 @@ pub struct StereoLineProcessor<const N: usize> {
     // later into `width`, which the interpolator reads at the line's marker.
     l_count: DFF<Bits<WIDTH_BITS>>,
     l_width: DFFWithInit<Bits<WIDTH_BITS>>,
+    // The camera's accepted beat and its `tlast`, registered once beside the
+    // register slice: the count and the width load from these, so the
+    // handshake drives two flip-flops, not the 22 of the count and width.
+    l_acc: DFF<Bit>,
+    l_acc_last: DFF<Bit>,
     width: DFFWithInit<Bits<WIDTH_BITS>>,
     n_records_dropped: DFF<Bits<STATUS_BITS>>,
     n_lines_dropped: DFF<Bits<STATUS_BITS>>,
@@ -323,6 +329,8 @@ impl<const N: usize> StereoLineProcessor<N> {
             r_lane2: Default::default(),
             p_row_now: Default::default(),
             l_count: Default::default(),
+            l_acc: Default::default(),
+            l_acc_last: Default::default(),
             l_width: DFFWithInit::new((W_MAX as u64).into()),
             width: DFFWithInit::new((W_MAX as u64).into()),
             n_records_dropped: Default::default(),
@@ -363,7 +371,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, l_count, l_width, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
+        dff_setup!(self, clock, m_row, p_row, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
         self.l_skid.clock.next = self.clock.val();
         self.r_skid.clock.next = self.clock.val();
         self.left.clock.next = self.clock.val();
@@ -398,16 +406,19 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.right.s_tuser.next = self.r_skid.m_tuser.val();
         self.right.s_tlast.next = self.r_skid.m_tlast.val();
         self.r_skid.m_tready.next = self.right.s_tready.val();
-        // The reference line's width, counted up to W_MAX as the camera's
-        // beats are accepted, then copied into `width` a clock later: the
-        // count sits beside the camera's input, `width` beside the
-        // interpolator, and only a register-to-register route joins them.
+        // The reference line's width, counted up to W_MAX from the camera's
+        // accepted beats (registered once: `l_acc`, `l_acc_last`), then
+        // copied into `width` a clock later: the count sits beside the
+        // camera's input, `width` beside the interpolator, and only
+        // register-to-register routes join them.
+        self.l_acc.d.next = self.l_tvalid.val() & self.l_skid.s_tready.val();
+        self.l_acc_last.d.next = self.l_tlast.val();
         self.width.d.next = self.l_width.q.val();
-        if self.l_tvalid.val() & self.l_skid.s_tready.val() {
+        if self.l_acc.q.val() {
             if self.l_count.q.val() < self.w_max.val() {
                 self.l_count.d.next = self.l_count.q.val() + 1;
             }
-            if self.l_tlast.val() {
+            if self.l_acc_last.q.val() {
                 self.l_count.d.next = 0.into();
                 self.l_width.d.next = self.l_count.q.val() + 1;
                 if self.l_count.q.val() == self.w_max.val() {
