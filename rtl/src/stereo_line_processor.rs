@@ -67,7 +67,8 @@
 //! queue's [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line
 //! (`line_cycles`), one line period in the row check (it waits for the
 //! next line's matches), [`CHECK_REGISTER_LAG`] between the row check and
-//! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`, two
+//! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`,
+//! [`INTERP_REGISTER_LAG`] between the interpolator and the median, two
 //! line periods in the median (it waits for the row two below),
 //! [`MEDIAN_REGISTER_LAG`] between the median and the depth stage, and the
 //! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
@@ -156,6 +157,13 @@ pub const CHECK_REGISTER_LAG: usize = 1;
 /// median's output register and the depth stage's first stage did not fit
 /// one clock, 10.23 ns on a placed ECP5-85K).
 pub const MEDIAN_REGISTER_LAG: usize = 1;
+/// Clocks of the register between the interpolator's output and the
+/// vertical median's input (placed apart on the die: the route from the
+/// interpolator's output register, the row count's comparison for the
+/// frame's last row and the median's first logic did not fit one clock,
+/// 10.75 ns on a placed ECP5-85K). The pixel's end-of-frame flag is
+/// computed into it.
+pub const INTERP_REGISTER_LAG: usize = 1;
 /// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
 const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
 // The interpolator admits every line the limit lets through: at a line's
@@ -168,6 +176,11 @@ const _: () = assert!(LINES_IN_FLIGHT <= LINE_QUEUE && LINES_IN_FLIGHT >= 2);
 const _: () = assert!((LINES_IN_FLIGHT - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << SEG_ADDR_BITS);
 const _: () = assert!(LINES_IN_FLIGHT < 1 << FLIGHT_BITS);
 const _: () = assert!(POS_BITS <= DEPTH_BITS);
+// The matcher's row count flags its frame's last row from registers two
+// clocks after a marker (`m_row`, then `m_row_last`); the matcher's markers
+// are further apart than that: its engine takes the next pair after the
+// traceback ends, and that pair's marker follows its whole sweep.
+const _: () = assert!(crate::declivity_matcher::sweep_cycles(0, 0, 1) > 2);
 
 /// Where a detector beat's fields sit in the record queue's lanes.
 /// Lane 0: `pos`, then the marker's flags.
@@ -223,6 +236,20 @@ pub struct StereoLineProcessor<const N: usize> {
     p_row: DFF<Bits<HEIGHT_BITS>>,
     m_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
     p_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
+    // The frame's last row: `height - 1` and `height == 1` registered (the
+    // frame's size is an input that holds during a frame), and whether the
+    // matcher's row count is at the last row (from registers, two clocks
+    // after the count moved).
+    h_m1: DFF<Bits<HEIGHT_BITS>>,
+    h_one: DFF<Bit>,
+    m_row_last: DFF<Bit>,
+    // The interpolator's pixels registered on their way to the median
+    // (INTERP_REGISTER_LAG), with their row's end-of-frame flag.
+    i_valid: DFF<Bit>,
+    i_last: DFF<Bit>,
+    i_d: DFF<Bits<POS_BITS>>,
+    i_sof: DFF<Bit>,
+    i_eof: DFF<Bit>,
     // The row check's output registered on its way to the interpolator
     // (CHECK_REGISTER_LAG).
     k_valid: DFF<Bit>,
@@ -329,6 +356,14 @@ impl<const N: usize> StereoLineProcessor<N> {
             r_lane2: Default::default(),
             p_row_now: Default::default(),
             l_count: Default::default(),
+            h_m1: Default::default(),
+            h_one: Default::default(),
+            m_row_last: Default::default(),
+            i_valid: Default::default(),
+            i_last: Default::default(),
+            i_d: Default::default(),
+            i_sof: Default::default(),
+            i_eof: Default::default(),
             l_acc: Default::default(),
             l_acc_last: Default::default(),
             l_width: DFFWithInit::new((W_MAX as u64).into()),
@@ -371,7 +406,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
+        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
         self.l_skid.clock.next = self.clock.val();
         self.r_skid.clock.next = self.clock.val();
         self.left.clock.next = self.clock.val();
@@ -531,7 +566,16 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.row_check.m_x_ref.next = self.matcher.m_x_ref.val();
         self.row_check.m_disp.next = self.matcher.m_disp.val();
         self.row_check.m_sof.next = self.matcher.m_sof.val();
-        self.row_check.m_eof.next = self.m_row_now.val() == self.height.val() - 1;
+        // The row's end-of-frame flag, read on its marker: the frame's first
+        // row is row 0, the last of a one-row frame; a later row is the last
+        // when the count (moved on the previous marker) is at `height - 1`.
+        self.h_m1.d.next = self.height.val() - 1;
+        self.h_one.d.next = self.height.val() == 1;
+        self.m_row_last.d.next = self.m_row.q.val() == self.h_m1.q.val();
+        self.row_check.m_eof.next = self.m_row_last.q.val();
+        if self.matcher.m_sof.val() {
+            self.row_check.m_eof.next = self.h_one.q.val();
+        }
         self.k_valid.d.next = self.row_check.c_valid.val();
         self.k_last.d.next = self.row_check.c_last.val();
         self.k_x.d.next = self.row_check.c_x_ref.val();
@@ -556,11 +600,16 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
                 self.p_row.d.next = self.p_row_now.val() + 1;
             }
         }
-        self.median.p_valid.next = self.interpolator.p_valid.val();
-        self.median.p_d.next = self.interpolator.p_d.val();
-        self.median.p_last.next = self.interpolator.p_last.val();
-        self.median.p_sof.next = self.interpolator.p_sof.val();
-        self.median.p_eof.next = self.p_row_now.val() == self.height.val() - 1;
+        self.i_valid.d.next = self.interpolator.p_valid.val();
+        self.i_d.d.next = self.interpolator.p_d.val();
+        self.i_last.d.next = self.interpolator.p_last.val();
+        self.i_sof.d.next = self.interpolator.p_sof.val();
+        self.i_eof.d.next = self.p_row_now.val() == self.h_m1.q.val();
+        self.median.p_valid.next = self.i_valid.q.val();
+        self.median.p_d.next = self.i_d.q.val();
+        self.median.p_last.next = self.i_last.q.val();
+        self.median.p_sof.next = self.i_sof.q.val();
+        self.median.p_eof.next = self.i_eof.q.val();
         self.v_valid.d.next = self.median.v_valid.val();
         self.v_last.d.next = self.median.v_last.val();
         self.v_d.d.next = self.median.v_d.val();

@@ -40,7 +40,8 @@
 //!   `+ SEGMENT_LAG + PIXEL_LAG` to the row's first pixel (the
 //!   pixels start from the row's marker, not its first match, so
 //!   `ROW_FIRST_LAG` is in no path);
-//! - vertical median: `2·P` (it waits for row `y + 2`) `+ MEDIAN_LAG`;
+//! - vertical median: `INTERP_REGISTER_LAG` (the register from the
+//!   interpolator) `+ 2·P` (it waits for row `y + 2`) `+ MEDIAN_LAG`;
 //! - depth stage: `MEDIAN_REGISTER_LAG` (the register from the median) + `DEPTH_LAG`.
 //!
 //! The sum is the latency from a row's first pixel in to its first
@@ -113,7 +114,7 @@ use rtl::params::{
 use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
 use rtl::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
 use rtl::skid_buffer::SKID_LAG;
-use rtl::stereo_line_processor::{CHECK_REGISTER_LAG, MEDIAN_REGISTER_LAG};
+use rtl::stereo_line_processor::{CHECK_REGISTER_LAG, INTERP_REGISTER_LAG, MEDIAN_REGISTER_LAG};
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
 use rtl::vertical_median::MEDIAN_LAG;
 use serde::Serialize;
@@ -734,10 +735,11 @@ pub fn interpolator_stage(s: &Sizes) -> StageBudget {
 pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "vertical median";
     let latency_terms = vec![
+        Term::new("INTERP_REGISTER_LAG", INTERP_REGISTER_LAG),
         Term::new("2·P (the median of rows y − 2 … y + 2 waits for row y + 2, two line periods later)", 2 * s.line_period as usize),
         Term::new("MEDIAN_LAG", MEDIAN_LAG),
     ];
-    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "row y's first disparity into the median → output row y's first median out")
+    StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "row y's first disparity out of the interpolator → output row y's first median out")
         .memories(vec![Memory::new(
             NAME,
             MEDIAN_LINE_BUFFER,
