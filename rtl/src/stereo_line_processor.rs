@@ -37,7 +37,10 @@
 //!   later).
 //! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits; `height`:
 //!   the frame's rows (its last row ends the frame for the row check and
-//!   the median, which then flush it).
+//!   the median, which then flush it; registered, so it must hold from two
+//!   clocks before a frame's first marker reaches the row check to the
+//!   frame's last pixel out of the interpolator: in practice, set it before
+//!   the frame and keep it).
 //! - Out, AXI4-Stream without back-pressure (`tready` absent, as the
 //!   standard allows: the sink takes a beat every clock): `m_tvalid`,
 //!   `m_tdata` (bits 15..0 the disparity, [`POS_FRAC_BITS`] fraction bits,
