@@ -147,13 +147,21 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
         });
     }
     let (w, h) = (left.width, left.height);
-    let features = params.mode.features();
     // 1. Every pair of lines, independently.
     let one_line = |y: usize| process_line(left.row(y), right.row(y), params);
-    let mut lines: Vec<LineResult> = match threads {
+    let lines: Vec<LineResult> = match threads {
         Threads::One => (0..h).map(one_line).collect(),
         Threads::All => (0..h).into_par_iter().map(one_line).collect(),
     };
+    Ok(finish_frame(lines, w, h, params, threads))
+}
+
+/// The steps of [`process_frame`] after the lines are matched, as the mode
+/// asks: the check of matches against the neighbouring rows, the flag on
+/// matches next to a depth edge, interpolation along each reference row of
+/// `w` pixels, and a vertical median over the `h` rows.
+pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Params, threads: Threads) -> FrameResult {
+    let features = params.mode.features();
     // 2. Matches confirmed by a neighbouring row.
     if features.consistent {
         let kept = confirmed_matches(&lines);
@@ -187,7 +195,7 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
             Threads::All => disparity.par_chunks_mut(w).enumerate().for_each(median),
         }
     }
-    Ok(FrameResult { width: w, height: h, params: *params, lines, disparity })
+    FrameResult { width: w, height: h, params: *params, lines, disparity }
 }
 
 #[cfg(test)]

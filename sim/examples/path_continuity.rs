@@ -8,7 +8,8 @@
 //! one-sided, eq. 4–8, `golden::gain::LineGain`) in the search bands of eq. 6
 //! (`golden::line::search_bands`), then the row confirmation, the edge flag,
 //! the interpolation holding the background across jumps and the vertical
-//! median (`golden::frame`, `golden::disparity`); scores by `sim::eval`.
+//! median (`golden::frame::finish_frame`, as `process_frame` runs them);
+//! scores by `sim::eval`.
 //!
 //! - `exact`: `G(i,j) = g(i,j) + max(0, max_{m<i,n<j} [G(m,n) − pen])` over
 //!   the nodes that exist, `O(K²)` per line for `K` nodes (the upper bound;
@@ -35,11 +36,10 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use golden::disparity::{interpolate_into, vertical_median, Anchor};
-use golden::frame::{confirmed_matches, flag_edge_matches};
+use golden::dp::{traceback, Choice};
+use golden::frame::finish_frame;
 use golden::gain::{gmax, pair_disparity, LineGain, Neighbours, REJECTED};
 use golden::line::{line_features, search_bands, LineFeatures, LineResult, Match};
-use golden::params::{EDGE_FLAG_JUMP, EDGE_JUMP, MEDIAN_ROWS};
 use golden::{process_frame, FrameResult, Mode, Params, RefView, Threads};
 use rayon::prelude::*;
 use sim::eval::{dense_scores, sparse_counts};
@@ -119,7 +119,7 @@ impl LineGraph {
         let w = m + 1;
         let mut p = vec![0.0f64; (n + 1) * w];
         let mut dp = vec![0.0f64; (n + 1) * w];
-        let mut ch = vec![0u8; (n + 1) * w];
+        let mut ch = vec![Choice::Start; (n + 1) * w];
         for i in 1..=n {
             for j in 1..=m {
                 let (local, d) = (self.gain(i - 1, j - 1), self.d(i - 1, j - 1));
@@ -129,35 +129,20 @@ impl LineGraph {
                 let pen = if diag > 0.0 { self.pen(lam, tau, d, dp[kd]) } else { 0.0 };
                 let g = local + diag - pen;
                 // Tie-break of golden::dp: start, node, up, left, strictly greater.
-                let (mut best, mut c, mut bd) = (0.0, 0u8, 0.0);
+                let (mut best, mut c, mut bd) = (0.0, Choice::Start, 0.0);
                 if g > best {
-                    (best, c, bd) = (g, 1, d);
+                    (best, c, bd) = (g, Choice::Node, d);
                 }
                 if p[ku] > best {
-                    (best, c, bd) = (p[ku], 2, dp[ku]);
+                    (best, c, bd) = (p[ku], Choice::Up, dp[ku]);
                 }
                 if p[kl] > best {
-                    (best, c, bd) = (p[kl], 3, dp[kl]);
+                    (best, c, bd) = (p[kl], Choice::Left, dp[kl]);
                 }
                 (p[k], ch[k], dp[k]) = (best, c, bd);
             }
         }
-        let (mut i, mut j) = (n, m);
-        let mut nodes = Vec::new();
-        while i > 0 && j > 0 {
-            match ch[i * w + j] {
-                0 => break,
-                1 => {
-                    nodes.push((i - 1, j - 1));
-                    i -= 1;
-                    j -= 1;
-                }
-                2 => i -= 1,
-                _ => j -= 1,
-            }
-        }
-        nodes.reverse();
-        nodes
+        traceback(n, m, |i, j| ch[i * w + j])
     }
 
     /// The exact variant: eq. 9 with the penalty inside the quadrant max.
@@ -247,26 +232,6 @@ impl LineGraph {
         let path_gain = path.iter().map(|&(i, j)| self.gain(i, j)).sum();
         LineResult { reference: self.reference.clone(), other: self.other.clone(), matches, path_gain }
     }
-}
-
-/// The robust mode's steps after the DP (as `golden::process_frame`).
-fn finish(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Params) -> FrameResult {
-    let kept = confirmed_matches(&lines);
-    for (line, kept) in lines.iter_mut().zip(kept) {
-        let mut k = kept.into_iter();
-        line.matches.retain(|_| k.next().unwrap_or(false));
-    }
-    for line in &mut lines {
-        flag_edge_matches(&mut line.matches, EDGE_FLAG_JUMP);
-    }
-    let mut disparity = vec![0.0; w * h];
-    for (line, out) in lines.iter().zip(disparity.chunks_mut(w)) {
-        let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
-        interpolate_into(&anchors, params.ends, Some(EDGE_JUMP), out);
-    }
-    let src = std::mem::replace(&mut disparity, vec![0.0; w * h]);
-    disparity.chunks_mut(w).enumerate().for_each(|(y, out)| vertical_median(&src, w, MEDIAN_ROWS, out, y));
-    FrameResult { width: w, height: h, params: *params, lines, disparity }
 }
 
 #[derive(Clone, Copy)]
@@ -405,7 +370,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     differing += paths.iter().zip(&p.golden_paths).filter(|(a, b)| a != b).count();
                 }
                 let lines = p.graphs.iter().zip(&paths).map(|(g, path)| g.result(path)).collect();
-                let frame = finish(lines, p.data.left.width(), p.data.left.height(), &p.params);
+                let frame = finish_frame(lines, p.data.left.width(), p.data.left.height(), &p.params, Threads::All);
                 scores.push(score(&frame, &p.data));
             }
             let label = format!(
