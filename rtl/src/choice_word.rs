@@ -1,71 +1,69 @@
 //! The word of the systolic matcher's choice memory that holds a row's
-//! choice (the traceback's read, `crate::systolic_matcher`): row `r` is the
-//! low row of cell `r` or, from `N` on, the high row of cell `r - N`; cell
-//! `c`'s choice is bits `2·(c mod 16)` and up of word `c / 16` of its half.
-//! With `N` a multiple of 16, each word holds 16 consecutive rows, so row
-//! `r`'s choice is at `2·(r mod 16)` in it. An array of at most 8 cells has
-//! all its rows in the first words of its halves; they are put side by
-//! side (`lo0` then `hi0`), so row `r`'s choice is at `2·r` there too.
+//! choice (the traceback's read, `crate::systolic_matcher`): row `r` is cell
+//! `r mod N`'s row of phase `⌊r/N⌋`, and its choice is at `2·(r mod 16)` in
+//! the word of its group `⌊r/16⌋`. With `N` a multiple of 16, each block RAM
+//! of the memory holds one group (phase `k`'s words are RAMs `k·N/16` and
+//! up), and the word is RAM `group`'s. A smaller array writes each phase
+//! into a RAM of its own (RAM `k`, its `2·N` low bits); the word of a group
+//! is then its phases' RAMs side by side, phase `k` at `2·(k·N mod 16)`.
 //!
 //! ## Ports
-//! - `lo0..3`, `hi0..3`: one anti-diagonal's words of the low and high
-//!   rows, [`CELLS_PER_CHOICE_WORD`] cells each.
+//! - `w0..7`: one anti-diagonal's words of the memory's eight RAMs.
 //! - `group`: the row's group `⌊r / 16⌋`; out `word`, the word holding the
 //!   choices of the group's rows.
 //!
 //! ## Timing
-//! Combinational (one eight-way multiplexer of words).
+//! Combinational (an eight-way multiplexer of words, or a few ORs).
 
 use crate::params::*;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
 pub struct ChoiceWord {
-    pub lo0: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub lo1: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub lo2: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub lo3: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub hi0: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub hi1: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub hi2: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub hi3: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w0: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w1: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w2: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w3: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w4: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w5: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w6: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w7: Signal<In, Bits<CHOICE_WORD_BITS>>,
     pub group: Signal<In, Bits<ROW_GROUP_BITS>>,
     pub word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
-    hi: Signal<Local, Bit>,
-    widx: Signal<Local, Bits<ROW_GROUP_BITS>>,
-    half_groups: Constant<Bits<ROW_GROUP_BITS>>,
-    one_word: Constant<Bit>,
-    one_word_shift: Constant<Bits<8>>,
-    w1: Constant<Bits<ROW_GROUP_BITS>>,
-    w2: Constant<Bits<ROW_GROUP_BITS>>,
-    w3: Constant<Bits<ROW_GROUP_BITS>>,
+    // A small array's groups: phase k's bits shifted into group 0 or 1.
+    packed: Constant<Bit>,
+    in_g1: [Constant<Bit>; ROWS_PER_CELL],
+    shift: [Constant<Bits<8>>; ROWS_PER_CELL],
+    g0: Signal<Local, Bits<CHOICE_WORD_BITS>>,
+    g1: Signal<Local, Bits<CHOICE_WORD_BITS>>,
+    phase_word: [Signal<Local, Bits<CHOICE_WORD_BITS>>; ROWS_PER_CELL],
 }
 
 impl ChoiceWord {
     /// The selection for an array of `cells` cells.
     pub fn new(cells: usize) -> Self {
-        assert!(cells <= N_CELLS && CHOICE_WORDS == 4, "four words per half");
-        let one_word = 2 * cells <= CELLS_PER_CHOICE_WORD;
-        assert!(one_word || cells % CELLS_PER_CHOICE_WORD == 0, "whole words per half, or one word for both");
+        assert!(cells <= N_CELLS && CHOICE_WORDS == 8, "eight words");
+        let packed = cells < CELLS_PER_CHOICE_WORD;
+        assert!(packed || cells % CELLS_PER_CHOICE_WORD == 0, "whole words per phase, or phases packed into words");
+        assert!(!packed || CELLS_PER_CHOICE_WORD % cells == 0, "a whole number of phases per word");
+        let first_row = |k: usize| k * cells;
         ChoiceWord {
-            lo0: Default::default(),
-            lo1: Default::default(),
-            lo2: Default::default(),
-            lo3: Default::default(),
-            hi0: Default::default(),
-            hi1: Default::default(),
-            hi2: Default::default(),
-            hi3: Default::default(),
+            w0: Default::default(),
+            w1: Default::default(),
+            w2: Default::default(),
+            w3: Default::default(),
+            w4: Default::default(),
+            w5: Default::default(),
+            w6: Default::default(),
+            w7: Default::default(),
             group: Default::default(),
             word: Default::default(),
-            hi: Default::default(),
-            widx: Default::default(),
-            half_groups: Constant::new(((cells / CELLS_PER_CHOICE_WORD) as u64).into()),
-            one_word: Constant::new(one_word),
-            one_word_shift: Constant::new((2 * cells as u64).into()),
-            w1: Constant::new(1u64.into()),
-            w2: Constant::new(2u64.into()),
-            w3: Constant::new(3u64.into()),
+            packed: Constant::new(packed),
+            in_g1: core::array::from_fn(|k| Constant::new(first_row(k) / CELLS_PER_CHOICE_WORD == 1)),
+            shift: core::array::from_fn(|k| Constant::new(((2 * (first_row(k) % CELLS_PER_CHOICE_WORD)) as u64).into())),
+            g0: Default::default(),
+            g1: Default::default(),
+            phase_word: Default::default(),
         }
     }
 }
@@ -79,36 +77,54 @@ impl Default for ChoiceWord {
 impl Logic for ChoiceWord {
     #[hdl_gen]
     fn update(&mut self) {
-        // Groups 0 .. N/16 are the low rows' words, the next the high rows'.
-        self.hi.next = self.group.val() >= self.half_groups.val();
-        self.widx.next = self.group.val();
-        if self.hi.val() {
-            self.widx.next = self.group.val() - self.half_groups.val();
-        }
-        self.word.next = self.lo0.val();
-        if self.hi.val() {
-            self.word.next = self.hi0.val();
-        }
-        if self.widx.val() == self.w1.val() {
-            self.word.next = self.lo1.val();
-            if self.hi.val() {
-                self.word.next = self.hi1.val();
+        // Whole words: RAM `group`.
+        self.word.next = self.w0.val();
+        if self.group.val().get_bit(2) {
+            if self.group.val().get_bit(1) {
+                if self.group.val().get_bit(0) {
+                    self.word.next = self.w7.val();
+                } else {
+                    self.word.next = self.w6.val();
+                }
+            } else {
+                if self.group.val().get_bit(0) {
+                    self.word.next = self.w5.val();
+                } else {
+                    self.word.next = self.w4.val();
+                }
+            }
+        } else {
+            if self.group.val().get_bit(1) {
+                if self.group.val().get_bit(0) {
+                    self.word.next = self.w3.val();
+                } else {
+                    self.word.next = self.w2.val();
+                }
+            } else {
+                if self.group.val().get_bit(0) {
+                    self.word.next = self.w1.val();
+                }
             }
         }
-        if self.widx.val() == self.w2.val() {
-            self.word.next = self.lo2.val();
-            if self.hi.val() {
-                self.word.next = self.hi2.val();
+        // Packed phases: RAM k is phase k.
+        self.phase_word[0].next = self.w0.val() << self.shift[0].val();
+        self.phase_word[1].next = self.w1.val() << self.shift[1].val();
+        self.phase_word[2].next = self.w2.val() << self.shift[2].val();
+        self.phase_word[3].next = self.w3.val() << self.shift[3].val();
+        self.g0.next = 0.into();
+        self.g1.next = 0.into();
+        for k in 0..ROWS_PER_CELL {
+            if self.in_g1[k].val() {
+                self.g1.next = self.g1.val() | self.phase_word[k].val();
+            } else {
+                self.g0.next = self.g0.val() | self.phase_word[k].val();
             }
         }
-        if self.widx.val() == self.w3.val() {
-            self.word.next = self.lo3.val();
-            if self.hi.val() {
-                self.word.next = self.hi3.val();
+        if self.packed.val() {
+            self.word.next = self.g0.val();
+            if self.group.val().get_bit(0) {
+                self.word.next = self.g1.val();
             }
-        }
-        if self.one_word.val() {
-            self.word.next = self.lo0.val() | (self.hi0.val() << self.one_word_shift.val());
         }
     }
 }

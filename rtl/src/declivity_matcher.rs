@@ -8,9 +8,9 @@
 //!   the engine, and the next pair loads into the other bank.
 //! - **Engine**: sweeps the pair through the [`SystolicMatcher`] (the
 //!   reference declivities broadcast to their cells one per clock ahead of
-//!   the wavefront, the other view's streamed into the array twice, the
-//!   second pass for the cells' high rows on the odd clocks when the line
-//!   has more than `N` reference declivities), then runs the [`Traceback`]
+//!   the wavefront, the other view's streamed into the array once per
+//!   phase: two phases, interleaved clock by clock, for a line of at most
+//!   `2·N` reference declivities, four for a longer one), then runs the [`Traceback`]
 //!   and turns its pairs into matches with their positions. The per-line
 //!   gain constants use `d_t` rounded down to [`MATCH_DT_FRAC_BITS`].
 //!
@@ -26,7 +26,7 @@
 //!   reference, `sof`. Out: `r_ready`, `o_ready`: records and markers are
 //!   taken only while ready (a side is not ready from its marker until the
 //!   pair is handed to the engine, nor while a complete pair waits). A
-//!   side's records beyond `2·N` (two per cell; [`N_MAX`] in the sensor's
+//!   side's records beyond `4·N` (four per cell; [`N_MAX`] in the sensor's
 //!   [`N_CELLS`] cells) are dropped and the line flagged full.
 //! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits.
 //! - Out, a stream without back-pressure: `m_valid` with `m_last` low is a
@@ -82,22 +82,41 @@ impl GainRule {
     }
 }
 
-/// Clocks from the engine's sweep clock `sc = T - 2c` reading the column
-/// of node `(i, j)` (`T = 2·(i + j) + [i ≥ N]`, `c = i mod N`, the cell)
-/// to the node's choice in the array's word registers, less the cell's
-/// `2c`: the record memory's address register, its read, its output
-/// register, the register that drives the array, then the array's
-/// [`CHOICE_LAG`].
+/// Clocks from the engine's sweep clock `sc` reading the column of node
+/// `(i, j)` (row `i = c + k·N` of cell `c` in phase `k`; `sc = 2j + (2N +
+/// 1)·k` with two phases, `4j + (2N + 1)·k` with four) to the node's choice
+/// in the array's word registers, less the cell's `2c` (and, with four
+/// phases, its skew of `2c` more): the record memory's address register, its
+/// read, its output register, the register that drives the array, then the
+/// array's [`CHOICE_LAG`].
 pub const ENGINE_LAG: usize = 4 + CHOICE_LAG;
 
 /// Clocks of a sweep of `n` reference and `m` other declivities through
 /// `cells` cells, from the clock after the engine takes the pair to the
 /// traceback's `start` (on the sweep's last clock, which writes the last
-/// choices): the last node, `(n-1, m-1)`, is reached `2·(n + m - 2)`
-/// clocks after the first (one more when it is a high row, `n > cells`),
-/// its choice is written [`ENGINE_LAG`] clocks later.
+/// choice the traceback can need), counted from the sweep's first read `sc
+/// = 0`: that choice is in the array's word registers [`ENGINE_LAG`] clocks
+/// after the read of its column,
+/// - with two phases (`n ≤ 2·cells`), the last node `(n-1, m-1)`'s, read at
+///   `2·(n + m - 2) + [n > cells]`;
+/// - with four, whichever is later of the last row's (`n - 1 = c_last +
+///   k_last·cells`) last node, read at `4·(m - 1) + 4·c_last + (2·cells +
+///   1)·k_last` (its column's read plus its cell's skew), and the last node
+///   of the phase before's last row, `4·(m - 1) + 4·(cells - 1) + (2·cells +
+///   1)·(k_last - 1)`: on one anti-diagonal an earlier phase's node comes
+///   later, and the traceback, which walks an anti-diagonal a clock, may
+///   step up into that phase a clock after it starts (a later row of its
+///   own phase comes later still, by four clocks a row).
 pub const fn sweep_cycles(n: usize, m: usize, cells: usize) -> usize {
-    2 * (n + m) + (n > cells) as usize + ENGINE_LAG - 3
+    if n <= 2 * cells {
+        2 * (n + m) + (n > cells) as usize + ENGINE_LAG - 3
+    } else {
+        let (k_last, c_last) = ((n - 1) / cells, (n - 1) % cells);
+        let wrap = 2 * cells + 1;
+        let own = 4 * c_last + wrap;
+        let before = 4 * (cells - 1);
+        4 * m + (k_last - 1) * wrap + if own > before { own } else { before } + ENGINE_LAG - 3
+    }
 }
 
 /// Clocks from the engine taking a line pair to its marker on the outputs:
@@ -137,8 +156,6 @@ const DT_SUM_INT_BITS: usize = DT_SUM_BITS - MATCH_DT_FRAC_BITS;
 /// set saturates it (see [`MATCH_DT_INT_BITS`]).
 const DT_SAT_BITS: usize = DT_BITS - (DT_FRAC_BITS - MATCH_DT_FRAC_BITS) - MATCH_DT_BITS;
 
-/// Bits of `sc / 2`.
-const SWEEP_HALF_BITS: usize = SWEEP_BITS - 1;
 
 const ENG_IDLE: u64 = 0;
 const ENG_SWEEP: u64 = 1;
@@ -243,11 +260,15 @@ pub struct DeclivityMatcher<const N: usize> {
     e_full: DFF<Bit>,
     e_sof: DFF<Bit>,
     e_fold: DFF<Bit>,
+    // The taken line's rows have four clocks per node (more than 2·N
+    // reference declivities), and its last phase.
+    e_p4: DFF<Bit>,
+    e_klast: DFF<Bits<PHASE_BITS>>,
     ld_valid_d: DFF<Bit>,
     ld_valid_e: DFF<Bit>,
     ld_index_e: DFF<Bits<INDEX_BITS>>,
     c_valid_e2: DFF<Bit>,
-    c_hi_e2: DFF<Bit>,
+    c_phase_e2: DFF<Bits<PHASE_BITS>>,
     r_addr_q: DFF<Bits<DIAG_BITS>>,
     o_addr_q: DFF<Bits<DIAG_BITS>>,
     q2_valid: DFF<Bit>,
@@ -257,31 +278,21 @@ pub struct DeclivityMatcher<const N: usize> {
     q2_count: DFF<Bits<COUNT_BITS>>,
     ld_index_d: DFF<Bits<INDEX_BITS>>,
     c_valid_d: DFF<Bit>,
-    c_hi_d: DFF<Bit>,
+    c_phase_d: DFF<Bits<PHASE_BITS>>,
     // The record memories' outputs (already registered inside the block
     // RAMs) registered again into the registers that drive the broadcast
     // and the array; the control bits alongside.
     c_valid_e: DFF<Bit>,
     ld_first: DFF<Bit>,
-    ld_first_hi: DFF<Bit>,
-    c_hi_e: DFF<Bit>,
+    ld_phase: DFF<Bits<PHASE_BITS>>,
+    c_phase_e: DFF<Bits<PHASE_BITS>>,
     ld_pos_q: DFF<Bits<POS_BITS>>,
-    ld_lev0_q: DFF<Bits<LEVEL_BITS>>,
-    ld_lev1_q: DFF<Bits<LEVEL_BITS>>,
-    ld_lev2_q: DFF<Bits<LEVEL_BITS>>,
-    ld_lev3_q: DFF<Bits<LEVEL_BITS>>,
-    ld_lev4_q: DFF<Bits<LEVEL_BITS>>,
-    ld_lev5_q: DFF<Bits<LEVEL_BITS>>,
+    ld_levs_q: DFF<Bits<LEVELS_BITS>>,
     ld_rising_q: DFF<Bit>,
     c_valid_q: DFF<Bit>,
-    c_hi_q: DFF<Bit>,
+    c_phase_q: DFF<Bits<PHASE_BITS>>,
     c_pos_q: DFF<Bits<POS_BITS>>,
-    c_lev0_q: DFF<Bits<LEVEL_BITS>>,
-    c_lev1_q: DFF<Bits<LEVEL_BITS>>,
-    c_lev2_q: DFF<Bits<LEVEL_BITS>>,
-    c_lev3_q: DFF<Bits<LEVEL_BITS>>,
-    c_lev4_q: DFF<Bits<LEVEL_BITS>>,
-    c_lev5_q: DFF<Bits<LEVEL_BITS>>,
+    c_levs_q: DFF<Bits<LEVELS_BITS>>,
     c_rising_q: DFF<Bit>,
     // Output pipeline: RAM read, then the output registers.
     q_valid: DFF<Bit>,
@@ -322,19 +333,34 @@ pub struct DeclivityMatcher<const N: usize> {
     o_dt_m: Signal<Local, Bits<MATCH_DT_BITS>>,
     dt_sum: Signal<Local, Bits<DT_SUM_BITS>>,
     sc_idx: Signal<Local, Bits<INDEX_BITS>>,
-    nm: Signal<Local, Bits<SWEEP_BITS>>,
-    // The waiting pair's 2·(n + m) and fold, registered at the handoff.
-    pend_nm2: DFF<Bits<SWEEP_BITS>>,
-    pend_fold_q: DFF<Bit>,
-    sweep_base: Signal<Local, Bits<SWEEP_BITS>>,
-    pend_fold: Signal<Local, Bit>,
-    sc_half: Signal<Local, Bits<SWEEP_HALF_BITS>>,
-    sc2: Signal<Local, Bits<SWEEP_HALF_BITS>>,
-    col_even: Signal<Local, Bit>,
-    col_first: Signal<Local, Bit>,
-    col_second: Signal<Local, Bit>,
+    // The loading line's sweep as far as its reference count decides it,
+    // from the count of a clock ago (final by the handoff): four phases or
+    // two, the last phase, and `sweep_end_m1` less the other side's part
+    // (see `sweep_cycles`).
+    n_p4: DFF<Bit>,
+    n_klast: DFF<Bits<PHASE_BITS>>,
+    n_part: DFF<Bits<SWEEP_BITS>>,
+    n_m1: Signal<Local, Bits<COUNT_BITS>>,
+    n_kl: Signal<Local, Bits<PHASE_BITS>>,
+    n_c4: Signal<Local, Bits<SWEEP_BITS>>,
+    n_wrap: Signal<Local, Bits<SWEEP_BITS>>,
+    m_part: Signal<Local, Bits<SWEEP_BITS>>,
+    // The waiting pair's sweep: its last clock less one, its phases.
+    pend_end_m1: DFF<Bits<SWEEP_BITS>>,
+    pend_fold: DFF<Bit>,
+    pend_p4: DFF<Bit>,
+    pend_klast: DFF<Bits<PHASE_BITS>>,
+    sc_phase: Signal<Local, Bits<PHASE_BITS>>,
+    sc_base: Signal<Local, Bits<SWEEP_BITS>>,
+    sc_off: Signal<Local, Bits<SWEEP_BITS>>,
+    sc_j: Signal<Local, Bits<SWEEP_BITS>>,
+    col_ok: Signal<Local, Bit>,
     col_j: Signal<Local, Bits<INDEX_BITS>>,
     tw: Signal<Local, Bits<SWEEP_BITS>>,
+    tw_phase: Signal<Local, Bits<PHASE_BITS>>,
+    tw_diag: Signal<Local, Bits<SWEEP_BITS>>,
+    ld_levs: Signal<Local, Bits<LEVELS_BITS>>,
+    c_levs: Signal<Local, Bits<LEVELS_BITS>>,
     rd_bank_base: Signal<Local, Bits<DIAG_BITS>>,
     r_rd: Signal<Local, Bits<DIAG_BITS>>,
     o_rd: Signal<Local, Bits<DIAG_BITS>>,
@@ -348,12 +374,23 @@ pub struct DeclivityMatcher<const N: usize> {
     eng_trace: Constant<Bits<2>>,
     sweep_tail: Constant<Bits<SWEEP_BITS>>,
     sweep_tail1: Constant<Bits<SWEEP_BITS>>,
-    cells_h: Constant<Bits<SWEEP_HALF_BITS>>,
+    wrap1: Constant<Bits<SWEEP_BITS>>,
+    wrap2: Constant<Bits<SWEEP_BITS>>,
+    wrap_c: Constant<Bits<SWEEP_BITS>>,
+    odd_c: Constant<Bits<SWEEP_BITS>>,
     engine_lag: Constant<Bits<SWEEP_BITS>>,
     cells_c: Constant<Bits<COUNT_BITS>>,
-    cells_i: Constant<Bits<INDEX_BITS>>,
+    cells_2c: Constant<Bits<COUNT_BITS>>,
+    cells_log2: Constant<Bits<8>>,
+    cells_mask: Constant<Bits<INDEX_BITS>>,
+    lev_at1: Constant<Bits<8>>,
+    lev_at2: Constant<Bits<8>>,
+    lev_at3: Constant<Bits<8>>,
+    lev_at4: Constant<Bits<8>>,
+    lev_at5: Constant<Bits<8>>,
     bit0: Constant<Bits<8>>,
     bit1: Constant<Bits<8>>,
+    bit2: Constant<Bits<8>>,
     dt_frac: Constant<Bits<8>>,
     dt_drop: Constant<Bits<8>>,
     dt_sat: Constant<Bits<8>>,
@@ -451,11 +488,13 @@ impl<const N: usize> DeclivityMatcher<N> {
             e_full: Default::default(),
             e_sof: Default::default(),
             e_fold: Default::default(),
+            e_p4: Default::default(),
+            e_klast: Default::default(),
             ld_valid_d: Default::default(),
             ld_valid_e: Default::default(),
             ld_index_e: Default::default(),
             c_valid_e2: Default::default(),
-            c_hi_e2: Default::default(),
+            c_phase_e2: Default::default(),
             r_addr_q: Default::default(),
             o_addr_q: Default::default(),
             q2_valid: Default::default(),
@@ -465,28 +504,18 @@ impl<const N: usize> DeclivityMatcher<N> {
             q2_count: Default::default(),
             ld_index_d: Default::default(),
             c_valid_d: Default::default(),
-            c_hi_d: Default::default(),
+            c_phase_d: Default::default(),
             c_valid_e: Default::default(),
             ld_first: Default::default(),
-            ld_first_hi: Default::default(),
-            c_hi_e: Default::default(),
+            ld_phase: Default::default(),
+            c_phase_e: Default::default(),
             ld_pos_q: Default::default(),
-            ld_lev0_q: Default::default(),
-            ld_lev1_q: Default::default(),
-            ld_lev2_q: Default::default(),
-            ld_lev3_q: Default::default(),
-            ld_lev4_q: Default::default(),
-            ld_lev5_q: Default::default(),
+            ld_levs_q: Default::default(),
             ld_rising_q: Default::default(),
             c_valid_q: Default::default(),
-            c_hi_q: Default::default(),
+            c_phase_q: Default::default(),
             c_pos_q: Default::default(),
-            c_lev0_q: Default::default(),
-            c_lev1_q: Default::default(),
-            c_lev2_q: Default::default(),
-            c_lev3_q: Default::default(),
-            c_lev4_q: Default::default(),
-            c_lev5_q: Default::default(),
+            c_levs_q: Default::default(),
             c_rising_q: Default::default(),
             q_valid: Default::default(),
             q_last: Default::default(),
@@ -525,18 +554,29 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_dt_m: Default::default(),
             dt_sum: Default::default(),
             sc_idx: Default::default(),
-            nm: Default::default(),
-            pend_nm2: Default::default(),
-            pend_fold_q: Default::default(),
-            sweep_base: Default::default(),
+            n_p4: Default::default(),
+            n_klast: Default::default(),
+            n_part: Default::default(),
+            n_m1: Default::default(),
+            n_kl: Default::default(),
+            n_c4: Default::default(),
+            n_wrap: Default::default(),
+            m_part: Default::default(),
+            pend_end_m1: Default::default(),
             pend_fold: Default::default(),
-            sc_half: Default::default(),
-            sc2: Default::default(),
-            col_even: Default::default(),
-            col_first: Default::default(),
-            col_second: Default::default(),
+            pend_p4: Default::default(),
+            pend_klast: Default::default(),
+            sc_phase: Default::default(),
+            sc_base: Default::default(),
+            sc_off: Default::default(),
+            sc_j: Default::default(),
+            col_ok: Default::default(),
             col_j: Default::default(),
             tw: Default::default(),
+            tw_phase: Default::default(),
+            tw_diag: Default::default(),
+            ld_levs: Default::default(),
+            c_levs: Default::default(),
             rd_bank_base: Default::default(),
             r_rd: Default::default(),
             o_rd: Default::default(),
@@ -549,12 +589,23 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
             sweep_tail: Constant::new(((ENGINE_LAG - 5) as u64).into()),
             sweep_tail1: Constant::new(((ENGINE_LAG - 4) as u64).into()),
-            cells_h: Constant::new((N as u64).into()),
+            wrap1: Constant::new(((2 * N + 1 + ENGINE_LAG - 5) as u64).into()),
+            wrap2: Constant::new(((2 * (2 * N + 1) + ENGINE_LAG - 5) as u64).into()),
+            wrap_c: Constant::new(((4 * (N - 1)) as u64).into()),
+            odd_c: Constant::new(((2 * N + 1) as u64).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             cells_c: Constant::new((N as u64).into()),
-            cells_i: Constant::new((N as u64).into()),
+            cells_2c: Constant::new(((2 * N) as u64).into()),
+            cells_log2: Constant::new((N.trailing_zeros() as u64).into()),
+            cells_mask: Constant::new(((N - 1) as u64).into()),
+            lev_at1: Constant::new((LEVEL_BITS as u64).into()),
+            lev_at2: Constant::new((2 * LEVEL_BITS as u64).into()),
+            lev_at3: Constant::new((3 * LEVEL_BITS as u64).into()),
+            lev_at4: Constant::new((4 * LEVEL_BITS as u64).into()),
+            lev_at5: Constant::new((5 * LEVEL_BITS as u64).into()),
             bit0: Constant::new(0u64.into()),
             bit1: Constant::new(1u64.into()),
+            bit2: Constant::new(2u64.into()),
             dt_frac: Constant::new((MATCH_DT_FRAC_BITS as u64).into()),
             dt_drop: Constant::new(((DT_FRAC_BITS - MATCH_DT_FRAC_BITS) as u64).into()),
             dt_sat: Constant::new(((DT_BITS - DT_SAT_BITS) as u64).into()),
@@ -581,8 +632,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, pend_nm2, pend_fold_q, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
-            e_sof, e_fold, ld_valid_d, ld_index_d, c_valid_d, c_hi_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_hi_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_first_hi, c_hi_e, ld_pos_q, ld_lev0_q, ld_lev1_q, ld_lev2_q, ld_lev3_q, ld_lev4_q, ld_lev5_q, ld_rising_q, c_valid_q, c_hi_q, c_pos_q, c_lev0_q, c_lev1_q, c_lev2_q, c_lev3_q, c_lev4_q, c_lev5_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
+            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
@@ -698,15 +749,54 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         }
         self.dt_sum.next = bit_cast::<DT_SUM_BITS, MATCH_DT_BITS>(self.r_dt_m.val())
             + bit_cast::<DT_SUM_BITS, MATCH_DT_BITS>(self.o_dt_m.val());
-        // n + m of the pair handed off, twice, and whether it folds (more
-        // reference declivities than cells: the high rows are used, the
-        // columns pass the array a second time), registered with the pair
-        // so that the engine's take adds only the tail.
-        self.nm.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
-            + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.o_count.q.val());
+        // The sweep of the line loading (`sweep_cycles`), as far as its
+        // reference count n decides it, from the count of a clock ago: with
+        // two phases (n ≤ 2N) `2n + [n > N]` and the tail; with four, the
+        // wrap of its last phase `(k_last - 1)·(2N + 1)`, the later of its
+        // last row's node and phase k_last - 1's last row's,
+        // `max(4·c_last + 2N + 1, 4·(N - 1))`, and the tail. The other
+        // side's part, `2m` or `4m`, is added at the handoff.
+        self.n_m1.next = self.r_count.q.val() - 1;
+        self.n_p4.d.next = self.r_count.q.val() > self.cells_2c.val();
+        self.n_kl.next = bit_cast::<PHASE_BITS, COUNT_BITS>(self.n_m1.val() >> self.cells_log2.val());
+        self.n_klast.d.next = self.n_kl.val();
+        self.n_c4.next = (bit_cast::<SWEEP_BITS, INDEX_BITS>(
+            bit_cast::<INDEX_BITS, COUNT_BITS>(self.n_m1.val()) & self.cells_mask.val(),
+        ) << self.bit2.val())
+            + self.odd_c.val();
+        if self.n_c4.val() < self.wrap_c.val() {
+            self.n_c4.next = self.wrap_c.val();
+        }
+        self.n_wrap.next = self.wrap1.val();
+        if self.n_kl.val().all() {
+            self.n_wrap.next = self.wrap2.val();
+        }
+        self.n_part.d.next = self.n_wrap.val() + self.n_c4.val();
+        if self.r_count.q.val() <= self.cells_2c.val() {
+            self.n_part.d.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
+                + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
+                + self.sweep_tail.val();
+            if self.r_count.q.val() > self.cells_c.val() {
+                self.n_part.d.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
+                    + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
+                    + self.sweep_tail1.val();
+            }
+        }
+        self.m_part.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.o_count.q.val()) << self.bit1.val();
+        if self.n_p4.q.val() {
+            self.m_part.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.o_count.q.val()) << self.bit2.val();
+        }
         if self.handoff.val() {
-            self.pend_nm2.d.next = self.nm.val() + self.nm.val();
-            self.pend_fold_q.d.next = self.r_count.q.val() > self.cells_c.val();
+            self.pend_end_m1.d.next = self.n_part.q.val() + self.m_part.val();
+            self.pend_fold.d.next = self.r_count.q.val() > self.cells_c.val();
+            self.pend_p4.d.next = self.n_p4.q.val();
+            self.pend_klast.d.next = self.n_klast.q.val();
+            if !self.n_p4.q.val() {
+                self.pend_klast.d.next = 0.into();
+                if self.r_count.q.val() > self.cells_c.val() {
+                    self.pend_klast.d.next = 1.into();
+                }
+            }
             self.pend.d.next = true;
             self.pend_bank.d.next = self.lbank.q.val();
             self.pend_n.d.next = self.r_count.q.val();
@@ -744,13 +834,6 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val())
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val());
         self.take.next = (self.eng.q.val() == self.eng_idle.val()) & self.pend.q.val();
-        // The sweep's tail, one more with the fold (2·(n + m) waits in
-        // pend_nm2, summed at the handoff).
-        self.pend_fold.next = self.pend_fold_q.q.val();
-        self.sweep_base.next = self.sweep_tail.val();
-        if self.pend_fold.val() {
-            self.sweep_base.next = self.sweep_tail1.val();
-        }
         if self.take.val() {
             self.pend.d.next = false;
             self.eng.d.next = self.eng_sweep.val();
@@ -758,10 +841,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.en.d.next = self.pend_n.q.val();
             self.em.d.next = self.pend_m.q.val();
             self.sc.d.next = 0.into();
-            // The sweep's last clock less one: 2·(n + m) + [n > N] + the
-            // tail; see `sweep_cycles`.
-            self.sweep_end_m1.d.next = self.pend_nm2.q.val() + self.sweep_base.val();
-            self.e_fold.d.next = self.pend_fold.val();
+            // The sweep's last clock less one; see `sweep_cycles`.
+            self.sweep_end_m1.d.next = self.pend_end_m1.q.val();
+            self.e_fold.d.next = self.pend_fold.q.val();
+            self.e_p4.d.next = self.pend_p4.q.val();
+            self.e_klast.d.next = self.pend_klast.q.val();
         }
         // A clock after the take: the handoff refills `pend_*` at the
         // earliest on this clock's edge (`pend` fell on the take's).
@@ -773,23 +857,24 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.e_sof.d.next = self.pend_sof.q.val();
         }
         // Sweep: clock sc reads reference sc, which the next clock
-        // broadcasts, and on even clocks column sc/2 for the low rows, on
-        // odd clocks from 2N + 1 column (sc - 2N - 1)/2 = sc/2 - N for the
-        // high rows (when there are any), which the next clock feeds to the
-        // array.
+        // broadcasts, and column j of phase k where sc = p·j + (2N + 1)·k
+        // (p = 2 with two phases, 4 with four): k = sc mod p, j = ⌊sc/p⌋ -
+        // k·2N/p, when the line has that phase and column; the next clock
+        // feeds it to the array.
         self.sc_idx.next = bit_cast::<INDEX_BITS, SWEEP_BITS>(self.sc.q.val());
-        self.sc_half.next = self.sc.q.val().get_bits::<SWEEP_HALF_BITS>(self.bit1.val().index());
-        self.sc2.next = self.sc_half.val() - self.cells_h.val();
-        self.col_even.next = !self.sc.q.val().get_bit(self.bit0.val().index());
-        self.col_first.next = self.col_even.val() & (self.sc_half.val() < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()));
-        self.col_second.next = !self.col_even.val()
-            & (self.sc_half.val() >= self.cells_h.val())
-            & (self.sc2.val() < bit_cast::<SWEEP_HALF_BITS, COUNT_BITS>(self.em.q.val()))
-            & self.e_fold.q.val();
-        self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_HALF_BITS>(self.sc_half.val());
-        if !self.col_even.val() {
-            self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_HALF_BITS>(self.sc2.val());
+        self.sc_phase.next = bit_cast::<PHASE_BITS, 1>(self.sc.q.val().get_bits::<1>(self.bit0.val().index()));
+        self.sc_base.next = self.sc.q.val() >> self.bit1.val();
+        self.sc_off.next = bit_cast::<SWEEP_BITS, PHASE_BITS>(self.sc_phase.val()) << self.cells_log2.val();
+        if self.e_p4.q.val() {
+            self.sc_phase.next = self.sc.q.val().get_bits::<PHASE_BITS>(self.bit0.val().index());
+            self.sc_base.next = self.sc.q.val() >> self.bit2.val();
+            self.sc_off.next = (bit_cast::<SWEEP_BITS, PHASE_BITS>(self.sc_phase.val()) << self.cells_log2.val()) >> self.bit1.val();
         }
+        self.sc_j.next = self.sc_base.val() - self.sc_off.val();
+        self.col_ok.next = (self.sc_base.val() >= self.sc_off.val())
+            & (self.sc_j.val() < bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val()))
+            & (self.sc_phase.val() <= self.e_klast.q.val());
+        self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_BITS>(self.sc_j.val());
         self.rd_bank_base.next = 0.into();
         if self.ebank.q.val() {
             self.rd_bank_base.next = self.bank_size.val();
@@ -799,14 +884,23 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.ld_valid_d.d.next = false;
         self.c_valid_d.d.next = false;
         self.ld_index_d.d.next = self.sc_idx.val();
-        self.c_hi_d.d.next = !self.col_even.val();
+        self.c_phase_d.d.next = self.sc_phase.val();
         // The choices in the array's word registers now are those of the
-        // nodes whose columns were read ENGINE_LAG clocks ago: anti-diagonal
-        // (sc - ENGINE_LAG) / 2, low or high rows by its parity.
+        // nodes whose columns were read ENGINE_LAG clocks ago (with four
+        // phases, plus the cells' skews): at tw = sc - ENGINE_LAG, with two
+        // phases anti-diagonal ⌊tw/2⌋ of phase tw mod 2 (tw = 2s + k), with
+        // four ⌊tw/4⌋ + k·N/2 of phase k = tw mod 4 (tw = 4s - (2N - 1)·k).
         self.tw.next = self.sc.q.val() - self.engine_lag.val();
+        self.tw_phase.next = bit_cast::<PHASE_BITS, 1>(self.tw.val().get_bits::<1>(self.bit0.val().index()));
+        self.tw_diag.next = self.tw.val() >> self.bit1.val();
+        if self.e_p4.q.val() {
+            self.tw_phase.next = self.tw.val().get_bits::<PHASE_BITS>(self.bit0.val().index());
+            self.tw_diag.next = (self.tw.val() >> self.bit2.val())
+                + ((bit_cast::<SWEEP_BITS, PHASE_BITS>(self.tw_phase.val()) << self.cells_log2.val()) >> self.bit1.val());
+        }
         self.array.cw_en.next = (self.eng.q.val() == self.eng_sweep.val()) & (self.sc.q.val() >= self.engine_lag.val());
-        self.array.cw_diag.next = self.tw.val().get_bits::<DIAG_BITS>(self.bit1.val().index());
-        self.array.cw_hi.next = self.tw.val().get_bit(self.bit0.val().index());
+        self.array.cw_diag.next = bit_cast::<DIAG_BITS, SWEEP_BITS>(self.tw_diag.val());
+        self.array.cw_phase.next = self.tw_phase.val();
         // The sweep's last clock is known a clock ahead (a register: the
         // traceback's start goes to its walk registers, far from the engine).
         self.traceback.start.next = self.sweep_done.q.val();
@@ -814,7 +908,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         if self.eng.q.val() == self.eng_sweep.val() {
             self.sc.d.next = self.sc.q.val() + 1;
             self.ld_valid_d.d.next = self.sc.q.val() < bit_cast::<SWEEP_BITS, COUNT_BITS>(self.en.q.val());
-            self.c_valid_d.d.next = self.col_first.val() | self.col_second.val();
+            self.c_valid_d.d.next = self.col_ok.val();
             self.sweep_done.d.next = self.sc.q.val() == self.sweep_end_m1.q.val();
             if self.sweep_done.q.val() {
                 self.eng.d.next = self.eng_trace.val();
@@ -837,53 +931,48 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.o_mem.r_addr.next = self.o_addr_q.q.val();
 
         // ---- The array.
-        // Load tokens: high the clock before references 0 and N are on the
-        // broadcast (the array moves them on to the cells).
+        // Load tokens: high the clock before references 0, N, 2N and 3N are
+        // on the broadcast, with their phase (the array moves them on to the
+        // cells).
         self.ld_valid_e.d.next = self.ld_valid_d.q.val();
         self.ld_index_e.d.next = self.ld_index_d.q.val();
-        self.ld_first.d.next = self.ld_valid_e.q.val() & !self.ld_index_e.q.val().any();
-        self.ld_first_hi.d.next = self.ld_valid_e.q.val() & (self.ld_index_e.q.val() == self.cells_i.val());
+        self.ld_first.d.next = self.ld_valid_e.q.val() & !(self.ld_index_e.q.val() & self.cells_mask.val()).any();
+        self.ld_phase.d.next =
+            bit_cast::<PHASE_BITS, INDEX_BITS>(self.ld_index_e.q.val() >> self.cells_log2.val());
+        // The six levels side by side (wiring).
+        self.ld_levs.next = bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.r_mem.lev0.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.r_mem.lev1.val()) << self.lev_at1.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.r_mem.lev2.val()) << self.lev_at2.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.r_mem.lev3.val()) << self.lev_at3.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.r_mem.lev4.val()) << self.lev_at4.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.r_mem.lev5.val()) << self.lev_at5.val());
+        self.c_levs.next = bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.o_mem.lev0.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.o_mem.lev1.val()) << self.lev_at1.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.o_mem.lev2.val()) << self.lev_at2.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.o_mem.lev3.val()) << self.lev_at3.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.o_mem.lev4.val()) << self.lev_at4.val())
+            | (bit_cast::<LEVELS_BITS, LEVEL_BITS>(self.o_mem.lev5.val()) << self.lev_at5.val());
         self.ld_pos_q.d.next = self.r_mem.pos.val();
-        self.ld_lev0_q.d.next = self.r_mem.lev0.val();
-        self.ld_lev1_q.d.next = self.r_mem.lev1.val();
-        self.ld_lev2_q.d.next = self.r_mem.lev2.val();
-        self.ld_lev3_q.d.next = self.r_mem.lev3.val();
-        self.ld_lev4_q.d.next = self.r_mem.lev4.val();
-        self.ld_lev5_q.d.next = self.r_mem.lev5.val();
+        self.ld_levs_q.d.next = self.ld_levs.val();
         self.ld_rising_q.d.next = self.r_mem.rising.val();
         self.c_valid_e.d.next = self.c_valid_d.q.val();
-        self.c_hi_e.d.next = self.c_hi_d.q.val();
+        self.c_phase_e.d.next = self.c_phase_d.q.val();
         self.c_valid_e2.d.next = self.c_valid_e.q.val();
-        self.c_hi_e2.d.next = self.c_hi_e.q.val();
+        self.c_phase_e2.d.next = self.c_phase_e.q.val();
         self.c_valid_q.d.next = self.c_valid_e2.q.val();
-        self.c_hi_q.d.next = self.c_hi_e2.q.val();
+        self.c_phase_q.d.next = self.c_phase_e2.q.val();
         self.c_pos_q.d.next = self.o_mem.pos.val();
-        self.c_lev0_q.d.next = self.o_mem.lev0.val();
-        self.c_lev1_q.d.next = self.o_mem.lev1.val();
-        self.c_lev2_q.d.next = self.o_mem.lev2.val();
-        self.c_lev3_q.d.next = self.o_mem.lev3.val();
-        self.c_lev4_q.d.next = self.o_mem.lev4.val();
-        self.c_lev5_q.d.next = self.o_mem.lev5.val();
+        self.c_levs_q.d.next = self.c_levs.val();
         self.c_rising_q.d.next = self.o_mem.rising.val();
         self.array.ld_first.next = self.ld_first.q.val();
-        self.array.ld_first_hi.next = self.ld_first_hi.q.val();
+        self.array.ld_phase.next = self.ld_phase.q.val();
         self.array.ld_pos.next = self.ld_pos_q.q.val();
-        self.array.ld_lev0.next = self.ld_lev0_q.q.val();
-        self.array.ld_lev1.next = self.ld_lev1_q.q.val();
-        self.array.ld_lev2.next = self.ld_lev2_q.q.val();
-        self.array.ld_lev3.next = self.ld_lev3_q.q.val();
-        self.array.ld_lev4.next = self.ld_lev4_q.q.val();
-        self.array.ld_lev5.next = self.ld_lev5_q.q.val();
+        self.array.ld_levs.next = self.ld_levs_q.q.val();
         self.array.ld_rising.next = self.ld_rising_q.q.val();
         self.array.c_valid.next = self.c_valid_q.q.val();
-        self.array.c_hi.next = self.c_hi_q.q.val();
+        self.array.c_phase.next = self.c_phase_q.q.val();
         self.array.c_pos.next = self.c_pos_q.q.val();
-        self.array.c_lev0.next = self.c_lev0_q.q.val();
-        self.array.c_lev1.next = self.c_lev1_q.q.val();
-        self.array.c_lev2.next = self.c_lev2_q.q.val();
-        self.array.c_lev3.next = self.c_lev3_q.q.val();
-        self.array.c_lev4.next = self.c_lev4_q.q.val();
-        self.array.c_lev5.next = self.c_lev5_q.q.val();
+        self.array.c_levs.next = self.c_levs_q.q.val();
         self.array.c_rising.next = self.c_rising_q.q.val();
         // Eq. 6's bound less one LSB (0 for a zero bound: no node then).
         self.dm1_reg.d.next = 0.into();
@@ -894,6 +983,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.below2.next = self.below2_reg.q.val();
         self.array.f1.next = self.f1_reg.q.val();
         self.array.f3.next = self.f3_reg.q.val();
+        self.array.p4.next = self.e_p4.q.val();
         self.array.same_polarity.next = self.relative.val();
         self.array.one_sided.next = self.one_sided.val();
         self.array.tb_diag.next = self.traceback.tb_diag.val();

@@ -1,10 +1,12 @@
 //! One processing element of the systolic matcher: the nodes `(i, j)` of the
-//! matching graph for its two reference declivities, `i = index` and
-//! `i = index + cells`, and each other-view declivity `j` that streams past
-//! (paper §III–IV). The column stream passes the array twice, the second
-//! pass one clock behind the first's odd slots, so the cell takes a node of
-//! its low row and one of its high row on alternate clocks: one datapath
-//! serves two rows, and each row's recurrence has two clocks per node.
+//! matching graph for its four reference declivities, `i = index + k·cells`
+//! for the phases `k = 0 .. 4`, and each other-view declivity `j` that
+//! streams past (paper §III–IV). The column stream passes the array once per
+//! phase, the passes interleaved clock by clock, so the cell takes one node
+//! a clock, of whichever row the column in its slot belongs to: one datapath
+//! serves four rows. A line of at most `2·cells` reference declivities uses
+//! two phases, and each row's recurrence has two clocks per node; a longer
+//! line uses up to four, and each row has four clocks per node (`p4`).
 //!
 //! Per node the cell computes, in fixed point:
 //! - eq. 6, the search area: `0 < X_i - X_j < dispmax` (left reference);
@@ -22,50 +24,62 @@
 //!   `G = g + P(i-1, j-1)`, `P(i, j) = max(0, G, P(i-1, j), P(i, j-1))`, with
 //!   golden's tie order (start, node, up, left; a later candidate wins only
 //!   when strictly greater) as a chain of strict comparisons, and its 2-bit
-//!   choice, which leaves on `choice` for the array's choice memory.
+//!   choice, which leaves on `choice_word` for the array's choice memory.
 //!
 //! ## Ports
-//! - `ld_pos`, `ld_lev0..5`, `ld_rising`: the reference-declivity
-//!   broadcast (position `X_i`, levels left 0–2 then right 0–2, polarity),
-//!   taken as the cell's low row when `ld_lo` is high, as its high row when
-//!   `ld_hi` is (the array's load tokens: no index comparison in the cell).
-//! - `c_valid`, `c_hi` (second pass: the high row), `c_pos`, `c_lev0..5`,
-//!   `c_rising`: the column in this cell's slot of the array's column
-//!   pipeline (registers of the [`crate::systolic_matcher::SystolicMatcher`],
-//!   which moves the column on by two slots, one cell, every two clocks);
-//!   `c_hi_next`: the pass of the column that will be in the slot next
+//! - `ld_en`, `ld_phase`, `ld_pos`, `ld_levs`, `ld_rising`: the
+//!   reference-declivity broadcast (position `X_i`, the six levels side by
+//!   side ([`LEVELS_BITS`]), polarity), taken as the cell's row of phase
+//!   `ld_phase` when `ld_en` (the array's load token) is high: no index
+//!   comparison in the cell.
+//! - `c_valid`, `c_phase`, `c_pos`, `c_levs`, `c_rising`: the column in this
+//!   cell's slot of the array's column pipeline (registers of the
+//!   [`crate::systolic_matcher::SystolicMatcher`], which moves a column on
+//!   by two slots, one cell, every two clocks) and the phase it passes in;
+//!   `c_phase_next`: the phase of the column that will be in the slot next
 //!   clock (the cell selects its reference one clock ahead).
 //! - `up_p`: the `P` register of the cell above (cell `index - 1`; for cell
-//!   0, the last cell's, one clock later, and read as 0 for the low row, the
-//!   first of the table); out `p`, this cell's.
+//!   0, the last cell's, one clock later, and read as 0 in phase 0, the
+//!   table's first rows); out `p`, this cell's.
 //! - Per line: `dispmax_m1` (eq. 6's bound less one LSB; 0 for a zero
 //!   bound), `below2` (`⌈2·gmax⌉`, compared with doubled
-//!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units; per design:
-//!   `same_polarity`, `one_sided`.
+//!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units, `p4` (the
+//!   line's rows have four clocks per node); per design: `same_polarity`,
+//!   `one_sided`.
 //! - Out `choice_word`: the choice in its two bits of the array's
-//!   [`CHOICE_WORD_BITS`]-bit memory word, zero elsewhere.
+//!   [`CHOICE_WORD_BITS`]-bit memory word, zero elsewhere; with `p4`,
+//!   [`skew`]`(index)` clocks later than without.
 //!
 //! ## Timing
 //! A node whose column is in the cell's slot at clock `t` has its `P` in
-//! `p` and its choice on `choice_word` from clock `t +` [`CELL_DEPTH`]: stage A
+//! `p` from clock `t +` [`CELL_DEPTH`], and its choice on `choice_word`
+//! then (two phases) or `2·index` clocks later (`p4`): stage A
 //! (`X_i - X_j`, level differences), B (distances, search area), C (tests
 //! of eq. 7), S (the distances kept), D
 //! (their sum and the gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
 //! The node below, `(i+1, j)`, is two clocks behind in the next cell, so its
 //! stage G reads this `P` on `up_p` as soon as it is out; the node to the
-//! right, `(i, j+1)`, is two clocks behind in this cell, and its stage H
-//! reads `P(i, j)` one clock after it was out (a delay register); the
-//! diagonal node `(i+1, j+1)` is in stage E when `(i+1, j)` is in stage G,
-//! so it reads `P(i, j)` on `up_p` too. A bubble (`c_valid` low) leaves
-//! `P = 0` behind it, which is `P(i, -1)` and `P(i-1, -1)` for the column
-//! that follows: a line's first column needs no flag. The other stages
-//! load only on a valid column.
+//! right, `(i, j+1)`, is two (four with `p4`) clocks behind in this cell,
+//! and its stage H reads `P(i, j)` one (three) clocks after it was out (a
+//! delay register); the diagonal node `(i+1, j+1)` is in stage E when
+//! `(i+1, j)` is in stage G (two phases) or two clocks before that (`p4`),
+//! so it reads `P(i, j)` on `up_p`, or on `up_p` two clocks late. A bubble
+//! (`c_valid` low) leaves `P = 0` behind it, which is `P(i, -1)` and
+//! `P(i-1, -1)` for the column that follows: a line's first column needs no
+//! flag. The other stages load only on a valid column.
+//!
+//! Why the skew: a column moves a cell every two clocks, so with four phases
+//! node `(i, j)` of cell `c` (row `i = c + k·cells`) is reached at
+//! `2c + 4j + (2·cells + 1)·k`, which is `4·(i + j) - (2·cells - 1)·k - 2c`:
+//! cell `c` is `2c` clocks ahead of cell 0 on the same anti-diagonal, and
+//! waits that long to write with it.
 
 use crate::params::*;
 use rust_hdl::prelude::*;
 
 /// Clocks from a column in a cell's slot to its node's `P` on `p` and its
-/// choice on `choice_word` (stages A–H, S between C and D).
+/// choice on `choice_word` (stages A–H, S between C and D), without the
+/// four-phase skew.
 pub const CELL_DEPTH: usize = 9;
 
 /// The 2-bit choices, as `golden::dp::Choice` numbers them.
@@ -77,30 +91,26 @@ pub const CHOICE_UP: u64 = 2;
 /// `P = P(i, j-1)`.
 pub const CHOICE_LEFT: u64 = 3;
 
+/// Clocks cell `index` holds its choices back in a four-phase line, so that
+/// the whole array's choices of one anti-diagonal and phase come out on one
+/// clock: `2·index`.
+pub const fn skew(index: usize) -> usize {
+    2 * index
+}
 
 #[derive(LogicBlock)]
 pub struct GainCell {
     pub clock: Signal<In, Clock>,
-    pub ld_lo: Signal<In, Bit>,
-    pub ld_hi: Signal<In, Bit>,
+    pub ld_en: Signal<In, Bit>,
+    pub ld_phase: Signal<In, Bits<PHASE_BITS>>,
     pub ld_pos: Signal<In, Bits<POS_BITS>>,
-    pub ld_lev0: Signal<In, Bits<LEVEL_BITS>>,
-    pub ld_lev1: Signal<In, Bits<LEVEL_BITS>>,
-    pub ld_lev2: Signal<In, Bits<LEVEL_BITS>>,
-    pub ld_lev3: Signal<In, Bits<LEVEL_BITS>>,
-    pub ld_lev4: Signal<In, Bits<LEVEL_BITS>>,
-    pub ld_lev5: Signal<In, Bits<LEVEL_BITS>>,
+    pub ld_levs: Signal<In, Bits<LEVELS_BITS>>,
     pub ld_rising: Signal<In, Bit>,
     pub c_valid: Signal<In, Bit>,
-    pub c_hi: Signal<In, Bit>,
-    pub c_hi_next: Signal<In, Bit>,
+    pub c_phase: Signal<In, Bits<PHASE_BITS>>,
+    pub c_phase_next: Signal<In, Bits<PHASE_BITS>>,
     pub c_pos: Signal<In, Bits<POS_BITS>>,
-    pub c_lev0: Signal<In, Bits<LEVEL_BITS>>,
-    pub c_lev1: Signal<In, Bits<LEVEL_BITS>>,
-    pub c_lev2: Signal<In, Bits<LEVEL_BITS>>,
-    pub c_lev3: Signal<In, Bits<LEVEL_BITS>>,
-    pub c_lev4: Signal<In, Bits<LEVEL_BITS>>,
-    pub c_lev5: Signal<In, Bits<LEVEL_BITS>>,
+    pub c_levs: Signal<In, Bits<LEVELS_BITS>>,
     pub c_rising: Signal<In, Bit>,
     pub up_p: Signal<In, Bits<PATH_BITS>>,
     pub p: Signal<Out, Bits<PATH_BITS>>,
@@ -108,15 +118,26 @@ pub struct GainCell {
     pub below2: Signal<In, Bits<DIST_BITS>>,
     pub f1: Signal<In, Bits<GAIN_BITS>>,
     pub f3: Signal<In, Bits<GAIN_BITS>>,
+    pub p4: Signal<In, Bit>,
     pub same_polarity: Signal<In, Bit>,
     pub one_sided: Signal<In, Bit>,
     pub choice_word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
     top_cell: Constant<Bit>,
+    skewed: Constant<Bit>,
+    skew_sel: Constant<Bits<SKEW_WORDS>>,
+    skew_bit: Constant<Bits<8>>,
     zero_word: Constant<Bits<CHOICE_WORD_BITS>>,
     bit_lo: Constant<Bits<8>>,
     bit_hi: Constant<Bits<8>>,
     bit0: Constant<Bits<8>>,
     bit1: Constant<Bits<8>>,
+    lev_at1: Constant<Bits<8>>,
+    lev_at2: Constant<Bits<8>>,
+    lev_at3: Constant<Bits<8>>,
+    lev_at4: Constant<Bits<8>>,
+    lev_at5: Constant<Bits<8>>,
+    skew_top: Constant<Bits<8>>,
+    two: Constant<Bits<8>>,
     gain_unit_per_dist: Constant<Bits<16>>,
     gain_msb: Constant<Bits<8>>,
     level_sign: Constant<Bits<8>>,
@@ -127,36 +148,18 @@ pub struct GainCell {
     choice_node: Constant<Bits<2>>,
     choice_up: Constant<Bits<2>>,
     choice_left: Constant<Bits<2>>,
-    // The reference declivities of rows `index` (lo) and `index + cells` (hi).
-    lo_pos: DFF<Bits<POS_BITS>>,
-    lo_lev0: DFF<Bits<LEVEL_BITS>>,
-    lo_lev1: DFF<Bits<LEVEL_BITS>>,
-    lo_lev2: DFF<Bits<LEVEL_BITS>>,
-    lo_lev3: DFF<Bits<LEVEL_BITS>>,
-    lo_lev4: DFF<Bits<LEVEL_BITS>>,
-    lo_lev5: DFF<Bits<LEVEL_BITS>>,
-    lo_rising: DFF<Bit>,
-    hi_pos: DFF<Bits<POS_BITS>>,
-    hi_lev0: DFF<Bits<LEVEL_BITS>>,
-    hi_lev1: DFF<Bits<LEVEL_BITS>>,
-    hi_lev2: DFF<Bits<LEVEL_BITS>>,
-    hi_lev3: DFF<Bits<LEVEL_BITS>>,
-    hi_lev4: DFF<Bits<LEVEL_BITS>>,
-    hi_lev5: DFF<Bits<LEVEL_BITS>>,
-    hi_rising: DFF<Bit>,
+    // The reference declivities of rows `index + k·cells`, phase k.
+    row_pos: [DFF<Bits<POS_BITS>>; ROWS_PER_CELL],
+    row_levs: [DFF<Bits<LEVELS_BITS>>; ROWS_PER_CELL],
+    row_rising: [DFF<Bit>; ROWS_PER_CELL],
     // The reference of the column arriving next clock (a register: its
-    // select, the column's pass, goes to 75 multiplexers).
+    // select, the column's phase, goes to 75 four-way multiplexers).
     sel_pos: DFF<Bits<POS_BITS>>,
-    sel_lev0: DFF<Bits<LEVEL_BITS>>,
-    sel_lev1: DFF<Bits<LEVEL_BITS>>,
-    sel_lev2: DFF<Bits<LEVEL_BITS>>,
-    sel_lev3: DFF<Bits<LEVEL_BITS>>,
-    sel_lev4: DFF<Bits<LEVEL_BITS>>,
-    sel_lev5: DFF<Bits<LEVEL_BITS>>,
+    sel_levs: DFF<Bits<LEVELS_BITS>>,
     sel_rising: DFF<Bit>,
     // Stage A: search area, polarity, level differences.
     a_valid: DFF<Bit>,
-    a_hi: DFF<Bit>,
+    a_ph0: DFF<Bit>,
     a_diff: DFF<Bits<{ POS_BITS + 1 }>>,
     a_same: DFF<Bit>,
     a_e0: DFF<Bits<LEVEL_BITS>>,
@@ -171,13 +174,13 @@ pub struct GainCell {
     a_s4: DFF<Bits<1>>,
     // Stage B: doubled distances.
     b_valid: DFF<Bit>,
-    b_hi: DFF<Bit>,
+    b_ph0: DFF<Bit>,
     b_ok: DFF<Bit>,
     b_l2: DFF<Bits<DIST_BITS>>,
     b_r2: DFF<Bits<DIST_BITS>>,
     // Stage C: eq. 7's tests.
     c2_valid: DFF<Bit>,
-    c2_hi: DFF<Bit>,
+    c2_ph0: DFF<Bit>,
     c2_node: DFF<Bit>,
     c2_both: DFF<Bit>,
     c2_keep_l: DFF<Bit>,
@@ -186,22 +189,24 @@ pub struct GainCell {
     c2_r: DFF<Bits<DIST_BITS>>,
     // Stage S: the distances the gain subtracts.
     s_valid: DFF<Bit>,
-    s_hi: DFF<Bit>,
+    s_ph0: DFF<Bit>,
     s_node: DFF<Bit>,
     s_both: DFF<Bit>,
     s_l: DFF<Bits<DIST_BITS>>,
     s_r: DFF<Bits<DIST_BITS>>,
     // Stage D: the local gain.
     d_valid: DFF<Bit>,
-    d_hi: DFF<Bit>,
+    d_ph0: DFF<Bit>,
     d_node: DFF<Bit>,
     d_g: DFF<Bits<GAIN_BITS>>,
     // Stage E: G = g + P(i-1, j-1).
     e_valid: DFF<Bit>,
+    e_ph0: DFF<Bit>,
     e_node: DFF<Bit>,
     e_score: DFF<Bits<SCORE_BITS>>,
     // Stage F: start or node.
     f_valid: DFF<Bit>,
+    f_ph0: DFF<Bit>,
     f_node: DFF<Bit>,
     f_best: DFF<Bits<PATH_BITS>>,
     // Stage G: the node above.
@@ -211,7 +216,14 @@ pub struct GainCell {
     // Stage H: the node to the left; P and the choice.
     p_reg: DFF<Bits<PATH_BITS>>,
     p_d1: DFF<Bits<PATH_BITS>>,
+    p_d2: DFF<Bits<PATH_BITS>>,
+    p_d3: DFF<Bits<PATH_BITS>>,
+    up_d1: DFF<Bits<PATH_BITS>>,
+    up_d2: DFF<Bits<PATH_BITS>>,
     choice_reg: DFF<Bits<2>>,
+    // The four-phase skew: the choices of the last `2·index` clocks, the
+    // newest in the low bits of word 0.
+    skew_q: [DFF<Bits<CHOICE_WORD_BITS>>; SKEW_WORDS],
     // Combinational.
     diff_pos: Signal<Local, Bits<{ POS_BITS + 1 }>>,
     dr0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
@@ -222,6 +234,18 @@ pub struct GainCell {
     dr4: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dr5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     dc5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    rl0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    rl1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    rl2: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    rl3: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    rl4: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    rl5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    cl0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    cl1: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    cl2: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    cl3: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    cl4: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
+    cl5: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
     l_part0: Signal<Local, Bits<DIST_BITS>>,
     r_part0: Signal<Local, Bits<DIST_BITS>>,
     l_sum: Signal<Local, Bits<DIST_BITS>>,
@@ -234,6 +258,8 @@ pub struct GainCell {
     f_sel: Signal<Local, Bits<GAIN_BITS>>,
     g_ext: Signal<Local, Bits<SCORE_BITS>>,
     up: Signal<Local, Bits<PATH_BITS>>,
+    up_diag: Signal<Local, Bits<PATH_BITS>>,
+    left: Signal<Local, Bits<PATH_BITS>>,
     take_node: Signal<Local, Bit>,
     up_diff: Signal<Local, Bits<{ PATH_BITS + 1 }>>,
     left_diff: Signal<Local, Bits<{ PATH_BITS + 1 }>>,
@@ -241,35 +267,35 @@ pub struct GainCell {
     left_wins: Signal<Local, Bit>,
     best: Signal<Local, Bits<PATH_BITS>>,
     best_choice: Signal<Local, Bits<2>>,
+    choice_out: Signal<Local, Bits<2>>,
+}
+
+/// A constant of `B` bits.
+fn k<const B: usize>(v: u64) -> Constant<Bits<B>> {
+    Constant::new(v.into())
 }
 
 impl GainCell {
     /// The cell of an array of `cells` that holds reference declivities
-    /// `index` and `index + cells`.
+    /// `index + k·cells`.
     pub fn new(index: usize, cells: usize) -> Self {
         assert!(index < cells && cells <= N_CELLS, "cell index inside an array of at most N_CELLS");
+        assert_eq!(ROWS_PER_CELL, 4, "the row select below is written for four phases");
+        // The skew's last entry, `skew(index) - 1` (entry e is e + 1 clocks
+        // old): its word and its bit in the word.
+        let entry = skew(index).max(1) - 1;
         GainCell {
             clock: Default::default(),
-            ld_lo: Default::default(),
-            ld_hi: Default::default(),
+            ld_en: Default::default(),
+            ld_phase: Default::default(),
             ld_pos: Default::default(),
-            ld_lev0: Default::default(),
-            ld_lev1: Default::default(),
-            ld_lev2: Default::default(),
-            ld_lev3: Default::default(),
-            ld_lev4: Default::default(),
-            ld_lev5: Default::default(),
+            ld_levs: Default::default(),
             ld_rising: Default::default(),
             c_valid: Default::default(),
-            c_hi: Default::default(),
-            c_hi_next: Default::default(),
+            c_phase: Default::default(),
+            c_phase_next: Default::default(),
             c_pos: Default::default(),
-            c_lev0: Default::default(),
-            c_lev1: Default::default(),
-            c_lev2: Default::default(),
-            c_lev3: Default::default(),
-            c_lev4: Default::default(),
-            c_lev5: Default::default(),
+            c_levs: Default::default(),
             c_rising: Default::default(),
             up_p: Default::default(),
             p: Default::default(),
@@ -277,51 +303,44 @@ impl GainCell {
             below2: Default::default(),
             f1: Default::default(),
             f3: Default::default(),
+            p4: Default::default(),
             same_polarity: Default::default(),
             one_sided: Default::default(),
             choice_word: Default::default(),
             top_cell: Constant::new(index == 0),
-            zero_word: Constant::new(0u64.into()),
-            bit_lo: Constant::new(((2 * (index % CELLS_PER_CHOICE_WORD)) as u64).into()),
-            bit_hi: Constant::new(((2 * (index % CELLS_PER_CHOICE_WORD) + 1) as u64).into()),
-            bit0: Constant::new(0u64.into()),
-            bit1: Constant::new(1u64.into()),
-            gain_unit_per_dist: Constant::new((1u64 << (GAIN_FRAC_BITS - 1)).into()),
-            gain_msb: Constant::new(((GAIN_BITS - 1) as u64).into()),
-            level_sign: Constant::new((LEVEL_BITS as u64).into()),
-            sign_fill: Constant::new((((1u64 << SCORE_BITS) - 1) ^ ((1u64 << GAIN_BITS) - 1)).into()),
-            score_msb: Constant::new(((SCORE_BITS - 1) as u64).into()),
-            path_sign: Constant::new((PATH_BITS as u64).into()),
-            choice_start: Constant::new(CHOICE_START.into()),
-            choice_node: Constant::new(CHOICE_NODE.into()),
-            choice_up: Constant::new(CHOICE_UP.into()),
-            choice_left: Constant::new(CHOICE_LEFT.into()),
-            lo_pos: Default::default(),
-            lo_lev0: Default::default(),
-            lo_lev1: Default::default(),
-            lo_lev2: Default::default(),
-            lo_lev3: Default::default(),
-            lo_lev4: Default::default(),
-            lo_lev5: Default::default(),
-            lo_rising: Default::default(),
-            hi_pos: Default::default(),
-            hi_lev0: Default::default(),
-            hi_lev1: Default::default(),
-            hi_lev2: Default::default(),
-            hi_lev3: Default::default(),
-            hi_lev4: Default::default(),
-            hi_lev5: Default::default(),
-            hi_rising: Default::default(),
+            skewed: Constant::new(skew(index) > 0),
+            skew_sel: k(1 << (entry / CELLS_PER_CHOICE_WORD)),
+            skew_bit: k((2 * (entry % CELLS_PER_CHOICE_WORD)) as u64),
+            zero_word: k(0),
+            bit_lo: k((2 * (index % CELLS_PER_CHOICE_WORD)) as u64),
+            bit_hi: k((2 * (index % CELLS_PER_CHOICE_WORD) + 1) as u64),
+            bit0: k(0),
+            bit1: k(1),
+            lev_at1: k(LEVEL_BITS as u64),
+            lev_at2: k(2 * LEVEL_BITS as u64),
+            lev_at3: k(3 * LEVEL_BITS as u64),
+            lev_at4: k(4 * LEVEL_BITS as u64),
+            lev_at5: k(5 * LEVEL_BITS as u64),
+            skew_top: k(CHOICE_WORD_BITS as u64 - 2),
+            two: k(2),
+            gain_unit_per_dist: k(1u64 << (GAIN_FRAC_BITS - 1)),
+            gain_msb: k((GAIN_BITS - 1) as u64),
+            level_sign: k(LEVEL_BITS as u64),
+            sign_fill: k(((1u64 << SCORE_BITS) - 1) ^ ((1u64 << GAIN_BITS) - 1)),
+            score_msb: k((SCORE_BITS - 1) as u64),
+            path_sign: k(PATH_BITS as u64),
+            choice_start: k(CHOICE_START),
+            choice_node: k(CHOICE_NODE),
+            choice_up: k(CHOICE_UP),
+            choice_left: k(CHOICE_LEFT),
+            row_pos: Default::default(),
+            row_levs: Default::default(),
+            row_rising: Default::default(),
             sel_pos: Default::default(),
-            sel_lev0: Default::default(),
-            sel_lev1: Default::default(),
-            sel_lev2: Default::default(),
-            sel_lev3: Default::default(),
-            sel_lev4: Default::default(),
-            sel_lev5: Default::default(),
+            sel_levs: Default::default(),
             sel_rising: Default::default(),
             a_valid: Default::default(),
-            a_hi: Default::default(),
+            a_ph0: Default::default(),
             a_diff: Default::default(),
             a_same: Default::default(),
             a_e0: Default::default(),
@@ -335,12 +354,12 @@ impl GainCell {
             a_s3: Default::default(),
             a_s4: Default::default(),
             b_valid: Default::default(),
-            b_hi: Default::default(),
+            b_ph0: Default::default(),
             b_ok: Default::default(),
             b_l2: Default::default(),
             b_r2: Default::default(),
             c2_valid: Default::default(),
-            c2_hi: Default::default(),
+            c2_ph0: Default::default(),
             c2_node: Default::default(),
             c2_both: Default::default(),
             c2_keep_l: Default::default(),
@@ -348,19 +367,21 @@ impl GainCell {
             c2_l: Default::default(),
             c2_r: Default::default(),
             s_valid: Default::default(),
-            s_hi: Default::default(),
+            s_ph0: Default::default(),
             s_node: Default::default(),
             s_both: Default::default(),
             s_l: Default::default(),
             s_r: Default::default(),
             d_valid: Default::default(),
-            d_hi: Default::default(),
+            d_ph0: Default::default(),
             d_node: Default::default(),
             d_g: Default::default(),
             e_valid: Default::default(),
+            e_ph0: Default::default(),
             e_node: Default::default(),
             e_score: Default::default(),
             f_valid: Default::default(),
+            f_ph0: Default::default(),
             f_node: Default::default(),
             f_best: Default::default(),
             g_valid: Default::default(),
@@ -368,7 +389,12 @@ impl GainCell {
             g_choice: Default::default(),
             p_reg: Default::default(),
             p_d1: Default::default(),
+            p_d2: Default::default(),
+            p_d3: Default::default(),
+            up_d1: Default::default(),
+            up_d2: Default::default(),
             choice_reg: Default::default(),
+            skew_q: Default::default(),
             diff_pos: Default::default(),
             dr0: Default::default(),
             dr1: Default::default(),
@@ -378,6 +404,18 @@ impl GainCell {
             dr4: Default::default(),
             dr5: Default::default(),
             dc5: Default::default(),
+            rl0: Default::default(),
+            rl1: Default::default(),
+            rl2: Default::default(),
+            rl3: Default::default(),
+            rl4: Default::default(),
+            rl5: Default::default(),
+            cl0: Default::default(),
+            cl1: Default::default(),
+            cl2: Default::default(),
+            cl3: Default::default(),
+            cl4: Default::default(),
+            cl5: Default::default(),
             l_part0: Default::default(),
             r_part0: Default::default(),
             l_sum: Default::default(),
@@ -390,6 +428,8 @@ impl GainCell {
             f_sel: Default::default(),
             g_ext: Default::default(),
             up: Default::default(),
+            up_diag: Default::default(),
+            left: Default::default(),
             take_node: Default::default(),
             up_diff: Default::default(),
             left_diff: Default::default(),
@@ -397,6 +437,7 @@ impl GainCell {
             left_wins: Default::default(),
             best: Default::default(),
             best_choice: Default::default(),
+            choice_out: Default::default(),
         }
     }
 }
@@ -411,49 +452,63 @@ impl Logic for GainCell {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, lo_pos, lo_lev0, lo_lev1, lo_lev2, lo_lev3, lo_lev4, lo_lev5, lo_rising, hi_pos, hi_lev0, hi_lev1, hi_lev2, hi_lev3, hi_lev4, hi_lev5, hi_rising, sel_pos, sel_lev0, sel_lev1, sel_lev2, sel_lev3, sel_lev4, sel_lev5, sel_rising, a_valid, a_hi, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_hi, b_ok, b_l2, b_r2, c2_valid, c2_hi, c2_node, c2_both, c2_keep_l, c2_keep_r, c2_l, c2_r, s_valid, s_hi, s_node, s_both, s_l, s_r, d_valid, d_hi, d_node, d_g, e_valid, e_node, e_score, f_valid, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, choice_reg
+            self, clock, sel_pos, sel_levs, sel_rising, a_valid, a_ph0, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_ph0, b_ok, b_l2, b_r2, c2_valid, c2_ph0, c2_node, c2_both, c2_keep_l, c2_keep_r, c2_l, c2_r, s_valid, s_ph0, s_node, s_both, s_l, s_r, d_valid, d_ph0, d_node, d_g, e_valid, e_ph0, e_node, e_score, f_valid, f_ph0, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, p_d2, p_d3, up_d1, up_d2, choice_reg
         );
-
-        // ---- The reference declivities, from the broadcast.
-        if self.ld_lo.val() {
-            self.lo_pos.d.next = self.ld_pos.val();
-            self.lo_lev0.d.next = self.ld_lev0.val();
-            self.lo_lev1.d.next = self.ld_lev1.val();
-            self.lo_lev2.d.next = self.ld_lev2.val();
-            self.lo_lev3.d.next = self.ld_lev3.val();
-            self.lo_lev4.d.next = self.ld_lev4.val();
-            self.lo_lev5.d.next = self.ld_lev5.val();
-            self.lo_rising.d.next = self.ld_rising.val();
+        for k in 0..ROWS_PER_CELL {
+            self.row_pos[k].clock.next = self.clock.val();
+            self.row_levs[k].clock.next = self.clock.val();
+            self.row_rising[k].clock.next = self.clock.val();
+            self.row_pos[k].d.next = self.row_pos[k].q.val();
+            self.row_levs[k].d.next = self.row_levs[k].q.val();
+            self.row_rising[k].d.next = self.row_rising[k].q.val();
         }
-        if self.ld_hi.val() {
-            self.hi_pos.d.next = self.ld_pos.val();
-            self.hi_lev0.d.next = self.ld_lev0.val();
-            self.hi_lev1.d.next = self.ld_lev1.val();
-            self.hi_lev2.d.next = self.ld_lev2.val();
-            self.hi_lev3.d.next = self.ld_lev3.val();
-            self.hi_lev4.d.next = self.ld_lev4.val();
-            self.hi_lev5.d.next = self.ld_lev5.val();
-            self.hi_rising.d.next = self.ld_rising.val();
+        for w in 0..SKEW_WORDS {
+            self.skew_q[w].clock.next = self.clock.val();
+        }
+
+        // ---- The reference declivities, from the broadcast: the row of the
+        // phase the token brings.
+        if self.ld_en.val() {
+            if !self.ld_phase.val().get_bit(1) & !self.ld_phase.val().get_bit(0) {
+                self.row_pos[0].d.next = self.ld_pos.val();
+                self.row_levs[0].d.next = self.ld_levs.val();
+                self.row_rising[0].d.next = self.ld_rising.val();
+            }
+            if !self.ld_phase.val().get_bit(1) & self.ld_phase.val().get_bit(0) {
+                self.row_pos[1].d.next = self.ld_pos.val();
+                self.row_levs[1].d.next = self.ld_levs.val();
+                self.row_rising[1].d.next = self.ld_rising.val();
+            }
+            if self.ld_phase.val().get_bit(1) & !self.ld_phase.val().get_bit(0) {
+                self.row_pos[2].d.next = self.ld_pos.val();
+                self.row_levs[2].d.next = self.ld_levs.val();
+                self.row_rising[2].d.next = self.ld_rising.val();
+            }
+            if self.ld_phase.val().get_bit(1) & self.ld_phase.val().get_bit(0) {
+                self.row_pos[3].d.next = self.ld_pos.val();
+                self.row_levs[3].d.next = self.ld_levs.val();
+                self.row_rising[3].d.next = self.ld_rising.val();
+            }
         }
         // The row of the column in the slot next clock (now in the slot
-        // before): the first pass meets the low row, the second the high one.
-        self.sel_pos.d.next = self.lo_pos.q.val();
-        self.sel_lev0.d.next = self.lo_lev0.q.val();
-        self.sel_lev1.d.next = self.lo_lev1.q.val();
-        self.sel_lev2.d.next = self.lo_lev2.q.val();
-        self.sel_lev3.d.next = self.lo_lev3.q.val();
-        self.sel_lev4.d.next = self.lo_lev4.q.val();
-        self.sel_lev5.d.next = self.lo_lev5.q.val();
-        self.sel_rising.d.next = self.lo_rising.q.val();
-        if self.c_hi_next.val() {
-            self.sel_pos.d.next = self.hi_pos.q.val();
-            self.sel_lev0.d.next = self.hi_lev0.q.val();
-            self.sel_lev1.d.next = self.hi_lev1.q.val();
-            self.sel_lev2.d.next = self.hi_lev2.q.val();
-            self.sel_lev3.d.next = self.hi_lev3.q.val();
-            self.sel_lev4.d.next = self.hi_lev4.q.val();
-            self.sel_lev5.d.next = self.hi_lev5.q.val();
-            self.sel_rising.d.next = self.hi_rising.q.val();
+        // before): its phase's.
+        self.sel_pos.d.next = self.row_pos[0].q.val();
+        self.sel_levs.d.next = self.row_levs[0].q.val();
+        self.sel_rising.d.next = self.row_rising[0].q.val();
+        if self.c_phase_next.val().get_bit(0) {
+            self.sel_pos.d.next = self.row_pos[1].q.val();
+            self.sel_levs.d.next = self.row_levs[1].q.val();
+            self.sel_rising.d.next = self.row_rising[1].q.val();
+        }
+        if self.c_phase_next.val().get_bit(1) {
+            self.sel_pos.d.next = self.row_pos[2].q.val();
+            self.sel_levs.d.next = self.row_levs[2].q.val();
+            self.sel_rising.d.next = self.row_rising[2].q.val();
+            if self.c_phase_next.val().get_bit(0) {
+                self.sel_pos.d.next = self.row_pos[3].q.val();
+                self.sel_levs.d.next = self.row_levs[3].q.val();
+                self.sel_rising.d.next = self.row_rising[3].q.val();
+            }
         }
 
         // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax), as
@@ -465,25 +520,45 @@ impl Logic for GainCell {
         // for it, is a - b or b - a by the sign of a - b.
         self.diff_pos.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.sel_pos.q.val())
             + !bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.c_pos.val());
-        self.dr0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev0.q.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev0.val());
-        self.dr1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev1.q.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev1.val());
-        self.dr2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev2.q.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val());
-        self.dc2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev2.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev2.q.val());
-        self.dr3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev3.q.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev3.val());
-        self.dr4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev4.q.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev4.val());
-        self.dr5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev5.q.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val());
-        self.dc5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_lev5.val())
-            - bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_lev5.q.val());
+        // The six levels out of their words (wiring).
+        self.rl0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.sel_levs.q.val().get_bits::<LEVEL_BITS>(0));
+        self.rl1.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(
+            self.sel_levs.q.val().get_bits::<LEVEL_BITS>(self.lev_at1.val().index()),
+        );
+        self.rl2.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(
+            self.sel_levs.q.val().get_bits::<LEVEL_BITS>(self.lev_at2.val().index()),
+        );
+        self.rl3.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(
+            self.sel_levs.q.val().get_bits::<LEVEL_BITS>(self.lev_at3.val().index()),
+        );
+        self.rl4.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(
+            self.sel_levs.q.val().get_bits::<LEVEL_BITS>(self.lev_at4.val().index()),
+        );
+        self.rl5.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(
+            self.sel_levs.q.val().get_bits::<LEVEL_BITS>(self.lev_at5.val().index()),
+        );
+        self.cl0.next = bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_levs.val().get_bits::<LEVEL_BITS>(0));
+        self.cl1.next =
+            bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_levs.val().get_bits::<LEVEL_BITS>(self.lev_at1.val().index()));
+        self.cl2.next =
+            bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_levs.val().get_bits::<LEVEL_BITS>(self.lev_at2.val().index()));
+        self.cl3.next =
+            bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_levs.val().get_bits::<LEVEL_BITS>(self.lev_at3.val().index()));
+        self.cl4.next =
+            bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_levs.val().get_bits::<LEVEL_BITS>(self.lev_at4.val().index()));
+        self.cl5.next =
+            bit_cast::<{ LEVEL_BITS + 1 }, LEVEL_BITS>(self.c_levs.val().get_bits::<LEVEL_BITS>(self.lev_at5.val().index()));
+        self.dr0.next = self.rl0.val() - self.cl0.val();
+        self.dr1.next = self.rl1.val() - self.cl1.val();
+        self.dr2.next = self.rl2.val() - self.cl2.val();
+        self.dc2.next = self.cl2.val() - self.rl2.val();
+        self.dr3.next = self.rl3.val() - self.cl3.val();
+        self.dr4.next = self.rl4.val() - self.cl4.val();
+        self.dr5.next = self.rl5.val() - self.cl5.val();
+        self.dc5.next = self.cl5.val() - self.rl5.val();
         self.a_valid.d.next = self.c_valid.val();
         if self.c_valid.val() {
-            self.a_hi.d.next = self.c_hi.val();
+            self.a_ph0.d.next = !self.c_phase.val().any();
             self.a_diff.d.next = self.diff_pos.val();
             self.a_same.d.next = !self.same_polarity.val() | (self.sel_rising.q.val() == self.c_rising.val());
             self.a_e0.d.next = bit_cast::<LEVEL_BITS, { LEVEL_BITS + 1 }>(self.dr0.val());
@@ -536,7 +611,7 @@ impl Logic for GainCell {
             + bit_cast::<DIST_BITS, 1>(self.a_s4.q.val());
         self.b_valid.d.next = self.a_valid.q.val();
         if self.a_valid.q.val() {
-            self.b_hi.d.next = self.a_hi.q.val();
+            self.b_ph0.d.next = self.a_ph0.q.val();
             // 0 < d < dispmax ⇔ d - 1 < dispmax - 1 unsigned: d ≤ 0 wraps
             // d - 1 above every bound.
             self.b_ok.d.next = (self.a_diff.q.val() < self.dispmax_m1.val()) & self.a_same.q.val();
@@ -551,7 +626,7 @@ impl Logic for GainCell {
         self.rb.next = self.b_r2.q.val() < self.below2.val();
         self.c2_valid.d.next = self.b_valid.q.val();
         if self.b_valid.q.val() {
-            self.c2_hi.d.next = self.b_hi.q.val();
+            self.c2_ph0.d.next = self.b_ph0.q.val();
             self.c2_node.d.next = self.b_ok.q.val() & (self.lb.val() | self.rb.val());
             self.c2_both.d.next = self.lb.val() & self.rb.val();
             self.c2_keep_l.d.next = self.lb.val() | !self.one_sided.val();
@@ -564,7 +639,7 @@ impl Logic for GainCell {
         // cleared (no logic: the clear is a register's synchronous reset).
         self.s_valid.d.next = self.c2_valid.q.val();
         if self.c2_valid.q.val() {
-            self.s_hi.d.next = self.c2_hi.q.val();
+            self.s_ph0.d.next = self.c2_ph0.q.val();
             self.s_node.d.next = self.c2_node.q.val();
             self.s_both.d.next = self.c2_both.q.val();
             self.s_l.d.next = 0.into();
@@ -589,17 +664,23 @@ impl Logic for GainCell {
         }
         self.d_valid.d.next = self.s_valid.q.val();
         if self.s_valid.q.val() {
-            self.d_hi.d.next = self.s_hi.q.val();
+            self.d_ph0.d.next = self.s_ph0.q.val();
             self.d_node.d.next = self.s_node.q.val();
             self.d_g.d.next = self.f_sel.val() - bit_cast::<GAIN_BITS, 32>(self.dist_gain.val());
         }
 
         // ---- E: G = g + P(i-1, j-1). `up_p` holds the cell above's P of
-        // column j - 1 now, two clocks before it shows column j's. Cell 0's
-        // low row is the table's first: nothing above it.
-        self.up.next = self.up_p.val();
-        if self.top_cell.val() & !self.d_hi.q.val() {
-            self.up.next = 0.into();
+        // column j - 1 now with two phases (two clocks before it shows column
+        // j's), two clocks ago with four (four clocks before). Cell 0's
+        // phase 0 is the table's first row: nothing above it.
+        self.up_d1.d.next = self.up_p.val();
+        self.up_d2.d.next = self.up_d1.q.val();
+        self.up_diag.next = self.up_p.val();
+        if self.p4.val() {
+            self.up_diag.next = self.up_d2.q.val();
+        }
+        if self.top_cell.val() & self.d_ph0.q.val() {
+            self.up_diag.next = 0.into();
         }
         self.g_ext.next = bit_cast::<SCORE_BITS, GAIN_BITS>(self.d_g.q.val());
         if self.d_g.q.val().get_bit(self.gain_msb.val().index()) {
@@ -608,8 +689,9 @@ impl Logic for GainCell {
         }
         self.e_valid.d.next = self.d_valid.q.val();
         if self.d_valid.q.val() {
+            self.e_ph0.d.next = self.d_ph0.q.val();
             self.e_node.d.next = self.d_node.q.val();
-            self.e_score.d.next = self.g_ext.val() + bit_cast::<SCORE_BITS, PATH_BITS>(self.up.val());
+            self.e_score.d.next = self.g_ext.val() + bit_cast::<SCORE_BITS, PATH_BITS>(self.up_diag.val());
         }
 
         // ---- F: the node beats start only when G > 0.
@@ -617,6 +699,7 @@ impl Logic for GainCell {
             self.e_node.q.val() & !self.e_score.q.val().get_bit(self.score_msb.val().index()) & self.e_score.q.val().any();
         self.f_valid.d.next = self.e_valid.q.val();
         if self.e_valid.q.val() {
+            self.f_ph0.d.next = self.e_ph0.q.val();
             self.f_node.d.next = self.take_node.val();
             self.f_best.d.next = 0.into();
             if self.take_node.val() {
@@ -624,10 +707,15 @@ impl Logic for GainCell {
             }
         }
 
-        // ---- G: P(i-1, j) only when strictly greater. (The same `up` as
-        // stage E's: the node in G is two clocks ahead, in the same row.)
-        // (`a > b` as the borrow of `b - a`: one carry chain, where Yosys
-        // maps `>` on these widths to a chain and as many LUTs again.)
+        // ---- G: P(i-1, j) only when strictly greater: the cell above's P
+        // as soon as it is out (the node above is two clocks ahead, in the
+        // next slot up). (`a > b` as the borrow of `b - a`: one carry chain,
+        // where Yosys maps `>` on these widths to a chain and as many LUTs
+        // again.)
+        self.up.next = self.up_p.val();
+        if self.top_cell.val() & self.f_ph0.q.val() {
+            self.up.next = 0.into();
+        }
         self.up_diff.next = bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.f_best.q.val())
             - bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.up.val());
         self.up_wins.next = self.up_diff.val().get_bit(self.path_sign.val().index());
@@ -644,14 +732,19 @@ impl Logic for GainCell {
             }
         }
 
-        // ---- H: P(i, j-1), out two clocks ago, only when strictly greater.
+        // ---- H: P(i, j-1), out two (four) clocks ago, only when strictly
+        // greater.
+        self.left.next = self.p_d1.q.val();
+        if self.p4.val() {
+            self.left.next = self.p_d3.q.val();
+        }
         self.left_diff.next = bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.g_best.q.val())
-            - bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.p_d1.q.val());
+            - bit_cast::<{ PATH_BITS + 1 }, PATH_BITS>(self.left.val());
         self.left_wins.next = self.left_diff.val().get_bit(self.path_sign.val().index());
         self.best.next = self.g_best.q.val();
         self.best_choice.next = self.g_choice.q.val();
         if self.left_wins.val() {
-            self.best.next = self.p_d1.q.val();
+            self.best.next = self.left.val();
             self.best_choice.next = self.choice_left.val();
         }
         // A bubble leaves P = 0 (a synchronous reset).
@@ -660,13 +753,32 @@ impl Logic for GainCell {
             self.p_reg.d.next = self.best.val();
         }
         self.p_d1.d.next = self.p_reg.q.val();
+        self.p_d2.d.next = self.p_d1.q.val();
+        self.p_d3.d.next = self.p_d2.q.val();
         self.choice_reg.d.next = self.best_choice.val();
         self.p.next = self.p_reg.q.val();
+
+        // ---- The choice out, with four phases `2·index` clocks late: a
+        // shift register of 2-bit choices in words of 16.
+        self.skew_q[0].d.next =
+            (self.skew_q[0].q.val() << self.two.val()) | bit_cast::<CHOICE_WORD_BITS, 2>(self.choice_reg.q.val());
+        for w in 1..SKEW_WORDS {
+            self.skew_q[w].d.next =
+                (self.skew_q[w].q.val() << self.two.val()) | (self.skew_q[w - 1].q.val() >> self.skew_top.val());
+        }
+        self.choice_out.next = self.choice_reg.q.val();
+        if self.p4.val() & self.skewed.val() {
+            for w in 0..SKEW_WORDS {
+                if self.skew_sel.val().get_bit(w) {
+                    self.choice_out.next = self.skew_q[w].q.val().get_bits::<2>(self.skew_bit.val().index());
+                }
+            }
+        }
         // The choice in its two bits of the word: wiring in hardware.
         self.choice_word.next = self
             .zero_word
             .val()
-            .replace_bit(self.bit_lo.val().index(), self.choice_reg.q.val().get_bit(self.bit0.val().index()))
-            .replace_bit(self.bit_hi.val().index(), self.choice_reg.q.val().get_bit(self.bit1.val().index()));
+            .replace_bit(self.bit_lo.val().index(), self.choice_out.val().get_bit(self.bit0.val().index()))
+            .replace_bit(self.bit_hi.val().index(), self.choice_out.val().get_bit(self.bit1.val().index()));
     }
 }

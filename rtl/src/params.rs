@@ -222,30 +222,43 @@ pub const SEG_ADDR_BITS: usize = INDEX_BITS + 3;
 /// "Lines in flight"), so the interpolator never drops one there.
 pub const LINE_QUEUE_BITS: usize = 3;
 
-/// Reference declivities per gain cell: cell `c` of `N` holds rows `c` and
-/// `c + N` of the matching table (the column stream passes the array
-/// twice, interleaved), so one datapath serves two rows and each row's
-/// recurrence has two clocks per node.
-pub const ROWS_PER_CELL: usize = 2;
+/// Reference declivities per gain cell, at most: cell `c` of `C` holds rows
+/// `c`, `c + C`, `c + 2C` and `c + 3C` of the matching table, one per
+/// *phase* of the column stream (the other view's declivities pass the
+/// array once per phase, interleaved), so one datapath serves four rows. A
+/// line of at most `2C` reference declivities uses two phases and sweeps an
+/// anti-diagonal every two clocks; a longer one uses up to four and sweeps
+/// one every four (see `crate::systolic_matcher`).
+pub const ROWS_PER_CELL: usize = 4;
+/// Bits of a phase `0 .. ROWS_PER_CELL`.
+pub const PHASE_BITS: usize = 2;
 /// Gain cells of the sensor's matcher: `N_MAX / ROWS_PER_CELL`.
 pub const N_CELLS: usize = N_MAX / ROWS_PER_CELL;
-/// Bits of a sweep clock count: up to `2·(2·N_MAX) + ` a few of pipeline.
+/// Bits of a sweep clock count: up to `4·N_MAX + 3·(2·N_CELLS + 1)` and a
+/// few of pipeline (`crate::declivity_matcher::sweep_cycles`).
 pub const SWEEP_BITS: usize = DIAG_BITS + 2;
+/// Bits of a reference's or a column's six neighbour levels side by side,
+/// level `k` (left 0–2, then right 0–2) at bit `k·LEVEL_BITS`.
+pub const LEVELS_BITS: usize = 6 * LEVEL_BITS;
 /// Bits of a word of the choice memory: the 2-bit choices of
 /// [`CELLS_PER_CHOICE_WORD`] cells, one anti-diagonal's worth of them. (32:
 /// rust-hdl simulates wider values as big integers.)
 pub const CHOICE_WORD_BITS: usize = 32;
 /// Cells whose choices share one memory word.
 pub const CELLS_PER_CHOICE_WORD: usize = CHOICE_WORD_BITS / 2;
-/// Memory words per anti-diagonal and row half for [`N_CELLS`] cells.
-pub const CHOICE_WORDS: usize = N_CELLS / CELLS_PER_CHOICE_WORD;
+/// Memory words of the choice memory per anti-diagonal: the row groups of
+/// [`N_MAX`] rows (`r / CELLS_PER_CHOICE_WORD`), one block RAM each.
+pub const CHOICE_WORDS: usize = N_MAX / CELLS_PER_CHOICE_WORD;
 /// Bits of a row's group `r / CELLS_PER_CHOICE_WORD`: the choice memory
 /// holds each group's choices of an anti-diagonal in one word.
 pub const ROW_GROUP_BITS: usize = INDEX_BITS - CELLS_PER_CHOICE_WORD.trailing_zeros() as usize;
-/// Bits of a cell index `0 .. N_CELLS`.
-pub const CELL_BITS: usize = INDEX_BITS - 1;
 /// Bits of a choice's offset `2·(c mod CELLS_PER_CHOICE_WORD)` in its word.
 pub const PAIR_BITS: usize = 5;
+/// Words of 16 choices (32 bits) of a gain cell's skew delay: with four
+/// phases, cell `c`'s choices wait `2c` clocks, so that every cell writes
+/// one anti-diagonal together (`crate::gain_cell`); `2·(N_CELLS - 1)`
+/// choices at most.
+pub const SKEW_WORDS: usize = (2 * (N_CELLS - 1)).div_ceil(CELLS_PER_CHOICE_WORD);
 
 // ---- The depth stage (paper eq. 1, `rtl::depth_stage`).
 
