@@ -17,20 +17,24 @@
 //! empty, every node rejected, exactly as many declivities as cells, equal
 //! gains (repeated declivities), disparities on the search-area bounds,
 //! shifted copies (long paths) and random sets. They run on a small array
-//! of `CELLS` cells holding `ROWS` = 2·`CELLS` reference declivities, with
-//! lines on both sides of the fold between the cells' low and high rows:
-//! the cells a line does not use never reach the outputs, and the clock
-//! counts depend on the cells only through that fold. The real pairs run on
-//! the sensor's matcher, `N_CELLS` = 64 cells for `N_MAX` = 128 rows.
+//! of `CELLS` cells holding `ROWS` = 4·`CELLS` reference declivities, with
+//! lines of one to four phases (the cells' rows `c + k·CELLS`: up to two
+//! phases an anti-diagonal every two clocks, beyond every four): the cells
+//! a line does not use never reach the outputs, and the clock counts
+//! depend on the cells only through the phases. The real pairs run on
+//! the sensor's matcher, `N_CELLS` = 32 cells for `N_MAX` = 128 rows.
 //!
 //! Run in release mode (`cargo test --release -p declivity-tests --test
-//! rtl_matcher`): rust-hdl simulates the 64-cell matcher at about 5 k
+//! rtl_matcher`): rust-hdl simulates the 32-cell matcher at a few thousand
 //! clocks/s per core.
 
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
-use rtl::declivity_matcher::{line_cycles, GainRule, OUTPUT_LAG, TAKE_AFTER_MARKER};
+use rtl::declivity_matcher::{
+    line_cycles, line_period, schedule, sweep_cycles, EngineLine, GainRule, OUTPUT_LAG, TAKE_AFTER_MARKER,
+};
+use rtl::traceback::traceback_cycles;
 use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
 use sim::matcher::{
     agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
@@ -291,31 +295,51 @@ proptest! {
     }
 }
 
-/// Back to back, a pair whose records are all in while the engine works on
-/// the previous one is taken the clock after the traceback ends: its marker
-/// follows the previous one by exactly `line_cycles - (OUTPUT_LAG - 1)`
-/// (the engine takes it the clock after the traceback's marker, while the
-/// previous marker is still in the `OUTPUT_LAG` output registers), so
-/// loading never costs the engine a clock.
+/// The engine's timing as `rtl::declivity_matcher::schedule` states it, for
+/// pairs whose work is known from golden (n, m, the walk's stop diagonal, the
+/// pairs).
+fn engine_lines(cases: &[Case], got: &[MatchedLine], dispmax: u32, rule: GainRule, cells: usize) -> Vec<EngineLine> {
+    cases
+        .iter()
+        .zip(got)
+        .map(|(c, g)| {
+            let want = golden_match(&c.reference, &c.other, dispmax, rule);
+            let (n, m) = (c.reference.records.len(), c.other.records.len());
+            EngineLine {
+                input_done: g.input_done_cycle,
+                sweep: sweep_cycles(n, m, cells) as u64,
+                traceback: traceback_cycles(n, m, want.stop_diag, want.nodes.len()) as u64,
+            }
+        })
+        .collect()
+}
+
+/// Back to back, pairs load while the engine works, and the traceback of a
+/// pair overlaps the sweep of the next: every marker leaves on the clock the
+/// documented schedule gives (`schedule`: the next pair taken the clock
+/// after the traceback of this one starts, the traceback waiting for the
+/// one before), and many lines are taken before the previous one's marker
+/// (a one-engine matcher, sweep then traceback, would take them after).
 #[test]
-fn loading_the_next_pair_overlaps_matching_the_current_one() {
+fn the_traceback_of_a_pair_overlaps_the_sweep_of_the_next_on_the_documented_schedule() {
     let mut runner = proptest::test_runner::TestRunner::deterministic();
     let strategy = prop::collection::vec(any_case(20 * PX), 6..10);
-    let mut overlapped = 0;
+    let (mut overlapped, mut waited) = (0, 0);
     for _ in 0..8 {
         let cases = strategy.new_tree(&mut runner).expect("a case").current();
         let got = run(&cases, 20 * PX, GainRule::Robust, false).expect("runs");
-        for k in 1..cases.len() {
-            let (prev, cur) = (&got[k - 1], &got[k]);
-            if cur.input_done_cycle + TAKE_AFTER_MARKER <= prev.marker_cycle - (OUTPUT_LAG as u64 - 1) {
-                let want = golden_match(&cases[k].reference, &cases[k].other, 20 * PX, GainRule::Robust);
-                let lc = line_cycles(cases[k].reference.records.len(), cases[k].other.records.len(), want.stop_diag, want.nodes.len(), CELLS);
-                assert_eq!(cur.marker_cycle - prev.marker_cycle, (lc - (OUTPUT_LAG - 1)) as u64, "pair {k} of {:?}", cases.iter().map(|c| c.kind).collect::<Vec<_>>());
-                overlapped += 1;
+        let lines = engine_lines(&cases, &got, 20 * PX, GainRule::Robust, CELLS);
+        let times = schedule(&lines);
+        for (k, (g, t)) in got.iter().zip(&times).enumerate() {
+            assert_eq!(g.marker_cycle, t.marker, "pair {k} of {:?}: {:?}", cases.iter().map(|c| c.kind).collect::<Vec<_>>(), lines);
+            if k > 0 {
+                overlapped += usize::from(t.take < got[k - 1].marker_cycle - OUTPUT_LAG as u64);
+                waited += usize::from(t.start > t.take + lines[k].sweep);
             }
         }
     }
-    assert!(overlapped >= 20, "pairs loaded while the engine was busy: {overlapped}");
+    assert!(overlapped >= 20, "pairs taken while the traceback before them ran: {overlapped}");
+    assert!(waited >= 1, "tracebacks that waited for the one before: {waited}");
 }
 
 /// More records than the cells hold: the first `ROWS` are matched, the rest
@@ -341,8 +365,9 @@ fn records_beyond_the_cells_are_dropped_the_line_is_flagged_full_and_the_next_is
 }
 
 /// The worst line, `N_MAX` declivities on both sides along one long path,
-/// on the full-size matcher: its clocks equal the formula and fit in the
-/// line time of a `W_MAX`-pixel line.
+/// on the full-size matcher: alone its clocks equal `line_cycles`; back to
+/// back, its pairs' markers follow one another by `line_period`, which
+/// fits in the line time of a `W_MAX`-pixel line.
 #[test]
 fn the_worst_line_pair_of_n_max_declivities_fits_in_the_line_time_of_a_w_max_line() {
     let (l, r) = ([100, 110, 120], [150, 160, 170]);
@@ -350,15 +375,23 @@ fn the_worst_line_pair_of_n_max_declivities_fits_in_the_line_time_of_a_w_max_lin
         MatchLine { dt: 400, records: (0..N_MAX as u32).map(|k| record(PX * (40 + 7 * k), true, l, r)).collect(), ..MatchLine::default() };
     let other = MatchLine { records: reference.records.iter().map(|r| MatchRecord { pos: r.pos - 3 * PX, ..*r }).collect(), ..reference.clone() };
     let dispmax = 5 * PX;
+    let pairs = vec![(reference.clone(), other.clone()); 3];
     let mut sim = MatcherSim::<N_CELLS>::new(GainRule::Robust, dispmax);
-    let got = sim.run(&[(reference.clone(), other.clone())], true, || {});
+    let got = sim.run(&pairs, false, || {});
     let want = golden_match(&reference, &other, dispmax, GainRule::Robust);
     assert_eq!(want.nodes.len(), N_MAX, "the path takes every pair");
-    assert_eq!(got[0].pairs(), want.nodes);
+    for g in &got {
+        assert_eq!(g.pairs(), want.nodes);
+    }
     let clocks = got[0].marker_cycle - got[0].input_done_cycle - TAKE_AFTER_MARKER;
     assert_eq!(clocks, line_cycles(N_MAX, N_MAX, want.stop_diag, N_MAX, N_CELLS) as u64);
-    assert!(clocks <= W_MAX as u64, "{clocks} clocks for the worst line against {W_MAX} pixels of a W_MAX line");
-    eprintln!("worst line: {clocks} clocks (stop diagonal {})", want.stop_diag);
+    let period = line_period(N_MAX, N_MAX, want.stop_diag, N_MAX, N_CELLS) as u64;
+    for k in 1..got.len() {
+        assert!(got[k].input_done_cycle + TAKE_AFTER_MARKER < got[k - 1].marker_cycle, "pair {k} waits for the engine");
+        assert_eq!(got[k].marker_cycle - got[k - 1].marker_cycle, period);
+    }
+    assert!(period <= W_MAX as u64, "{period} clocks per worst line back to back against {W_MAX} pixels of a W_MAX line");
+    eprintln!("worst line: {clocks} clocks alone, {period} back to back (stop diagonal {})", want.stop_diag);
 }
 
 // ===========================================================================
@@ -379,7 +412,10 @@ fn real_pair(pair: &str, rule: GainRule) {
     assert_eq!((report.mismatch_lines, report.equal_gain_lines, report.malformed_lines), (0, 0, 0));
     assert_eq!(report.matches_rtl, report.matches_golden);
     assert!(report.matches_rtl > report.declivities_ref / 4, "a real pair has many matches: {report:?}");
-    assert!(report.max_cycles_per_line <= W_MAX as u64, "{report:?}");
+    // Back to back, the engine keeps up with lines of W_MAX pixels.
+    assert!(report.max_engine_period <= W_MAX as u64, "{report:?}");
+    // Every marker on the clock the engine's documented schedule gives.
+    assert_eq!(report.off_schedule_lines, 0, "{report:?}");
 }
 
 #[test]

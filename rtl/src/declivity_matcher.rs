@@ -43,15 +43,18 @@
 //! its marker leaves [`line_cycles`] clocks after that (the sweep,
 //! [`sweep_cycles`], the traceback, [`traceback_cycles`], [`OUTPUT_LAG`] output
 //! registers), its matches on the clocks just before, one per clock. The
-//! engine takes the next pair the clock after the traceback ends. Loading
-//! the next pair overlaps the engine's work on this one; the worst line,
-//! `n = m = N_MAX`, costs at most
-//! `line_cycles(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 921 clocks, inside the
-//! 1024 of a `W_MAX` line.
+//! traceback of a line overlaps the sweep of the next (two banks of the
+//! choice memory, and the positions the matches carry read from copies of
+//! the record memories' positions): the sweep engine takes the next pair
+//! the clock after its sweep ends, once the traceback has started this one
+//! ([`schedule`] has the rules). Loading the next pair overlaps the
+//! engine's work on this one; back to back, the worst line, `n = m =
+//! N_MAX`, takes `line_period(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 845
+//! clocks of the engine, inside the 1024 of a `W_MAX` line.
 
 use crate::params::*;
 use crate::record_input::RecordInput;
-use crate::record_memory::{RecordMemory, WRITE_LAG};
+use crate::record_memory::{RecordMemory, COPY_ADDR_BITS, WRITE_LAG};
 use crate::systolic_matcher::{SystolicMatcher, CHOICE_LAG};
 use crate::traceback::{traceback_cycles, Traceback};
 use rust_hdl::prelude::*;
@@ -119,12 +122,67 @@ pub const fn sweep_cycles(n: usize, m: usize, cells: usize) -> usize {
     }
 }
 
-/// Clocks from the engine taking a line pair to its marker on the outputs:
-/// the sweep, the traceback (its walk stopping on anti-diagonal
-/// `stop_diag` with `k` pairs; see [`traceback_cycles`]) and
-/// [`OUTPUT_LAG`] output registers.
+/// Clocks from the engine taking a line pair to its marker on the outputs,
+/// when the traceback is free at the sweep's end: the sweep, the traceback
+/// (its walk stopping on anti-diagonal `stop_diag` with `k` pairs; see
+/// [`traceback_cycles`]) and [`OUTPUT_LAG`] output registers.
 pub const fn line_cycles(n: usize, m: usize, stop_diag: usize, k: usize, cells: usize) -> usize {
     sweep_cycles(n, m, cells) + traceback_cycles(n, m, stop_diag, k) + OUTPUT_LAG
+}
+
+/// Clocks between the takes, and between the markers, of back-to-back line
+/// pairs of this work, each waiting when the one before is taken: the next
+/// pair is taken the clock after the sweep ends (the traceback of this one
+/// overlaps the sweep of the next) or, when the traceback is the longer,
+/// the clock after the next traceback starts, which is the clock after this
+/// one's marker leaves the traceback. See [`schedule`].
+pub const fn line_period(n: usize, m: usize, stop_diag: usize, k: usize, cells: usize) -> usize {
+    let (sweep, walk) = (sweep_cycles(n, m, cells), traceback_cycles(n, m, stop_diag, k));
+    1 + if sweep > walk { sweep } else { walk }
+}
+
+/// One line pair as the engine sees it: the clock its second marker is
+/// taken on the ports, and its [`sweep_cycles`] and [`traceback_cycles`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EngineLine {
+    pub input_done: u64,
+    pub sweep: u64,
+    pub traceback: u64,
+}
+
+/// When the engine takes a line pair, starts its traceback and sends its
+/// marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EngineTimes {
+    pub take: u64,
+    pub start: u64,
+    pub marker: u64,
+}
+
+/// The engine's timing, line after line, as its logic has it: the sweep
+/// engine takes pair `L` when it is in (`input_done + TAKE_AFTER_MARKER`)
+/// and the traceback of pair `L - 1` has started, from the clock after
+/// that (`take_L = max(input_done_L + 3, start_{L-1} + 1)`: then the
+/// sweep of `L - 1` is over, no swept line waits, and the traceback is on
+/// the other bank of the choice memory); the sweep ends `sweep` clocks
+/// after the take; the traceback starts on that clock if the one of `L - 1`
+/// has sent its marker on an earlier clock, else the clock after it does
+/// (`start_L = max(take_L + sweep_L, walk_end_{L-1} + 1)`), and its marker
+/// leaves `traceback + OUTPUT_LAG` clocks after the start.
+pub fn schedule(lines: &[EngineLine]) -> Vec<EngineTimes> {
+    let mut out: Vec<EngineTimes> = Vec::with_capacity(lines.len());
+    for l in lines {
+        let take = match out.last() {
+            None => l.input_done + TAKE_AFTER_MARKER,
+            Some(p) => (l.input_done + TAKE_AFTER_MARKER).max(p.start + 1),
+        };
+        let start = match out.last() {
+            None => take + l.sweep,
+            Some(p) => (take + l.sweep).max(p.marker - OUTPUT_LAG as u64 + 1),
+        };
+        out.push(EngineTimes { take, start, marker: start + l.traceback + OUTPUT_LAG as u64 });
+    }
+    out
 }
 
 /// Clocks from the traceback's marker to the matcher's: the record
@@ -159,7 +217,6 @@ const DT_SAT_BITS: usize = DT_BITS - (DT_FRAC_BITS - MATCH_DT_FRAC_BITS) - MATCH
 
 const ENG_IDLE: u64 = 0;
 const ENG_SWEEP: u64 = 1;
-const ENG_TRACE: u64 = 2;
 
 #[derive(LogicBlock)]
 pub struct DeclivityMatcher<const N: usize> {
@@ -215,8 +272,10 @@ pub struct DeclivityMatcher<const N: usize> {
     // Record memories, two banks each (bank bit on top of the index).
     r_mem: RecordMemory,
     o_mem: RecordMemory,
-    // Loader.
+    // Loader: the line's bank, in the records (`lbank`) and in the
+    // position copies (`lpbank` above it).
     lbank: DFF<Bit>,
+    lpbank: DFF<Bit>,
     r_count: DFF<Bits<COUNT_BITS>>,
     o_count: DFF<Bits<COUNT_BITS>>,
     r_done: DFF<Bit>,
@@ -231,6 +290,7 @@ pub struct DeclivityMatcher<const N: usize> {
     // The waiting pair.
     pend: DFF<Bit>,
     pend_bank: DFF<Bit>,
+    pend_pbank: DFF<Bit>,
     pend_n: DFF<Bits<COUNT_BITS>>,
     pend_m: DFF<Bits<COUNT_BITS>>,
     pend_dt_sum: DFF<Bits<DT_SUM_BITS>>,
@@ -240,6 +300,28 @@ pub struct DeclivityMatcher<const N: usize> {
     // Engine.
     eng: DFF<Bits<2>>,
     ebank: DFF<Bit>,
+    epbank: DFF<Bit>,
+    // The traceback: busy from its start to its marker, with its line's
+    // counts, banks and flags; a swept line waiting for it (`tq`).
+    tb_busy: DFF<Bit>,
+    t_n: DFF<Bits<COUNT_BITS>>,
+    t_m: DFF<Bits<COUNT_BITS>>,
+    t_bank: DFF<Bit>,
+    t_pbank: DFF<Bit>,
+    t_wide: DFF<Bit>,
+    t_full: DFF<Bit>,
+    t_sof: DFF<Bit>,
+    tq: DFF<Bit>,
+    tq_n: DFF<Bits<COUNT_BITS>>,
+    tq_m: DFF<Bits<COUNT_BITS>>,
+    tq_bank: DFF<Bit>,
+    tq_pbank: DFF<Bit>,
+    tq_wide: DFF<Bit>,
+    tq_full: DFF<Bit>,
+    tq_sof: DFF<Bit>,
+    // The position copies' read addresses (the traceback's pairs).
+    p_addr_r: DFF<Bits<COPY_ADDR_BITS>>,
+    p_addr_o: DFF<Bits<COPY_ADDR_BITS>>,
     en: DFF<Bits<COUNT_BITS>>,
     em: DFF<Bits<COUNT_BITS>>,
     sc: DFF<Bits<SWEEP_BITS>>,
@@ -325,8 +407,12 @@ pub struct DeclivityMatcher<const N: usize> {
     // Combinational.
     r_take: Signal<Local, Bit>,
     o_take: Signal<Local, Bit>,
-    r_addr: Signal<Local, Bits<DIAG_BITS>>,
-    o_addr: Signal<Local, Bits<DIAG_BITS>>,
+    r_addr: Signal<Local, Bits<COPY_ADDR_BITS>>,
+    o_addr: Signal<Local, Bits<COPY_ADDR_BITS>>,
+    line_base: Signal<Local, Bits<COPY_ADDR_BITS>>,
+    tb_base: Signal<Local, Bits<COPY_ADDR_BITS>>,
+    tb_start: Signal<Local, Bit>,
+    tb_from_q: Signal<Local, Bit>,
     handoff: Signal<Local, Bit>,
     take: Signal<Local, Bit>,
     r_dt_m: Signal<Local, Bits<MATCH_DT_BITS>>,
@@ -368,10 +454,11 @@ pub struct DeclivityMatcher<const N: usize> {
     relative: Constant<Bit>,
     one_sided: Constant<Bit>,
     bank_size: Constant<Bits<DIAG_BITS>>,
+    copy_bank_size: Constant<Bits<COPY_ADDR_BITS>>,
+    copy_bank2_size: Constant<Bits<COPY_ADDR_BITS>>,
     n_max: Constant<Bits<COUNT_BITS>>,
     eng_idle: Constant<Bits<2>>,
     eng_sweep: Constant<Bits<2>>,
-    eng_trace: Constant<Bits<2>>,
     sweep_tail: Constant<Bits<SWEEP_BITS>>,
     sweep_tail1: Constant<Bits<SWEEP_BITS>>,
     wrap1: Constant<Bits<SWEEP_BITS>>,
@@ -452,6 +539,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             r_mem: Default::default(),
             o_mem: Default::default(),
             lbank: Default::default(),
+            lpbank: Default::default(),
             r_count: Default::default(),
             o_count: Default::default(),
             r_done: Default::default(),
@@ -465,6 +553,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             r_sof_reg: Default::default(),
             pend: Default::default(),
             pend_bank: Default::default(),
+            pend_pbank: Default::default(),
             pend_n: Default::default(),
             pend_m: Default::default(),
             pend_dt_sum: Default::default(),
@@ -473,6 +562,25 @@ impl<const N: usize> DeclivityMatcher<N> {
             pend_sof: Default::default(),
             eng: Default::default(),
             ebank: Default::default(),
+            epbank: Default::default(),
+            tb_busy: Default::default(),
+            t_n: Default::default(),
+            t_m: Default::default(),
+            t_bank: Default::default(),
+            t_pbank: Default::default(),
+            t_wide: Default::default(),
+            t_full: Default::default(),
+            t_sof: Default::default(),
+            tq: Default::default(),
+            tq_n: Default::default(),
+            tq_m: Default::default(),
+            tq_bank: Default::default(),
+            tq_pbank: Default::default(),
+            tq_wide: Default::default(),
+            tq_full: Default::default(),
+            tq_sof: Default::default(),
+            p_addr_r: Default::default(),
+            p_addr_o: Default::default(),
             en: Default::default(),
             em: Default::default(),
             sc: Default::default(),
@@ -548,6 +656,10 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_take: Default::default(),
             r_addr: Default::default(),
             o_addr: Default::default(),
+            line_base: Default::default(),
+            tb_base: Default::default(),
+            tb_start: Default::default(),
+            tb_from_q: Default::default(),
             handoff: Default::default(),
             take: Default::default(),
             r_dt_m: Default::default(),
@@ -583,10 +695,11 @@ impl<const N: usize> DeclivityMatcher<N> {
             relative: Constant::new(rule.relative()),
             one_sided: Constant::new(rule.one_sided()),
             bank_size: Constant::new(((N_MAX as u64) as u64).into()),
+            copy_bank_size: Constant::new((N_MAX as u64).into()),
+            copy_bank2_size: Constant::new((2 * N_MAX as u64).into()),
             n_max: Constant::new(((ROWS_PER_CELL * N) as u64).into()),
             eng_idle: Constant::new(((ENG_IDLE) as u64).into()),
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
-            eng_trace: Constant::new(((ENG_TRACE) as u64).into()),
             sweep_tail: Constant::new(((ENGINE_LAG - 5) as u64).into()),
             sweep_tail1: Constant::new(((ENGINE_LAG - 4) as u64).into()),
             wrap1: Constant::new(((2 * N + 1 + ENGINE_LAG - 5) as u64).into()),
@@ -630,9 +743,9 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.r_mem.relative.next = self.relative.val();
         self.o_mem.relative.next = self.relative.val();
         dff_setup!(
-            self, clock, r_sof_in, lbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
-            o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            self, clock, r_sof_in, lbank, lpbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
+            o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_pbank, pend_n, pend_m, pend_dt_sum, pend_wide,
+            pend_full, pend_sof, eng, ebank, epbank, tb_busy, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -679,14 +792,17 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.o_in.full.next = self.o_full.val();
         self.r_take.next = self.r_in.q_valid.val() & !self.r_in.q_last.val();
         self.o_take.next = self.o_in.q_valid.val() & !self.o_in.q_last.val();
-        self.r_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.r_count.q.val());
+        // The line's banks above the index: the records' bank, then the
+        // position copies' second bit.
+        self.line_base.next = 0.into();
         if self.lbank.q.val() {
-            self.r_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.r_count.q.val()) + self.bank_size.val();
+            self.line_base.next = self.copy_bank_size.val();
         }
-        self.o_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.o_count.q.val());
-        if self.lbank.q.val() {
-            self.o_addr.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.o_count.q.val()) + self.bank_size.val();
+        if self.lpbank.q.val() {
+            self.line_base.next = self.line_base.val() + self.copy_bank2_size.val();
         }
+        self.r_addr.next = bit_cast::<COPY_ADDR_BITS, COUNT_BITS>(self.r_count.q.val()) + self.line_base.val();
+        self.o_addr.next = bit_cast::<COPY_ADDR_BITS, COUNT_BITS>(self.o_count.q.val()) + self.line_base.val();
         // Records beyond N are dropped (the line is then full).
         self.r_mem.w_enable.next = self.r_take.val() & (self.r_count.q.val() < self.n_max.val());
         self.r_mem.w_addr.next = self.r_addr.val();
@@ -799,6 +915,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             }
             self.pend.d.next = true;
             self.pend_bank.d.next = self.lbank.q.val();
+            self.pend_pbank.d.next = self.lpbank.q.val();
             self.pend_n.d.next = self.r_count.q.val();
             self.pend_m.d.next = self.o_count.q.val();
             self.pend_dt_sum.d.next = self.dt_sum.val();
@@ -806,6 +923,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.pend_full.d.next = self.r_flags_full.q.val() | self.o_flags_full.q.val();
             self.pend_sof.d.next = self.r_sof_reg.q.val();
             self.lbank.d.next = !self.lbank.q.val();
+            self.lpbank.d.next = self.lpbank.q.val() ^ self.lbank.q.val();
             self.r_done.d.next = false;
             self.o_done.d.next = false;
             self.r_count.d.next = 0.into();
@@ -833,11 +951,18 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.f3_reg.d.next = bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val())
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val())
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val());
-        self.take.next = (self.eng.q.val() == self.eng_idle.val()) & self.pend.q.val();
+        // The sweep engine takes a waiting pair when it is idle, no swept line
+        // waits for the traceback, and the traceback is not on the bank of the
+        // choice memory the pair will write (lines alternate between two).
+        self.take.next = (self.eng.q.val() == self.eng_idle.val())
+            & self.pend.q.val()
+            & !self.tq.q.val()
+            & !(self.tb_busy.q.val() & (self.t_bank.q.val() == self.pend_bank.q.val()));
         if self.take.val() {
             self.pend.d.next = false;
             self.eng.d.next = self.eng_sweep.val();
             self.ebank.d.next = self.pend_bank.q.val();
+            self.epbank.d.next = self.pend_pbank.q.val();
             self.en.d.next = self.pend_n.q.val();
             self.em.d.next = self.pend_m.q.val();
             self.sc.d.next = 0.into();
@@ -903,7 +1028,50 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.cw_phase.next = self.tw_phase.val();
         // The sweep's last clock is known a clock ahead (a register: the
         // traceback's start goes to its walk registers, far from the engine).
-        self.traceback.start.next = self.sweep_done.q.val();
+        // The swept line's traceback starts then if the traceback is free,
+        // or waits in `tq` until it is; the next sweep goes on meanwhile.
+        self.tb_from_q.next = self.tq.q.val() & !self.tb_busy.q.val();
+        self.tb_start.next = self.tb_from_q.val() | (self.sweep_done.q.val() & !self.tb_busy.q.val() & !self.tq.q.val());
+        self.traceback.start.next = self.tb_start.val();
+        self.traceback.n.next = self.en.q.val();
+        self.traceback.m.next = self.em.q.val();
+        if self.tb_from_q.val() {
+            self.traceback.n.next = self.tq_n.q.val();
+            self.traceback.m.next = self.tq_m.q.val();
+        }
+        if self.tb_start.val() {
+            self.tb_busy.d.next = true;
+            self.t_n.d.next = self.en.q.val();
+            self.t_m.d.next = self.em.q.val();
+            self.t_bank.d.next = self.ebank.q.val();
+            self.t_pbank.d.next = self.epbank.q.val();
+            self.t_wide.d.next = self.e_wide.q.val();
+            self.t_full.d.next = self.e_full.q.val();
+            self.t_sof.d.next = self.e_sof.q.val();
+            if self.tb_from_q.val() {
+                self.tq.d.next = false;
+                self.t_n.d.next = self.tq_n.q.val();
+                self.t_m.d.next = self.tq_m.q.val();
+                self.t_bank.d.next = self.tq_bank.q.val();
+                self.t_pbank.d.next = self.tq_pbank.q.val();
+                self.t_wide.d.next = self.tq_wide.q.val();
+                self.t_full.d.next = self.tq_full.q.val();
+                self.t_sof.d.next = self.tq_sof.q.val();
+            }
+        }
+        if self.traceback.out_last.val() {
+            self.tb_busy.d.next = false;
+        }
+        if self.sweep_done.q.val() & (self.tb_busy.q.val() | self.tq.q.val()) {
+            self.tq.d.next = true;
+            self.tq_n.d.next = self.en.q.val();
+            self.tq_m.d.next = self.em.q.val();
+            self.tq_bank.d.next = self.ebank.q.val();
+            self.tq_pbank.d.next = self.epbank.q.val();
+            self.tq_wide.d.next = self.e_wide.q.val();
+            self.tq_full.d.next = self.e_full.q.val();
+            self.tq_sof.d.next = self.e_sof.q.val();
+        }
         self.sweep_done.d.next = false;
         if self.eng.q.val() == self.eng_sweep.val() {
             self.sc.d.next = self.sc.q.val() + 1;
@@ -911,17 +1079,21 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.c_valid_d.d.next = self.col_ok.val();
             self.sweep_done.d.next = self.sc.q.val() == self.sweep_end_m1.q.val();
             if self.sweep_done.q.val() {
-                self.eng.d.next = self.eng_trace.val();
-            }
-        }
-        if self.eng.q.val() == self.eng_trace.val() {
-            if self.traceback.out_last.val() {
                 self.eng.d.next = self.eng_idle.val();
             }
-            // The traceback's pairs read their positions.
-            self.r_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.traceback.out_i.val()) + self.rd_bank_base.val();
-            self.o_rd.next = bit_cast::<DIAG_BITS, INDEX_BITS>(self.traceback.out_j.val()) + self.rd_bank_base.val();
         }
+        // The traceback's pairs read their positions in the copies.
+        self.tb_base.next = 0.into();
+        if self.t_bank.q.val() {
+            self.tb_base.next = self.copy_bank_size.val();
+        }
+        if self.t_pbank.q.val() {
+            self.tb_base.next = self.tb_base.val() + self.copy_bank2_size.val();
+        }
+        self.p_addr_r.d.next = bit_cast::<COPY_ADDR_BITS, INDEX_BITS>(self.traceback.out_i.val()) + self.tb_base.val();
+        self.p_addr_o.d.next = bit_cast::<COPY_ADDR_BITS, INDEX_BITS>(self.traceback.out_j.val()) + self.tb_base.val();
+        self.r_mem.p_addr.next = self.p_addr_r.q.val();
+        self.o_mem.p_addr.next = self.p_addr_o.q.val();
 
         // (Registered: the route from the engine and the traceback to the
         // record memories was the critical path.)
@@ -987,11 +1159,11 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.same_polarity.next = self.relative.val();
         self.array.one_sided.next = self.one_sided.val();
         self.array.tb_diag.next = self.traceback.tb_diag.val();
+        self.array.tb_bank.next = self.t_bank.q.val();
+        self.array.cw_bank.next = self.ebank.q.val();
         self.array.tb_group.next = self.traceback.tb_group.val();
 
         // ---- Traceback.
-        self.traceback.n.next = self.en.q.val();
-        self.traceback.m.next = self.em.q.val();
         self.traceback.tb_word.next = self.array.tb_word.val();
         self.traceback.tb_word_prev.next = self.array.tb_word_prev.val();
 
@@ -1020,19 +1192,19 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // traceback's marker (the engine may take the next pair on the
         // clock after that).
         if self.q_last.q.val() {
-            self.w_n.d.next = self.en.q.val();
-            self.w_m.d.next = self.em.q.val();
-            self.w_wide.d.next = self.e_wide.q.val();
-            self.w_full.d.next = self.e_full.q.val();
-            self.w_sof.d.next = self.e_sof.q.val();
+            self.w_n.d.next = self.t_n.q.val();
+            self.w_m.d.next = self.t_m.q.val();
+            self.w_wide.d.next = self.t_wide.q.val();
+            self.w_full.d.next = self.t_full.q.val();
+            self.w_sof.d.next = self.t_sof.q.val();
         }
         self.out_valid.d.next = self.w_valid.q.val() | self.w_last.q.val();
         self.out_last.d.next = self.w_last.q.val();
         if self.w_valid.q.val() {
             self.out_ref.d.next = self.w_i.q.val();
             self.out_other.d.next = self.w_j.q.val();
-            self.out_x_ref.d.next = self.r_mem.pos.val();
-            self.out_disp.d.next = self.r_mem.pos.val() - self.o_mem.pos.val();
+            self.out_x_ref.d.next = self.r_mem.p_pos.val();
+            self.out_disp.d.next = self.r_mem.p_pos.val() - self.o_mem.p_pos.val();
         }
         if self.w_last.q.val() {
             self.out_count.d.next = self.w_count.q.val();

@@ -1,17 +1,23 @@
 //! One view's declivity records for the matcher: two lines' worth (two
 //! banks of `N_MAX` entries, the bank bit above the index), each record's
-//! six neighbour levels put into the gain rule's format on the way in.
+//! six neighbour levels put into the gain rule's format on the way in; and
+//! a copy of the positions of four lines (four banks: the traceback of a
+//! line reads its positions while the next line's sweep reads the records
+//! and the one after loads).
 //!
 //! ## Ports
 //! - `relative`: the gain rule (a design constant of the matcher): levels
 //!   `2·I - e + LEVEL_OFFSET` with `e = I(x_i) + I(x_{i+1})`, the
 //!   declivity's end-level sum, when set; `2·I + LEVEL_OFFSET` otherwise
 //!   (paper §III, eq. 4–5, and `golden::gain::Neighbours`).
-//! - Write: `w_enable`, `w_addr`, and the record as the detector sends it:
+//! - Write: `w_enable`, `w_addr` (the line's bank in the position copy's
+//!   four, then the index: the records' bank is its low bit), and the
+//!   record as the detector sends it:
 //!   `w_pos`, `w_amp` (only its sign is kept: the polarity), `w_left0..2`,
 //!   `w_right0..2`.
 //! - Read: `r_addr`; two clocks later `pos`, `lev0..5` (left 0–2, then
-//!   right 0–2) and `rising`.
+//!   right 0–2) and `rising`. Read of the position copy: `p_addr`; two
+//!   clocks later `p_pos`.
 //!
 //! ## Timing
 //! One write and one read per clock (block RAMs with their output
@@ -42,13 +48,15 @@ use rust_hdl::prelude::*;
 pub const WRITE_LAG: usize = 4;
 /// Grey levels a record carries: three on each side of the declivity.
 const LEVELS: usize = 6;
+/// Address bits of the position copy: four banks of `N_MAX` positions.
+pub const COPY_ADDR_BITS: usize = INDEX_BITS + 2;
 
 #[derive(LogicBlock)]
 pub struct RecordMemory {
     pub clock: Signal<In, Clock>,
     pub relative: Signal<In, Bit>,
     pub w_enable: Signal<In, Bit>,
-    pub w_addr: Signal<In, Bits<DIAG_BITS>>,
+    pub w_addr: Signal<In, Bits<COPY_ADDR_BITS>>,
     pub w_pos: Signal<In, Bits<POS_BITS>>,
     pub w_amp: Signal<In, Bits<AMP_BITS>>,
     pub w_left0: Signal<In, Bits<PIXEL_BITS>>,
@@ -66,31 +74,34 @@ pub struct RecordMemory {
     pub lev4: Signal<Out, Bits<LEVEL_BITS>>,
     pub lev5: Signal<Out, Bits<LEVEL_BITS>>,
     pub rising: Signal<Out, Bit>,
+    pub p_addr: Signal<In, Bits<COPY_ADDR_BITS>>,
+    pub p_pos: Signal<Out, Bits<POS_BITS>>,
     // The position with the polarity above it (one block RAM, not a
     // 1-bit LUT RAM whose read would sit on the address path).
     pos_mem: BlockRam<{ POS_BITS + 1 }, DIAG_BITS>,
     lev_mem: [BlockRam<LEVEL_BITS, DIAG_BITS>; LEVELS],
+    pos_copy: BlockRam<POS_BITS, COPY_ADDR_BITS>,
     // The write as it comes.
     wi_enable: DFF<Bit>,
-    wi_addr: DFF<Bits<DIAG_BITS>>,
+    wi_addr: DFF<Bits<COPY_ADDR_BITS>>,
     wi_pos: DFF<Bits<POS_BITS>>,
     wi_falling: DFF<Bit>,
     // The grey levels in the order of `lev0..5`: left 0–2, then right 0–2.
     wi_lev: [DFF<Bits<PIXEL_BITS>>; LEVELS],
     // The write with the end-level sum `e`.
     wb_enable: DFF<Bit>,
-    wb_addr: DFF<Bits<DIAG_BITS>>,
+    wb_addr: DFF<Bits<COPY_ADDR_BITS>>,
     wb_pos: DFF<Bits<{ POS_BITS + 1 }>>,
     wb_ends: DFF<Bits<LEVEL_BITS>>,
     wb_lev: [DFF<Bits<PIXEL_BITS>>; LEVELS],
     // The write in the RAMs' format.
     wc_enable: DFF<Bit>,
-    wc_addr: DFF<Bits<DIAG_BITS>>,
+    wc_addr: DFF<Bits<COPY_ADDR_BITS>>,
     wc_pos: DFF<Bits<{ POS_BITS + 1 }>>,
     wc_lev: [DFF<Bits<LEVEL_BITS>>; LEVELS],
     // The same, beside the RAMs.
     wq_enable: DFF<Bit>,
-    wq_addr: DFF<Bits<DIAG_BITS>>,
+    wq_addr: DFF<Bits<COPY_ADDR_BITS>>,
     wq_pos: DFF<Bits<{ POS_BITS + 1 }>>,
     wq_lev: [DFF<Bits<LEVEL_BITS>>; LEVELS],
     ends: Signal<Local, Bits<LEVEL_BITS>>,
@@ -126,7 +137,10 @@ impl Default for RecordMemory {
             lev4: Default::default(),
             lev5: Default::default(),
             rising: Default::default(),
+            p_addr: Default::default(),
+            p_pos: Default::default(),
             pos_mem: Default::default(),
+            pos_copy: Default::default(),
             lev_mem: Default::default(),
             wi_enable: Default::default(),
             wi_addr: Default::default(),
@@ -161,6 +175,7 @@ impl Logic for RecordMemory {
     #[hdl_gen]
     fn update(&mut self) {
         self.pos_mem.clock.next = self.clock.val();
+        self.pos_copy.clock.next = self.clock.val();
         for i in 0..LEVELS {
             self.lev_mem[i].clock.next = self.clock.val();
             self.wi_lev[i].clock.next = self.clock.val();
@@ -224,16 +239,21 @@ impl Logic for RecordMemory {
         self.wq_enable.d.next = self.wc_enable.q.val();
         self.wq_addr.d.next = self.wc_addr.q.val();
         self.pos_mem.write_data.next = self.wq_pos.q.val();
-        self.pos_mem.write_address.next = self.wq_addr.q.val();
+        self.pos_mem.write_address.next = bit_cast::<DIAG_BITS, COPY_ADDR_BITS>(self.wq_addr.q.val());
         self.pos_mem.write_enable.next = self.wq_enable.q.val();
         self.pos_mem.read_address.next = self.r_addr.val();
         for i in 0..LEVELS {
             self.wq_lev[i].d.next = self.wc_lev[i].q.val();
             self.lev_mem[i].write_data.next = self.wq_lev[i].q.val();
-            self.lev_mem[i].write_address.next = self.wq_addr.q.val();
+            self.lev_mem[i].write_address.next = bit_cast::<DIAG_BITS, COPY_ADDR_BITS>(self.wq_addr.q.val());
             self.lev_mem[i].write_enable.next = self.wq_enable.q.val();
             self.lev_mem[i].read_address.next = self.r_addr.val();
         }
+        self.pos_copy.write_data.next = self.wq_pos.q.val().get_bits::<POS_BITS>(self.bit0.val().index());
+        self.pos_copy.write_address.next = self.wq_addr.q.val();
+        self.pos_copy.write_enable.next = self.wq_enable.q.val();
+        self.pos_copy.read_address.next = self.p_addr.val();
+        self.p_pos.next = self.pos_copy.read_data.val();
         self.pos.next = self.pos_mem.read_data.val().get_bits::<POS_BITS>(self.bit0.val().index());
         self.lev0.next = self.lev_mem[0].read_data.val();
         self.lev1.next = self.lev_mem[1].read_data.val();

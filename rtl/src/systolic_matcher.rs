@@ -40,13 +40,15 @@
 //! - `dispmax_m1`, `below2`, `f1`, `f3`, `p4`: the line's constants, passed
 //!   down the cells one per clock; `same_polarity`, `one_sided`: to every
 //!   cell (see [`GainCell`]).
-//! - `cw_en`, `cw_diag`, `cw_phase`: write the choices now in the array's
-//!   word registers as anti-diagonal `cw_diag` of phase `cw_phase`. The
+//! - `cw_en`, `cw_diag`, `cw_phase`, `cw_bank`: write the choices now in
+//!   the array's word registers as anti-diagonal `cw_diag` of phase
+//!   `cw_phase` into bank `cw_bank` (two banks: the traceback of one line
+//!   reads one while the sweep of the next writes the other). The
 //!   engine counts them: the choices of the node whose column entered at
 //!   clock `t` are in the word registers at `t +` [`CHOICE_LAG`] (with
 //!   four phases, plus the cell's skew).
-//! - `tb_diag`, `tb_group` in; `tb_word`, `tb_word_prev` out: the words of
-//!   anti-diagonal `tb_diag` (three clocks ago: memory read, its output
+//! - `tb_diag`, `tb_bank`, `tb_group` in; `tb_word`, `tb_word_prev` out:
+//!   the words of anti-diagonal `tb_diag` of bank `tb_bank` (three clocks ago: memory read, its output
 //!   register inside the block RAM ([`BlockRam`]), then the register that
 //!   feeds the selection) that hold the choices of row groups `tb_group`
 //!   and `tb_group - 1` (now; see [`ChoiceWord`]): with the two side by
@@ -71,6 +73,9 @@ use rust_hdl::prelude::*;
 /// skew): two into the cell's slot a, the cell's depth, one into the word
 /// register. (The matcher's engine adds its own clocks of record memory.)
 pub const CHOICE_LAG: usize = 2 + CELL_DEPTH + 1;
+
+/// Address bits of the choice memory: the bank above the anti-diagonal.
+pub const CHOICE_ADDR_BITS: usize = DIAG_BITS + 1;
 
 /// Words of one phase's choices of an anti-diagonal in the sensor's array.
 const PHASE_WORDS: usize = CHOICE_WORDS / ROWS_PER_CELL;
@@ -98,7 +103,9 @@ pub struct SystolicMatcher<const N: usize> {
     pub cw_en: Signal<In, Bit>,
     pub cw_diag: Signal<In, Bits<DIAG_BITS>>,
     pub cw_phase: Signal<In, Bits<PHASE_BITS>>,
+    pub cw_bank: Signal<In, Bit>,
     pub tb_diag: Signal<In, Bits<DIAG_BITS>>,
+    pub tb_bank: Signal<In, Bit>,
     pub tb_group: Signal<In, Bits<ROW_GROUP_BITS>>,
     pub tb_word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
     pub tb_word_prev: Signal<Out, Bits<CHOICE_WORD_BITS>>,
@@ -124,7 +131,7 @@ pub struct SystolicMatcher<const N: usize> {
     tok_phase: [DFF<Bits<PHASE_BITS>>; N],
     wrap: DFF<Bits<PATH_BITS>>,
     word_q: [DFF<Bits<CHOICE_WORD_BITS>>; PHASE_WORDS],
-    ram: [BlockRam<CHOICE_WORD_BITS, DIAG_BITS>; CHOICE_WORDS],
+    ram: [BlockRam<CHOICE_WORD_BITS, CHOICE_ADDR_BITS>; CHOICE_WORDS],
     rd2: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     // RAM g holds phase `ram_phase[g]`'s word `ram_word1[g]` (0 or 1);
     // RAMs past the phases' (`4·max(1, N/16)`) are never written.
@@ -132,6 +139,9 @@ pub struct SystolicMatcher<const N: usize> {
     ram_word1: [Constant<Bit>; CHOICE_WORDS],
     ram_used: [Constant<Bit>; CHOICE_WORDS],
     last_p: Signal<Local, Bits<PATH_BITS>>,
+    cw_addr: Signal<Local, Bits<CHOICE_ADDR_BITS>>,
+    tb_addr: Signal<Local, Bits<CHOICE_ADDR_BITS>>,
+    diag_bit: Constant<Bits<8>>,
     group_one: Constant<Bits<ROW_GROUP_BITS>>,
     wacc: [Signal<Local, Bits<CHOICE_WORD_BITS>>; PHASE_WORDS],
 }
@@ -165,7 +175,9 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             cw_en: Default::default(),
             cw_diag: Default::default(),
             cw_phase: Default::default(),
+            cw_bank: Default::default(),
             tb_diag: Default::default(),
+            tb_bank: Default::default(),
             tb_group: Default::default(),
             tb_word: Default::default(),
             tb_word_prev: Default::default(),
@@ -197,6 +209,9 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             ram_word1: core::array::from_fn(|g| Constant::new(g % per_phase == 1)),
             ram_used: core::array::from_fn(|g| Constant::new(g < ROWS_PER_CELL * per_phase)),
             last_p: Default::default(),
+            cw_addr: Default::default(),
+            tb_addr: Default::default(),
+            diag_bit: Constant::new((DIAG_BITS as u64).into()),
             group_one: Constant::new(1u64.into()),
             wacc: Default::default(),
         }
@@ -345,16 +360,22 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.word_q[k].clock.next = self.clock.val();
             self.word_q[k].d.next = self.wacc[k].val();
         }
+        // Two banks: a line's traceback reads one while the next line's
+        // sweep writes the other.
+        self.cw_addr.next = bit_cast::<CHOICE_ADDR_BITS, DIAG_BITS>(self.cw_diag.val())
+            .replace_bit(self.diag_bit.val().index(), self.cw_bank.val());
+        self.tb_addr.next = bit_cast::<CHOICE_ADDR_BITS, DIAG_BITS>(self.tb_diag.val())
+            .replace_bit(self.diag_bit.val().index(), self.tb_bank.val());
         for g in 0..CHOICE_WORDS {
             self.ram[g].clock.next = self.clock.val();
-            self.ram[g].write_address.next = self.cw_diag.val();
+            self.ram[g].write_address.next = self.cw_addr.val();
             self.ram[g].write_data.next = self.word_q[0].q.val();
             if self.ram_word1[g].val() {
                 self.ram[g].write_data.next = self.word_q[1].q.val();
             }
             self.ram[g].write_enable.next =
                 self.cw_en.val() & self.ram_used[g].val() & (self.cw_phase.val() == self.ram_phase[g].val());
-            self.ram[g].read_address.next = self.tb_diag.val();
+            self.ram[g].read_address.next = self.tb_addr.val();
             self.rd2[g].clock.next = self.clock.val();
             self.rd2[g].d.next = self.ram[g].read_data.val();
         }

@@ -17,7 +17,8 @@ use golden::dp::{prefix_max_dp, Choice, GainTable};
 use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
-use rtl::declivity_matcher::{DeclivityMatcher, GainRule, OUTPUT_LAG, TAKE_AFTER_MARKER};
+use rtl::declivity_matcher::{schedule, sweep_cycles, DeclivityMatcher, EngineLine, GainRule};
+use rtl::traceback::traceback_cycles;
 use rtl::params::{DT_FRAC_BITS, MATCH_DT_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
 use rust_hdl::prelude::*;
 use serde::Serialize;
@@ -476,9 +477,17 @@ pub struct MatchReport {
     pub mismatch_lines: usize,
     /// Lines whose beats disagree with their inputs (positions, counts).
     pub malformed_lines: usize,
+    /// Lines whose marker left on another clock than the engine's
+    /// documented timing gives (`rtl::declivity_matcher::schedule`).
+    pub off_schedule_lines: usize,
     /// The most clocks the engine spent on one line pair (taking it to its
     /// marker).
     pub max_cycles_per_line: u64,
+    /// The most clocks a line pair kept the engine from taking the next: from
+    /// its take to the clock after its traceback starts (its sweep, and any
+    /// wait for the traceback of the pair before). At most the line time of
+    /// a `W_MAX` line means the engine keeps up with lines back to back.
+    pub max_engine_period: u64,
     /// The line of `max_cycles_per_line`.
     pub max_cycles_line: usize,
     pub cycles: u64,
@@ -524,14 +533,30 @@ pub fn match_lines<const N: usize>(
         equal_gain_lines: 0,
         mismatch_lines: 0,
         malformed_lines: 0,
+        off_schedule_lines: 0,
         max_cycles_per_line: 0,
+        max_engine_period: 0,
         max_cycles_line: 0,
         cycles,
         sim_cycles_per_s: cycles as f64 / secs.max(1e-9),
     };
+    // The engine's takes by its documented timing (`rtl::declivity_matcher::
+    // schedule`, checked against the measured markers by `tests/rtl_matcher.rs`).
+    let times = schedule(
+        &got.iter()
+            .zip(&golden)
+            .map(|(rtl, g)| {
+                let (n, m) = (rtl.marker.n as usize, rtl.marker.m as usize);
+                EngineLine {
+                    input_done: rtl.input_done_cycle,
+                    sweep: sweep_cycles(n, m, N) as u64,
+                    traceback: traceback_cycles(n, m, g.stop_diag, g.nodes.len()) as u64,
+                }
+            })
+            .collect::<Vec<_>>(),
+    );
     let mut outcomes = Vec::with_capacity(pairs.len());
-    let mut prev_marker: Option<u64> = None;
-    for (k, ((rtl, golden), (r, o))) in got.into_iter().zip(golden).zip(pairs).enumerate() {
+    for (k, (((rtl, golden), (r, o)), t)) in got.into_iter().zip(golden).zip(pairs).zip(times).enumerate() {
         let agreement = agreement(&golden, &rtl.pairs());
         match agreement {
             Agreement::Identical => report.identical_lines += 1,
@@ -539,17 +564,13 @@ pub fn match_lines<const N: usize>(
             Agreement::Mismatch => report.mismatch_lines += 1,
         }
         report.malformed_lines += check_line(r, o, &rtl, &golden).is_err() as usize;
-        // The engine takes a pair TAKE_AFTER_MARKER clocks after its second
-        // marker, or the clock after the previous pair's traceback ends (its
-        // marker leaves OUTPUT_LAG clocks after that end).
-        let ready = rtl.input_done_cycle + TAKE_AFTER_MARKER;
-        let take = prev_marker.map_or(ready, |p| ready.max(p - (OUTPUT_LAG as u64 - 1)));
-        let engine_cycles = rtl.marker_cycle - take;
+        report.off_schedule_lines += usize::from(rtl.marker_cycle != t.marker);
+        let engine_cycles = rtl.marker_cycle - t.take;
         if engine_cycles > report.max_cycles_per_line {
             report.max_cycles_per_line = engine_cycles;
             report.max_cycles_line = k;
         }
-        prev_marker = Some(rtl.marker_cycle);
+        report.max_engine_period = report.max_engine_period.max(t.start + 1 - t.take);
         outcomes.push(LineOutcome { rtl, golden, agreement, engine_cycles });
     }
     (report, outcomes)
@@ -601,6 +622,8 @@ pub fn match_image<const N: usize>(
         report.equal_gain_lines += r.equal_gain_lines;
         report.mismatch_lines += r.mismatch_lines;
         report.malformed_lines += r.malformed_lines;
+        report.off_schedule_lines += r.off_schedule_lines;
+        report.max_engine_period = report.max_engine_period.max(r.max_engine_period);
         if r.max_cycles_per_line > report.max_cycles_per_line {
             report.max_cycles_per_line = r.max_cycles_per_line;
             report.max_cycles_line = r.max_cycles_line + offset;
