@@ -95,8 +95,9 @@
 //! 248 on, and at row 305 its queue had to hold five lines: with four it
 //! dropped one. A queue sized for every backlog the record queues allow is
 //! large: they hold 1024 beats per side, the matching of up to eight full
-//! lines (`line_cycles` 921 clocks per 129 beats, 18 for an empty line),
-//! and with the two pairs inside the matcher a backlog of about 9 k clocks,
+//! lines (`line_period` 845 clocks per 129 beats back to back, 14 for an
+//! empty line),
+//! and with the three pairs inside the matcher a backlog of about 9 k clocks,
 //! 21 lines of 434 px and more of narrower ones: a queue of 32 lines and
 //! their 4 k segments (24 `DP16KD` instead of 6).
 //!
@@ -180,10 +181,11 @@ const _: () = assert!((LINES_IN_FLIGHT - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << 
 const _: () = assert!(LINES_IN_FLIGHT < 1 << FLIGHT_BITS);
 const _: () = assert!(POS_BITS <= DEPTH_BITS);
 // The matcher's row count flags its frame's last row from registers two
-// clocks after a marker (`m_row`, then `m_row_last`); the matcher's markers
-// are further apart than that: its engine takes the next pair after the
-// traceback ends, and that pair's marker follows its whole sweep.
-const _: () = assert!(crate::declivity_matcher::sweep_cycles(0, 0, 1) > 2);
+// clocks after a marker (`m_row`, then `m_row_last`), in time for a marker
+// two clocks later; the matcher's markers are at least that far apart: the
+// traceback starts a line the clock after it sends the previous line's
+// marker at the earliest, and takes at least a clock.
+const _: () = assert!(crate::traceback::traceback_cycles(0, 0, 0, 0) >= 1);
 
 /// Where a detector beat's fields sit in the record queue's lanes.
 /// Lane 0: `pos`, then the marker's flags.

@@ -35,7 +35,7 @@ pub mod workdir;
 pub use error::SimError;
 
 /// Stack of the threads that build and generate the large blocks: rust-hdl
-/// builds a block by value, and 64 cells of signals do not fit on a default
+/// builds a block by value, and 32 cells of signals do not fit on a default
 /// stack.
 const BIG_STACK: usize = 1 << 30;
 

@@ -227,7 +227,7 @@ fn settle<const N: usize>(u: &mut DeclivityMatcher<N>, passes: usize) {
 }
 
 /// Builds and connects the matcher on a thread of its own: rust-hdl builds
-/// the block by value, and 64 cells of signals do not fit on a default
+/// the block by value, and 32 cells of signals do not fit on a default
 /// stack.
 pub fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
     crate::on_big_stack("building the matcher", move || {

@@ -556,7 +556,7 @@ pub struct StereoReport {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Engine {
     /// The rust-hdl model under direct drive (about a thousand clocks per
-    /// second with the 64-cell matcher).
+    /// second with the 32-cell matcher).
     #[default]
     #[value(name = "rust-hdl")]
     RustHdl,

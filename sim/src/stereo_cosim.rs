@@ -23,7 +23,7 @@
 //! sets the inputs, toggles `clock` and calls `eval()` itself, without
 //! Verilator's `--timing` coroutines).
 //!
-//! Verilator's build of the 64-cell processor takes minutes; the built
+//! Verilator's build of the 32-cell processor takes minutes; the built
 //! simulator is kept (keyed by a hash of the design, the driver, the
 //! Verilator version and the build flags) in
 //! `<work root>/declivity-frame-<hash>/` and reused, so later frames cost

@@ -10,15 +10,15 @@
 //!
 //! The vectors (`corner.trace`, `corner_paper.trace`: the hand-built cases
 //! under the robust and the paper gain rule; `real.trace`: 30 Tsukuba rows)
-//! use a 16-cell array holding 32 reference declivities: Icarus runs them
-//! in seconds (the sensor's 64-cell Verilog is four times the logic), and a
-//! real Tsukuba row keeps a fair part of its declivities (they have 30–80;
+//! use a 16-cell array holding 64 reference declivities: Icarus runs them
+//! in seconds (the sensor's 32-cell Verilog is twice the logic), and a
+//! real Tsukuba row keeps most of its declivities (they have 30–80;
 //! beyond the array's rows a line's records are dropped and it is flagged
-//! full). The matcher's cycle behaviour depends on the cell count only
-//! through that limit and the fold between the cells' low and high rows:
-//! the record memories hold `N_MAX` entries per bank at every size. The
-//! sensor's 64-cell array has its own vector (`real_64_cells.trace`, 12
-//! rows), run under Verilator only.
+//! full), in lines of one to four phases. The matcher's cycle behaviour
+//! depends on the cell count only through that limit and the phases (the
+//! cells' rows `c + k·N`): the record memories hold `N_MAX` entries per
+//! bank at every size. The sensor's 32-cell array has its own vector
+//! (`real_32_cells.trace`, 12 rows), run under Verilator only.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -359,24 +359,23 @@ fn cosim_matcher_verilator_matches_rust_on_corner_cases_and_real_rows() {
     check_vectors(Simulator::Verilator);
 }
 
-/// Rows of `real_pairs` for the sensor's 64-cell array.
+/// Rows of `real_pairs` for the sensor's 32-cell array.
 const ROWS_SENSOR: usize = 12;
 
-/// The sensor's matcher, `N_CELLS` = 64 cells holding `N_MAX` = 128
+/// The sensor's matcher, `N_CELLS` = 32 cells holding `N_MAX` = 128
 /// declivities, under Verilator on the first `ROWS_SENSOR` rows of the real
-/// vectors, recorded on their own (`real_64_cells.trace`): with 128 rows no
+/// vectors, recorded on their own (`real_32_cells.trace`): with 128 rows no
 /// record is dropped, so the engine's clocks, and with them the
-/// back-pressure on the inputs, differ from the 16-cell array's. Measured on two cores: generating the Verilog
-/// and recording take 2–3 s, Verilator's build of the 250 000 lines 54–56 s
-/// (Icarus is left to the 16-cell vectors).
+/// back-pressure on the inputs, differ from the 16-cell array's (Icarus is
+/// left to the 16-cell vectors).
 #[test]
-fn cosim_matcher_64_cells_verilator_matches_rust_on_real_rows() {
+fn cosim_matcher_32_cells_verilator_matches_rust_on_real_rows() {
     const N: usize = N_CELLS;
     let t0 = Instant::now();
     let d = design(N, RULE);
     let (mut pairs, dispmax) = real_pairs();
     pairs.truncate(ROWS_SENSOR);
-    let v = Vector { file: "real_64_cells.trace", rule: RULE, pairs, dispmax };
+    let v = Vector { file: "real_32_cells.trace", rule: RULE, pairs, dispmax };
     let (fresh, got) = matcher_trace::<N>(&d, v.rule, v.dispmax, &v.pairs).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("{N} cells: Verilog and recording {:.1} s", t0.elapsed().as_secs_f64());
     check_against_golden(v.file, &v, &got, N);
@@ -408,7 +407,7 @@ fn cosim_matcher_icarus_catches_a_changed_design() {
 }
 
 
-/// On the sensor's 64-cell Verilog.
+/// On the sensor's 32-cell Verilog.
 #[test]
 fn matcher_verilog_lints_clean_but_for_the_accepted_warnings() {
     let t0 = Instant::now();
@@ -417,7 +416,7 @@ fn matcher_verilog_lints_clean_but_for_the_accepted_warnings() {
     eprintln!("accepted lint warnings: {counts:?} ({:.1} s)", t0.elapsed().as_secs_f64());
 }
 
-/// On the sensor's 64-cell Verilog.
+/// On the sensor's 32-cell Verilog.
 #[test]
 fn matcher_synthesizes_in_yosys_without_latches() {
     let t0 = Instant::now();

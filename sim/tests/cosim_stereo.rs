@@ -110,7 +110,7 @@ mod frames {
         assert!(diff.is_empty(), "{what}: {} differs from the rust-hdl model: {diff:#?}", simulator.name());
     }
 
-    /// Icarus simulates the 64-cell processor at a few clocks a second; a
+    /// Icarus simulates the 32-cell processor at a few clocks a second; a
     /// few lines with the 16 cells of the lint test keep it to a minute.
     /// (The lines have more declivities than 16 cells hold: `lines_full`
     /// counts them, and the Verilog must count them alike.)
