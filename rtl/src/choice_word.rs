@@ -31,7 +31,7 @@ pub struct ChoiceWord {
     pub group: Signal<In, Bits<ROW_GROUP_BITS>>,
     pub word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
     // A small array's groups: phase k's bits shifted into group 0 or 1.
-    packed: Constant<Bit>,
+    small_array: Constant<Bit>,
     in_g1: [Constant<Bit>; ROWS_PER_CELL],
     shift: [Constant<Bits<8>>; ROWS_PER_CELL],
     g0: Signal<Local, Bits<CHOICE_WORD_BITS>>,
@@ -58,7 +58,7 @@ impl ChoiceWord {
             w7: Default::default(),
             group: Default::default(),
             word: Default::default(),
-            packed: Constant::new(packed),
+            small_array: Constant::new(packed),
             in_g1: core::array::from_fn(|k| Constant::new(first_row(k) / CELLS_PER_CHOICE_WORD == 1)),
             shift: core::array::from_fn(|k| Constant::new(((2 * (first_row(k) % CELLS_PER_CHOICE_WORD)) as u64).into())),
             g0: Default::default(),
@@ -120,7 +120,7 @@ impl Logic for ChoiceWord {
                 self.g0.next = self.g0.val() | self.phase_word[k].val();
             }
         }
-        if self.packed.val() {
+        if self.small_array.val() {
             self.word.next = self.g0.val();
             if self.group.val().get_bit(0) {
                 self.word.next = self.g1.val();

@@ -74,6 +74,7 @@
 //! cell `c` is `2c` clocks ahead of cell 0 on the same anti-diagonal, and
 //! waits that long to write with it.
 
+use crate::lut_ram::LutRam;
 use crate::params::*;
 use rust_hdl::prelude::*;
 
@@ -137,6 +138,7 @@ pub struct GainCell {
     lev_at4: Constant<Bits<8>>,
     lev_at5: Constant<Bits<8>>,
     skew_top: Constant<Bits<8>>,
+    rise_bit: Constant<Bits<8>>,
     two: Constant<Bits<8>>,
     gain_unit_per_dist: Constant<Bits<16>>,
     gain_msb: Constant<Bits<8>>,
@@ -148,12 +150,12 @@ pub struct GainCell {
     choice_node: Constant<Bits<2>>,
     choice_up: Constant<Bits<2>>,
     choice_left: Constant<Bits<2>>,
-    // The reference declivities of rows `index + k·cells`, phase k.
-    row_pos: [DFF<Bits<POS_BITS>>; ROWS_PER_CELL],
-    row_levs: [DFF<Bits<LEVELS_BITS>>; ROWS_PER_CELL],
-    row_rising: [DFF<Bit>; ROWS_PER_CELL],
-    // The reference of the column arriving next clock (a register: its
-    // select, the column's phase, goes to 75 four-way multiplexers).
+    // The reference declivities of rows `index + k·cells` at address k
+    // (phase k): the position with the polarity above it, and the levels.
+    rows_pos: LutRam<{ POS_BITS + 1 }>,
+    rows_levs: LutRam<LEVELS_BITS>,
+    // The reference of the column arriving next clock (registered: the
+    // read address, the column's phase, is a register of the array).
     sel_pos: DFF<Bits<POS_BITS>>,
     sel_levs: DFF<Bits<LEVELS_BITS>>,
     sel_rising: DFF<Bit>,
@@ -280,7 +282,7 @@ impl GainCell {
     /// `index + k·cells`.
     pub fn new(index: usize, cells: usize) -> Self {
         assert!(index < cells && cells <= N_CELLS, "cell index inside an array of at most N_CELLS");
-        assert_eq!(ROWS_PER_CELL, 4, "the row select below is written for four phases");
+        assert_eq!(ROWS_PER_CELL, crate::lut_ram::LUT_RAM_WORDS, "a row per word of the LUT RAM");
         // The skew's last entry, `skew(index) - 1` (entry e is e + 1 clocks
         // old): its word and its bit in the word.
         let entry = skew(index).max(1) - 1;
@@ -322,6 +324,7 @@ impl GainCell {
             lev_at4: k(4 * LEVEL_BITS as u64),
             lev_at5: k(5 * LEVEL_BITS as u64),
             skew_top: k(CHOICE_WORD_BITS as u64 - 2),
+            rise_bit: k(POS_BITS as u64),
             two: k(2),
             gain_unit_per_dist: k(1u64 << (GAIN_FRAC_BITS - 1)),
             gain_msb: k((GAIN_BITS - 1) as u64),
@@ -333,9 +336,8 @@ impl GainCell {
             choice_node: k(CHOICE_NODE),
             choice_up: k(CHOICE_UP),
             choice_left: k(CHOICE_LEFT),
-            row_pos: Default::default(),
-            row_levs: Default::default(),
-            row_rising: Default::default(),
+            rows_pos: Default::default(),
+            rows_levs: Default::default(),
             sel_pos: Default::default(),
             sel_levs: Default::default(),
             sel_rising: Default::default(),
@@ -454,62 +456,27 @@ impl Logic for GainCell {
         dff_setup!(
             self, clock, sel_pos, sel_levs, sel_rising, a_valid, a_ph0, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_ph0, b_ok, b_l2, b_r2, c2_valid, c2_ph0, c2_node, c2_both, c2_keep_l, c2_keep_r, c2_l, c2_r, s_valid, s_ph0, s_node, s_both, s_l, s_r, d_valid, d_ph0, d_node, d_g, e_valid, e_ph0, e_node, e_score, f_valid, f_ph0, f_node, f_best, g_valid, g_best, g_choice, p_reg, p_d1, p_d2, p_d3, up_d1, up_d2, choice_reg
         );
-        for k in 0..ROWS_PER_CELL {
-            self.row_pos[k].clock.next = self.clock.val();
-            self.row_levs[k].clock.next = self.clock.val();
-            self.row_rising[k].clock.next = self.clock.val();
-            self.row_pos[k].d.next = self.row_pos[k].q.val();
-            self.row_levs[k].d.next = self.row_levs[k].q.val();
-            self.row_rising[k].d.next = self.row_rising[k].q.val();
-        }
         for w in 0..SKEW_WORDS {
             self.skew_q[w].clock.next = self.clock.val();
         }
 
         // ---- The reference declivities, from the broadcast: the row of the
-        // phase the token brings.
-        if self.ld_en.val() {
-            if !self.ld_phase.val().get_bit(1) & !self.ld_phase.val().get_bit(0) {
-                self.row_pos[0].d.next = self.ld_pos.val();
-                self.row_levs[0].d.next = self.ld_levs.val();
-                self.row_rising[0].d.next = self.ld_rising.val();
-            }
-            if !self.ld_phase.val().get_bit(1) & self.ld_phase.val().get_bit(0) {
-                self.row_pos[1].d.next = self.ld_pos.val();
-                self.row_levs[1].d.next = self.ld_levs.val();
-                self.row_rising[1].d.next = self.ld_rising.val();
-            }
-            if self.ld_phase.val().get_bit(1) & !self.ld_phase.val().get_bit(0) {
-                self.row_pos[2].d.next = self.ld_pos.val();
-                self.row_levs[2].d.next = self.ld_levs.val();
-                self.row_rising[2].d.next = self.ld_rising.val();
-            }
-            if self.ld_phase.val().get_bit(1) & self.ld_phase.val().get_bit(0) {
-                self.row_pos[3].d.next = self.ld_pos.val();
-                self.row_levs[3].d.next = self.ld_levs.val();
-                self.row_rising[3].d.next = self.ld_rising.val();
-            }
-        }
-        // The row of the column in the slot next clock (now in the slot
-        // before): its phase's.
-        self.sel_pos.d.next = self.row_pos[0].q.val();
-        self.sel_levs.d.next = self.row_levs[0].q.val();
-        self.sel_rising.d.next = self.row_rising[0].q.val();
-        if self.c_phase_next.val().get_bit(0) {
-            self.sel_pos.d.next = self.row_pos[1].q.val();
-            self.sel_levs.d.next = self.row_levs[1].q.val();
-            self.sel_rising.d.next = self.row_rising[1].q.val();
-        }
-        if self.c_phase_next.val().get_bit(1) {
-            self.sel_pos.d.next = self.row_pos[2].q.val();
-            self.sel_levs.d.next = self.row_levs[2].q.val();
-            self.sel_rising.d.next = self.row_rising[2].q.val();
-            if self.c_phase_next.val().get_bit(0) {
-                self.sel_pos.d.next = self.row_pos[3].q.val();
-                self.sel_levs.d.next = self.row_levs[3].q.val();
-                self.sel_rising.d.next = self.row_rising[3].q.val();
-            }
-        }
+        // phase the token brings. The row of the column in the slot next
+        // clock (now in the slot before): its phase's.
+        self.rows_pos.clock.next = self.clock.val();
+        self.rows_levs.clock.next = self.clock.val();
+        self.rows_pos.write_enable.next = self.ld_en.val();
+        self.rows_levs.write_enable.next = self.ld_en.val();
+        self.rows_pos.write_address.next = self.ld_phase.val();
+        self.rows_levs.write_address.next = self.ld_phase.val();
+        self.rows_pos.write_data.next =
+            bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.ld_pos.val()).replace_bit(self.rise_bit.val().index(), self.ld_rising.val());
+        self.rows_levs.write_data.next = self.ld_levs.val();
+        self.rows_pos.read_address.next = self.c_phase_next.val();
+        self.rows_levs.read_address.next = self.c_phase_next.val();
+        self.sel_pos.d.next = self.rows_pos.read_data.val().get_bits::<POS_BITS>(0);
+        self.sel_rising.d.next = self.rows_pos.read_data.val().get_bit(self.rise_bit.val().index());
+        self.sel_levs.d.next = self.rows_levs.read_data.val();
 
         // ---- A: eq. 6 (left reference: d = X_i - X_j, 0 < d < dispmax), as
         // d - 1 = X_i + !X_j, and

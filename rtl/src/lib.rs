@@ -25,6 +25,7 @@ pub mod systolic_matcher;
 pub mod choice_word;
 pub mod traceback;
 pub mod block_ram;
+pub mod lut_ram;
 pub mod dsp_multiplier;
 pub mod record_input;
 pub mod record_memory;

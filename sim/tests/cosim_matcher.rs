@@ -65,10 +65,15 @@ fn line(dt_levels: u32, records: Vec<MatchRecord>) -> MatchLine {
 /// `n` random declivities from `x0` on, 1–20 px apart, random polarity,
 /// amplitude and neighbour levels.
 fn random_line(rng: &mut VectorRng, n: usize, x0: u32, dt_levels: u32) -> MatchLine {
+    random_line_spaced(rng, n, x0, dt_levels, 20)
+}
+
+/// [`random_line`] with declivities 1 to `max_px` px apart.
+fn random_line_spaced(rng: &mut VectorRng, n: usize, x0: u32, dt_levels: u32, max_px: u64) -> MatchLine {
     let mut pos = x0;
     let records = (0..n)
         .map(|_| {
-            pos += 16 + (rng.next() % (19 * 16)) as u32;
+            pos += 16 + (rng.next() % ((max_px - 1) * 16)) as u32;
             let lo = (rng.next() % 150) as u8;
             let hi = lo + 20 + (rng.next() % 85) as u8;
             let (from, to) = if rng.next().is_multiple_of(2) { (lo, hi) } else { (hi, lo) };
@@ -171,7 +176,8 @@ fn corner_pairs() -> Vec<(&'static str, MatchLine, MatchLine)> {
     pairs.push(("as many declivities as the array holds", full.clone(), shifted(&mut rng, &full, 5 * 16 + 3)));
     let over = random_line(&mut rng, HELD + 1, 200, 15);
     pairs.push(("one declivity more than the array holds", over.clone(), shifted(&mut rng, &over, 7 * 16)));
-    let many = random_line(&mut rng, 2 * HELD + 5, 100, 12);
+    // (Closer together: 2·HELD + 5 of them fit the position format.)
+    let many = random_line_spaced(&mut rng, 2 * HELD + 5, 100, 12, 7);
     let mut many_other = shifted(&mut rng, &many, 3 * 16 + 9);
     many_other.records.truncate(HELD + 3);
     pairs.push(("more declivities than the array holds on both sides", many, many_other));
@@ -422,7 +428,7 @@ fn matcher_synthesizes_in_yosys_without_latches() {
     let t0 = Instant::now();
     let check = sim::synth::yosys_latch_check(&design(N_CELLS, RULE), "top").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
-    assert!(check.cells > 10_000, "the matcher is not empty: {} cells", check.cells);
+    assert!(check.cells > 5_000, "the matcher is not empty: {} cells", check.cells);
     eprintln!("{} cells after proc, no latch ({:.1} s)", check.cells, t0.elapsed().as_secs_f64());
 }
 
