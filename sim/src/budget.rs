@@ -8,7 +8,7 @@
 //!
 //! Every number comes from rtl's own formulas and named constants
 //! (`marker_latency`, `line_starts`, `RECORD_FIFO_LAG`, `sweep_cycles`,
-//! `traceback_cycles`, `line_cycles`, `row_check_cycles`, `ROW_START_LAG`,
+//! `traceback_cycles`, `line_cycles`, `line_period`, `row_check_cycles`, `ROW_START_LAG`,
 //! `SEGMENT_LAG`, `PIXEL_LAG`, `MEDIAN_LAG`, `DEPTH_LAG`) and from the
 //! widths in `rtl::params`; nothing here re-derives a clock count that rtl
 //! exports. `sim/tests/budget.rs` checks the numbers against clocks
@@ -32,7 +32,7 @@
 //!   marker_latency(W')` to the row's marker;
 //! - record queue: `RECORD_FIFO_LAG` to the matcher's ports;
 //! - matcher: `TAKE_AFTER_MARKER + line_cycles(n, m, s, k, K)` to the
-//!   pair's marker;
+//!   pair's marker (see "The matcher's schedule": no traceback waits);
 //! - row check: `P` (it waits for row `y + 1`'s marker) `+ ROW_START_LAG +
 //!   c + 1` to the row's marker out, `c ≤ row_check_cycles(n_above, n,
 //!   n_below)` the engine's clocks for the row;
@@ -79,16 +79,44 @@
 //! the difference: the blanking that covers any rows of at most `N`
 //! declivities is given too.
 //!
+//! ## The matcher's schedule
+//! The traceback of a line overlaps the sweep of the next
+//! (`rtl::declivity_matcher::schedule`): the engine takes pair `L` at
+//! `take_L = max(input_done_L + TAKE_AFTER_MARKER, start_{L−1} + 1)`, its
+//! traceback starts at `start_L = max(take_L + sweep_L, start_{L−1} +
+//! traceback_{L−1} + 1)` and its marker leaves `traceback_L + OUTPUT_LAG`
+//! later. Back to back, pairs of the same work leave a marker every
+//! `line_period(n, m, s, k, K) = max(sweep_cycles(n, m, K),
+//! traceback_cycles(n, m, s, k)) + 1` clocks: the matcher's clocks per line.
+//! A pair taken by an idle engine leaves its marker `TAKE_AFTER_MARKER +
+//! line_cycles(n, m, s, k, K)` after its second marker: the matcher's
+//! latency. With rows every `P ≥ line_period` of the worst line (`S`, `T`
+//! its sweep and traceback), every row's marker is within that latency of
+//! the worst line: if `start_{L−1} ≤ input_done_{L−1} + TAKE_AFTER_MARKER +
+//! S`, then `take_L = input_done_L + TAKE_AFTER_MARKER` (as `P ≥ S + 1`) and
+//! `start_L ≤ input_done_L + TAKE_AFTER_MARKER + S` (as `P ≥ T + 1`), so no
+//! traceback waits beyond the worst line's sweep; rows of the same work
+//! take the pair exactly `TAKE_AFTER_MARKER` after its second marker and
+//! start its traceback at the end of its own sweep.
+//!
 //! ## The matcher's worst line
-//! `line_cycles(n, m, s, k, K)` is `sweep_cycles(n, m, K)` =
-//! `2·(n + m) + [n > K] + ENGINE_LAG − 3`, plus `traceback_cycles(n, m, s, k)`
-//! = `WALK_LEAD + 1 + (n + m − 2 − s) + (k + 2)` (1 for `k = 0`), plus 3:
-//! every term grows with `n`, `m` and the matches `k` and falls with the
-//! anti-diagonal `s` on which the path stops. With `n, m ≤ N`, `k ≤ min(n, m)`
-//! and `s ≥ 0`, all bounds are reached at once by one path, the one that
-//! takes every diagonal pair `(i, i)` from `(N−1, N−1)` down to `(0, 0)`
-//! (and stops there, `s = 0`): so the worst line is
-//! `line_cycles(N, N, 0, N, K)`. (In general the stop and the pairs trade
+//! `line_cycles(n, m, s, k, K)` is `sweep_cycles(n, m, K)`, plus
+//! `traceback_cycles(n, m, s, k)` = `WALK_LEAD + 1 + (n + m − 2 − s) + (k +
+//! 2)` (1 for `k = 0`), plus `OUTPUT_LAG`. The sweep has two cases
+//! ([`SWEEP_FORMULA`]): a line of `n ≤ 2·K` reference declivities takes two
+//! phases, an anti-diagonal every 2 clocks, `2·(n + m) + [n > K] +
+//! ENGINE_LAG − 3`; a longer one four, an anti-diagonal every 4 clocks,
+//! `4·m + (p − 1)·(2·K + 1) + max(4·c + 2·K + 1, 4·(K − 1)) + ENGINE_LAG −
+//! 3` with the last row `n − 1 = c + p·K` (cell `c`, phase `p`). Both
+//! `sweep_cycles` (across the two cases too: the unit tests check every `n,
+//! m ≤ 4·K` for every array size) and `traceback_cycles` are non-decreasing
+//! in `n`, `m` and the matches `k` and non-increasing in the anti-diagonal
+//! `s` on which the path stops, so `line_cycles` and `line_period` are too.
+//! With `n, m ≤ N`, `k ≤ min(n, m)` and `s ≥ 0`, all bounds are reached at
+//! once by one path, the one that takes every diagonal pair `(i, i)` from
+//! `(N−1, N−1)` down to `(0, 0)` (and stops there, `s = 0`): so the worst
+//! line is `(N, N, 0, N)`, for the latency (`line_cycles`) and the clocks
+//! per line (`line_period`) alike. (In general the stop and the pairs trade
 //! off — a node moves the walk down two anti-diagonals, so `k` pairs need
 //! `s ≤ n + m − 2k` — but `s = 0` with `k = N = n = m` meets that bound, so
 //! the trade-off does not bind at the worst; the unit tests search every
@@ -102,7 +130,7 @@
 use rtl::adaptive_threshold::THRESHOLD_LATENCY;
 use rtl::block_ram::{DP16KD_ADDR_BITS, DP16KD_WIDTH};
 use rtl::declivity_detector::{line_starts, MIN_LINE_PERIOD};
-use rtl::declivity_matcher::{line_cycles, sweep_cycles, ENGINE_LAG, OUTPUT_LAG, TAKE_AFTER_MARKER};
+use rtl::declivity_matcher::{line_cycles, line_period, sweep_cycles, ENGINE_LAG, TAKE_AFTER_MARKER};
 use rtl::depth_stage::DEPTH_LAG;
 use rtl::interpolator::{LINE_BITS, LINE_QUEUE, PIXEL_LAG, SEGMENT_BITS, SEGMENT_LAG};
 use rtl::params::{
@@ -115,6 +143,8 @@ use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
 use rtl::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
 use rtl::skid_buffer::SKID_LAG;
 use rtl::stereo_line_processor::{CHECK_REGISTER_LAG, INTERP_REGISTER_LAG, MEDIAN_REGISTER_LAG};
+use rtl::record_memory::COPY_ADDR_BITS;
+use rtl::systolic_matcher::CHOICE_ADDR_BITS;
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
 use rtl::vertical_median::MEDIAN_LAG;
 use serde::Serialize;
@@ -270,6 +300,8 @@ pub const HISTOGRAM: &str = "|ΔI| histogram";
 pub const RECORD_QUEUE: &str = "record queue";
 /// The matcher's record memories.
 pub const RECORD_MEMORY: &str = "record memory";
+/// The copy of the record memories' positions the traceback reads.
+pub const POSITION_COPY: &str = "position copy";
 /// The matcher's choice memory.
 pub const CHOICE_MEMORY: &str = "choice memory";
 /// The row check's memories of matches.
@@ -532,29 +564,18 @@ pub fn detector_cycles_per_line(width: usize) -> u64 {
     starts.windows(2).skip(WARM_UP_LINES).map(|w| w[1] - w[0]).max().unwrap_or(width as u64)
 }
 
-/// The clock on which the engine can take the next pair, counted back from
-/// its marker: the engine takes it the clock after the traceback ends, and
-/// the marker leaves OUTPUT_LAG output registers after that end
-/// (`rtl::declivity_matcher`, "Timing"; `sim::matcher::match_lines` takes
-/// the same).
-pub const MARKER_AFTER_NEXT_TAKE: usize = OUTPUT_LAG - 1;
-
-/// Clocks the matcher's engine is busy with a line pair of `n` reference
-/// and `m` other declivities whose path stops on anti-diagonal `stop_diag`
-/// with `k` pairs, on `cells` cells: from taking it to taking the next
-/// (back to back, the next pair loaded meanwhile), `line_cycles − 2`.
-pub const fn matcher_cycles_per_line(n: usize, m: usize, stop_diag: usize, k: usize, cells: usize) -> usize {
-    line_cycles(n, m, stop_diag, k, cells) - MARKER_AFTER_NEXT_TAKE
-}
-
 /// The matcher's worst line for `n` declivities per side on `cells` cells:
 /// `(n, m, stop_diag, k)` = `(N, N, 0, N)` (see the module's doc).
 pub const fn worst_matcher_line(n: usize) -> (usize, usize, usize, usize) {
     (n, n, 0, n)
 }
 
-/// `rtl::declivity_matcher::sweep_cycles` as text.
-pub const SWEEP_FORMULA: &str = "sweep_cycles(n, m, K) = 2·(n + m) + [n > K] + ENGINE_LAG − 3";
+/// `rtl::declivity_matcher::sweep_cycles` as text: two phases for `n ≤
+/// 2·K`, four for longer lines.
+pub const SWEEP_FORMULA: &str = "sweep_cycles(n, m, K) = 2·(n + m) + [n > K] + ENGINE_LAG − 3 for n ≤ 2·K (two phases, an anti-diagonal every 2 clocks); 4·m + (p − 1)·(2·K + 1) + max(4·c + 2·K + 1, 4·(K − 1)) + ENGINE_LAG − 3 for n > 2·K (four phases, every 4 clocks; the last row n − 1 = c + p·K is cell c's of phase p)";
+/// `rtl::declivity_matcher::line_period` as text: the matcher's clocks per
+/// line, back to back.
+pub const LINE_PERIOD_FORMULA: &str = "line_period(n, m, s, k, K) = max(sweep_cycles(n, m, K), traceback_cycles(n, m, s, k)) + 1";
 /// `rtl::traceback::traceback_cycles` as text (`k > 0`).
 pub const TRACEBACK_FORMULA: &str = "traceback_cycles(n, m, s, k) = WALK_LEAD + 1 + (n + m − 2 − s) + (k + 2)";
 
@@ -632,13 +653,13 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
     let (n, m, stop, k) = (l.n, l.m, l.stop_diag, l.k);
     let args = s.line_args();
     let nm_args = if s.worst { "N, N".to_string() } else { format!("{n}, {m}") };
-    let (cycles, formula) = render(&[
-        Term::new(format!("sweep_cycles({nm_args}, K)"), sweep_cycles(n, m, s.cells)),
-        Term::new(format!("traceback_cycles({args})"), traceback_cycles(n, m, stop, k)),
-        Term::new("OUTPUT_LAG output registers", line_cycles(n, m, stop, k, s.cells) - sweep_cycles(n, m, s.cells) - traceback_cycles(n, m, stop, k)),
-        Term::minus("(OUTPUT_LAG − 1) (the next pair is taken the clock after the traceback ends)", MARKER_AFTER_NEXT_TAKE),
-    ]);
-    debug_assert_eq!(cycles, matcher_cycles_per_line(n, m, stop, k, s.cells) as u64);
+    // Back to back, the traceback of a line overlaps the sweep of the next
+    // (module doc, "The matcher's schedule").
+    let (sweep, walk) = (sweep_cycles(n, m, s.cells), traceback_cycles(n, m, stop, k));
+    let cycles = line_period(n, m, stop, k, s.cells) as u64;
+    let formula = format!(
+        "max(sweep_cycles({nm_args}, K), traceback_cycles({args})) + 1 (line_period: the engine takes the next pair the clock after this one's traceback starts, and starts the next traceback once that pair's sweep and this traceback are over) = max({sweep}, {walk}) + 1"
+    );
     let latency_terms = vec![
         Term::new("TAKE_AFTER_MARKER", TAKE_AFTER_MARKER as usize),
         Term::new(format!("line_cycles({args}, K)"), line_cycles(n, m, stop, k, s.cells)),
@@ -656,17 +677,27 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
                 (1 << DIAG_BITS) / 2,
                 record_bits,
                 Some(2 * record_rams),
-                "RecordMemory::pos_mem, lev_mem[0..5] (position and polarity, six levels), one per view",
+                "RecordMemory::pos_mem, lev_mem[0..5] (position and polarity, six levels; two lines: the one loading, the one sweeping), one per view",
+            ),
+            Memory::new(
+                NAME,
+                POSITION_COPY,
+                2,
+                1 << (COPY_ADDR_BITS - INDEX_BITS),
+                1 << INDEX_BITS,
+                POS_BITS,
+                Some(2 * dp16kd_of(POS_BITS, 1 << COPY_ADDR_BITS)),
+                "RecordMemory::pos_copy (the positions of four lines: the traceback reads a line's while the next sweeps and the one after loads), one per view",
             ),
             Memory::new(
                 NAME,
                 CHOICE_MEMORY,
                 1,
-                2,
+                1 << (CHOICE_ADDR_BITS - DIAG_BITS),
                 1 << DIAG_BITS,
                 CHOICE_WORDS * CHOICE_WORD_BITS,
-                Some(2 * CHOICE_WORDS * dp16kd_of(CHOICE_WORD_BITS, 1 << DIAG_BITS)),
-                "SystolicMatcher::lo_ram, hi_ram (low, high rows), one word of 2-bit choices per anti-diagonal",
+                Some(CHOICE_WORDS * dp16kd_of(CHOICE_WORD_BITS, 1 << CHOICE_ADDR_BITS)),
+                "SystolicMatcher::ram[0..8] (one per row group of 16 rows: its 2-bit choices of an anti-diagonal in a word), two banks: the traceback of a line reads one while the next line's sweep writes the other",
             ),
             Memory::new(NAME, "traceback stack", 1, 1, 1 << INDEX_BITS, 2 * INDEX_BITS, None, "Traceback::stack_i, stack_j"),
         ])
@@ -787,6 +818,8 @@ pub struct Resources {
     /// Reference declivities per cell.
     pub rows_per_cell: usize,
     pub choice_memory_bits: usize,
+    /// The record memories' bits, their position copies' included (all of
+    /// `rtl::record_memory::RecordMemory`'s RAMs).
     pub record_memory_bits: usize,
     /// The record queues' bits (both cameras).
     pub record_queue_bits: usize,
@@ -818,7 +851,7 @@ impl Resources {
             pe_count: stages.iter().filter_map(|s| s.pe_count).sum(),
             rows_per_cell: stages.iter().filter_map(|s| s.rows_per_pe).max().unwrap_or(0),
             choice_memory_bits: sum(CHOICE_MEMORY, |m| m.bits),
-            record_memory_bits: sum(RECORD_MEMORY, |m| m.bits),
+            record_memory_bits: sum(RECORD_MEMORY, |m| m.bits) + sum(POSITION_COPY, |m| m.bits),
             record_queue_bits: sum(RECORD_QUEUE, |m| m.bits),
             row_memory_bits: sum(ROW_MEMORY, |m| m.bits),
             median_line_buffers: sum(MEDIAN_LINE_BUFFER, |m| m.copies * m.banks),
@@ -1098,7 +1131,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     if sizes.worst {
         let (n, _, stop, k) = worst_matcher_line(r.n_max);
         notes.push(format!(
-            "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles grows with n, m and k and falls with the stop diagonal; the path of every diagonal pair reaches all bounds at once); its k = N matches checked against rows of N: row_check_cycles(N, N, N) = {} inside the frame, row_check_cycles(0, N, N) = {} for the first row, row_check_cycles(N, N, 0) = {} for the last — bounds, loose on real rows (about n + 7 clocks, rtl::row_check)",
+            "the matcher's worst line: n = m = N = {n} declivities, a path of k = {k} pairs stopping on anti-diagonal {stop} (line_cycles and line_period grow with n, m and k and fall with the stop diagonal; the path of every diagonal pair reaches all bounds at once); its k = N matches checked against rows of N: row_check_cycles(N, N, N) = {} inside the frame, row_check_cycles(0, N, N) = {} for the first row, row_check_cycles(N, N, 0) = {} for the last — bounds, loose on real rows (about n + 7 clocks, rtl::row_check)",
             load.check, load.first_check, load.last_check
         ));
     } else {
@@ -1107,7 +1140,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
             load.n, load.m, load.stop_diag, load.k, load.check, load.first_check, load.last_check
         ));
     }
-    notes.push(format!("{SWEEP_FORMULA} with ENGINE_LAG = {ENGINE_LAG}; {TRACEBACK_FORMULA} with WALK_LEAD = {WALK_LEAD}"));
+    notes.push(format!("{SWEEP_FORMULA}, with ENGINE_LAG = {ENGINE_LAG}; {TRACEBACK_FORMULA}, with WALK_LEAD = {WALK_LEAD}; {LINE_PERIOD_FORMULA} (the matcher's clocks per line: the traceback of a line overlaps the sweep of the next), its latency TAKE_AFTER_MARKER + line_cycles"));
     notes.push(format!(
         "dispmax = {} px changes no clock count: eq. 6 only removes nodes, the sweep covers the whole table",
         r.dispmax
@@ -1118,7 +1151,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
         lines(vblank_lines_any_rows)
     ));
     notes.push(format!(
-        "latencies with the stages idle, as they are when the line period holds, each stage's output wired to the next; memory sizes are those the blocks are generated with (W_MAX = {W_MAX}, N_MAX = {N_MAX}, choice words of {CELLS_PER_CHOICE_WORD} cells for N_CELLS = {N_CELLS}), whatever W, N and --cells"
+        "latencies with the stages idle, as they are when the line period holds, each stage's output wired to the next; memory sizes are those the blocks are generated with (W_MAX = {W_MAX}, N_MAX = {N_MAX}, N_CELLS = {N_CELLS} gain cells of ROWS_PER_CELL = {ROWS_PER_CELL} rows, choice words of {CELLS_PER_CHOICE_WORD} rows' choices), whatever W, N and --cells"
     ));
     Ok(Budget {
         width: r.width,
@@ -1293,25 +1326,27 @@ mod tests {
         BudgetRequest { cells, ..BudgetRequest::new(width, 100, n, 64.0, 125.0) }
     }
 
-    /// Over every feasible `(n, m, stop, k)` of small lines, and over every
-    /// `(n, m, k)` with the stop on anti-diagonal 0 at the sensor's size, no
-    /// line costs the matcher more than the budget's worst.
+    /// Over every feasible `(n, m, stop, k)` of small lines (two phases and
+    /// four), and over every `(n, m, k)` with the stop on anti-diagonal 0 at
+    /// the sensor's size, no line costs the matcher more than the budget's
+    /// worst: neither alone (`line_cycles`, the latency) nor back to back
+    /// (`line_period`, the clocks per line).
     #[test]
-    fn the_worst_matcher_line_is_the_largest_line_cycles() {
-        for (big, cells) in [(12, 8), (16, 8), (6, 4), (N_MAX, N_CELLS)] {
+    fn the_worst_matcher_line_is_the_largest_line_cycles_and_line_period() {
+        for (big, cells) in [(12, 4), (16, 4), (8, 2), (6, 2), (32, 8), (24, 8), (N_MAX, N_CELLS)] {
             let (wn, wm, ws, wk) = worst_matcher_line(big);
-            let worst = matcher_cycles_per_line(wn, wm, ws, wk, cells);
+            let worst = (line_cycles(wn, wm, ws, wk, cells), line_period(wn, wm, ws, wk, cells));
             for n in 0..=big {
                 for m in 0..=big {
-                    let stops = if big <= 16 { n + m } else { 1 };
+                    let stops = if big <= 32 { n + m } else { 1 };
                     for stop in 0..stops.max(1) {
                         for k in 0..=n.min(m) {
                             // k pairs take 2k anti-diagonals of the n + m - 1 above the stop.
                             if n > 0 && m > 0 && stop + 2 * k > n + m {
                                 continue;
                             }
-                            let c = matcher_cycles_per_line(n, m, stop, k, cells);
-                            assert!(c <= worst, "n {n} m {m} stop {stop} k {k} cells {cells}: {c} > {worst}");
+                            let c = (line_cycles(n, m, stop, k, cells), line_period(n, m, stop, k, cells));
+                            assert!(c.0 <= worst.0 && c.1 <= worst.1, "n {n} m {m} stop {stop} k {k} cells {cells}: {c:?} > {worst:?}");
                         }
                     }
                 }
@@ -1319,22 +1354,61 @@ mod tests {
         }
     }
 
-    /// The formulas printed as text are rtl's (a guard against the text
-    /// going stale when rtl's change).
+    /// `sweep_cycles` never falls as a line grows, on either side, across
+    /// the switch from two phases to four included, for every array the
+    /// matcher is generated with and every line it holds.
     #[test]
-    fn the_printed_formulas_are_rtls() {
-        for n in 1..=N_MAX {
-            for m in 1..=N_MAX {
-                for cells in [8, N_CELLS] {
-                    assert_eq!(sweep_cycles(n, m, cells), 2 * (n + m) + (n > cells) as usize + ENGINE_LAG - 3, "{SWEEP_FORMULA}");
-                }
-                for (s, k) in [(0, 1), (0, n.min(m)), (n + m - 2, 1), (1, 0)] {
-                    if k > 0 {
-                        assert_eq!(traceback_cycles(n, m, s, k), WALK_LEAD + 1 + (n + m - 2 - s) + (k + 2), "{TRACEBACK_FORMULA}");
+    fn sweep_cycles_is_non_decreasing_in_n_and_m() {
+        for cells in MATCHER_CELLS {
+            let rows = ROWS_PER_CELL * cells;
+            for n in 0..=rows {
+                for m in 0..=rows {
+                    let c = sweep_cycles(n, m, cells);
+                    if n < rows {
+                        assert!(sweep_cycles(n + 1, m, cells) >= c, "cells {cells}: n {n} → {} at m {m}", n + 1);
+                    }
+                    if m < rows {
+                        assert!(sweep_cycles(n, m + 1, cells) >= c, "cells {cells}: m {m} → {} at n {n}", m + 1);
                     }
                 }
             }
         }
+    }
+
+    /// `SWEEP_FORMULA` as its text reads, for `n ≤ 4·K`.
+    fn sweep_as_printed(n: usize, m: usize, k: usize) -> usize {
+        if n <= 2 * k {
+            2 * (n + m) + (n > k) as usize + ENGINE_LAG - 3
+        } else {
+            let (p, c) = ((n - 1) / k, (n - 1) % k);
+            4 * m + (p - 1) * (2 * k + 1) + (4 * c + 2 * k + 1).max(4 * (k - 1)) + ENGINE_LAG - 3
+        }
+    }
+
+    /// The formulas printed as text are rtl's (a guard against the text
+    /// going stale when rtl's change).
+    #[test]
+    fn the_printed_formulas_are_rtls() {
+        for cells in MATCHER_CELLS {
+            let rows = ROWS_PER_CELL * cells;
+            for n in 1..=rows {
+                for m in 1..=rows {
+                    assert_eq!(sweep_cycles(n, m, cells), sweep_as_printed(n, m, cells), "n {n} m {m} K {cells}: {SWEEP_FORMULA}");
+                    for (s, k) in [(0, 1), (0, n.min(m)), (n + m - 2, 1), (1, 0)] {
+                        let walk = traceback_cycles(n, m, s, k);
+                        if k > 0 {
+                            assert_eq!(walk, WALK_LEAD + 1 + (n + m - 2 - s) + (k + 2), "{TRACEBACK_FORMULA}");
+                        }
+                        assert_eq!(line_period(n, m, s, k, cells), sweep_cycles(n, m, cells).max(walk) + 1, "{LINE_PERIOD_FORMULA}");
+                        assert_eq!(line_cycles(n, m, s, k, cells), sweep_cycles(n, m, cells) + walk + rtl::declivity_matcher::OUTPUT_LAG);
+                    }
+                }
+            }
+        }
+        // The sensor's worst line sweeps with four phases, the switch at
+        // 2·K rows as the text says.
+        assert_eq!(sweep_cycles(2 * N_CELLS, 1, N_CELLS), 2 * (2 * N_CELLS + 1) + 1 + ENGINE_LAG - 3);
+        assert!(sweep_cycles(N_MAX, N_MAX, N_CELLS) > 4 * N_MAX);
     }
 
     #[test]
@@ -1354,9 +1428,15 @@ mod tests {
         }
     }
 
-    /// The value part of a rendered formula (`a + b − c = 1 + 2 − 3`).
+    /// The value part of a rendered formula (`a + b − c = 1 + 2 − 3`, a
+    /// `max(1, 2)` among the values taken as its larger).
     fn sum_of(f: &str) -> i64 {
-        let values = f.rsplit(" = ").next().unwrap();
+        let mut values = f.rsplit(" = ").next().unwrap().to_string();
+        while let Some(at) = values.find("max(") {
+            let end = at + values[at..].find(')').unwrap();
+            let larger = values[at + 4..end].split(", ").map(|v| v.parse::<i64>().unwrap()).max().unwrap();
+            values.replace_range(at..=end, &larger.to_string());
+        }
         let mut total = 0i64;
         let mut sign = 1;
         for tok in values.split_whitespace() {
@@ -1438,16 +1518,17 @@ mod tests {
 
     #[test]
     fn bad_requests_are_refused_with_their_reason() {
-        let ok = request(512, 64, 32);
+        let ok = request(512, 64, N_CELLS);
         assert!(budget(&ok).is_ok());
-        let cases: [(BudgetRequest, fn(&BudgetError) -> bool); 10] = [
+        let cases: [(BudgetRequest, fn(&BudgetError) -> bool); 11] = [
             (BudgetRequest { width: 0, ..ok }, |e| matches!(e, BudgetError::ZeroWidth)),
             (BudgetRequest { height: 0, ..ok }, |e| matches!(e, BudgetError::ZeroHeight)),
             (BudgetRequest { height: MIN_HEIGHT - 1, ..ok }, |e| matches!(e, BudgetError::TooFewRows { height: 3 })),
             (BudgetRequest { n_max: 0, ..ok }, |e| matches!(e, BudgetError::NoDeclivities)),
-            (BudgetRequest { n_max: N_MAX + 1, cells: 64, ..ok }, |e| matches!(e, BudgetError::TooManyDeclivities { .. })),
+            (BudgetRequest { n_max: N_MAX + 1, ..ok }, |e| matches!(e, BudgetError::TooManyDeclivities { .. })),
             (BudgetRequest { cells: 5, ..ok }, |e| matches!(e, BudgetError::UnsupportedCells { cells: 5 })),
-            (BudgetRequest { n_max: 65, ..ok }, |e| matches!(e, BudgetError::TooFewCells { need: 33, .. })),
+            (BudgetRequest { cells: 2 * N_CELLS, ..ok }, |e| matches!(e, BudgetError::UnsupportedCells { cells: 64 })),
+            (BudgetRequest { n_max: 65, cells: 16, ..ok }, |e| matches!(e, BudgetError::TooFewCells { rows: 64, need: 17, .. })),
             (BudgetRequest { clock_mhz: 0.0, ..ok }, |e| matches!(e, BudgetError::Clock { .. })),
             (BudgetRequest { clock_mhz: f64::NAN, ..ok }, |e| matches!(e, BudgetError::Clock { .. })),
             (BudgetRequest { dispmax: 1.0, ..ok }, |e| matches!(e, BudgetError::Dispmax { .. })),

@@ -79,7 +79,7 @@ critical path, or one JSON object with --json. Takes a few minutes for the detec
     #[command(long_about = "Latency budget of the hardware line processor (DESIGN.md section 3, \
 rtl::stereo_line_processor), from the rtl blocks' own cycle formulas and named constants \
 (rtl::declivity_detector::marker_latency and line_starts, rtl::record_fifo::RECORD_FIFO_LAG, \
-rtl::declivity_matcher::line_cycles, sweep_cycles, rtl::traceback::traceback_cycles, \
+rtl::declivity_matcher::line_cycles, line_period, sweep_cycles, rtl::traceback::traceback_cycles, \
 rtl::row_check::row_check_cycles and ROW_START_LAG, the interpolator's SEGMENT_LAG and PIXEL_LAG, \
 MEDIAN_LAG, DEPTH_LAG), which the tests check against clocks measured by simulating the blocks and \
 the whole line processor.
@@ -87,9 +87,13 @@ the whole line processor.
 Per stage, in pipeline order (the two declivity detectors, the two record queues, the matcher, the \
 row check, the interpolator, the vertical median, the depth stage): its clocks per line for the worst \
 line, as a formula with its values. The detector takes W clocks per line (one pixel per clock) from \
-W >= MIN_LINE_PERIOD = 283 on; the matcher's worst line has n = m = N declivities and a path of \
-k = N pairs stopping on anti-diagonal 0, which maximises line_cycles (every term grows with n, m, k \
-and falls with the stop diagonal); the row check's worst row is row_check_cycles(N, N, N), a bound. \
+W >= MIN_LINE_PERIOD = 283 on; the matcher (N_CELLS = 32 gain cells of up to four reference \
+declivities, --cells K) takes line_period = max(sweep_cycles, traceback_cycles) + 1 clocks per line \
+back to back (the traceback of a line overlaps the sweep of the next; the sweep takes an \
+anti-diagonal every 2 clocks for n <= 2 K, every 4 for longer lines) and TAKE_AFTER_MARKER + \
+line_cycles from a pair's second marker to its marker; its worst line has n = m = N declivities and \
+a path of k = N pairs stopping on anti-diagonal 0, which maximises both (every term grows with n, m, \
+k and falls with the stop diagonal); the row check's worst row is row_check_cycles(N, N, N), a bound. \
 Then: the line period P = max(W + hblank, slowest stage), and if a stage is slower than the input, \
 by how much per line and the least hblank that paces the input to it (the detector holds the input; \
 behind a slower matcher the record queues fill and then drop records); the latency of a scanline, \
@@ -98,7 +102,8 @@ it: the row check waits for the row below, the vertical median for the two rows 
 end (first to last disparity out, the flush after the last pixel in) and the vertical blanking the \
 median's flush of the last two rows needs; the frame time, (H + vertical blanking) x P / clock, and \
 frames per second; the resources as the rtl blocks declare them (line buffers, |dI| histogram banks, \
-record queues, gain cells (PEs) and rows per cell, record, choice and traceback memories, the row \
+record queues, gain cells (PEs) and rows per cell, the record memories and their position copies, \
+the choice memory (two banks) and the traceback stack, the row \
 check's memories, the interpolator's segment memory, reciprocal table and line queue, the median's \
 line buffers, the depth table, in bits, with the DP16KD block RAMs the blocks instantiate, and the \
 DSP blocks; generation-time sizes for W_MAX = 1024, N_MAX = 128). --json prints the same as one \
@@ -120,7 +125,7 @@ struct BudgetArgs {
     #[arg(long)]
     height: usize,
     /// Characteristic declivities per line N to budget the matcher for, on both views: 1 to N_MAX
-    /// = 128 (the detector keeps at most 128; at most 2 per gain cell).
+    /// = 128 (the detector keeps at most 128; at most 4 per gain cell, so N <= 4 K).
     #[arg(long)]
     n_max: usize,
     /// Search bound of eq. 6 in px (greater than 1, at most W_MAX = 1024, a multiple of 1/16).
@@ -134,8 +139,8 @@ struct BudgetArgs {
     /// W + hblank sets the line period: the input must be paced to it.
     #[arg(long, default_value_t = 0)]
     hblank: usize,
-    /// Gain cells of the matcher's systolic array K (2, 4, 8, 16, 32 or 64 = N_CELLS, the
-    /// sensor's; each holds two reference declivities, so N <= 2 K).
+    /// Gain cells of the matcher's systolic array K (2, 4, 8, 16 or 32 = N_CELLS, the
+    /// sensor's; each holds up to four reference declivities, so N <= 4 K).
     #[arg(long, default_value_t = rtl::params::N_CELLS)]
     cells: usize,
     /// Print one JSON object instead of text.
@@ -158,7 +163,7 @@ the image) into --out, and with --vcd a waveform of the clocks during which --li
     /// Run the rows of a stereo pair through the rtl declivity matcher and compare with golden.
     #[command(long_about = "Run the rows of a rectified stereo pair (8-bit grey; colour is converted \
 with ITU-R 601 luma) through the cycle-accurate declivity matcher (rtl::declivity_matcher: a \
-systolic array of N_CELLS = 64 gain cells, each holding two of the N_MAX = 128 reference \
+systolic array of N_CELLS = 32 gain cells, each holding up to four of the N_MAX = 128 reference \
 declivities, and its traceback, left view as reference) and compare \
 every line with golden's matcher (eq. 4-9).
 
@@ -175,8 +180,11 @@ Prints, or with --json as one JSON object: image (the left image), rule, dispmax
 matches_golden (pairs matched over all lines), identical_lines (the same pairs as golden), \
 equal_gain_lines (other pairs with golden's optimal gain: a tie broken otherwise), mismatch_lines \
 (neither: a bug), malformed_lines (outputs inconsistent with the inputs or with golden: \
-positions, counts, a path gain other than golden's optimum), max_cycles_per_line (most clocks the engine spent on one \
-line pair, from taking it to its marker) and max_cycles_line (that image row), cycles (clocks \
+positions, counts, a path gain other than golden's optimum), off_schedule_lines (lines whose marker left on \
+another clock than rtl::declivity_matcher::schedule gives: a bug), max_cycles_per_line (most clocks the engine spent on one \
+line pair, from taking it to its marker) and max_cycles_line (that image row), max_engine_period (most clocks a \
+line pair kept the engine from taking the next, from its take to the clock after its traceback starts: the \
+traceback of a line overlaps the sweep of the next), cycles (clocks \
 simulated, summed over the matchers), sim_cycles_per_s (clocks simulated per second of wall \
 time), rows ([first, end) of the rows run), seconds (wall time of the simulation) and graph (the \
 picture). Writes into --out graph_rtl_line_Y.png: the matching graph of row Y (fig. 4) with \
@@ -185,7 +193,7 @@ golden's gains, golden's optimal path as green rings and the rtl path as orange 
     /// Run a stereo pair through the whole rtl line processor, clock by clock.
     #[command(long_about = "Run a rectified stereo pair (8-bit grey; colour is converted with ITU-R \
 601 luma) through the cycle-accurate line processor (rtl::stereo_line_processor: two declivity \
-detectors, a record queue per side, the matcher of N_CELLS = 64 cells in the default gain rule, \
+detectors, a record queue per side, the matcher of N_CELLS = 32 cells in the default gain rule, \
 the row check against the neighbouring rows, the interpolator with the default mode's edge jump, \
 the vertical median of five rows, the depth stage for the default camera), the two cameras \
 streaming one pixel per clock from the same clock with --hblank idle clocks after each line, and \
@@ -246,7 +254,7 @@ struct RtlDepthArgs {
     engine: sim::stereo::Engine,
     /// Write a VCD waveform of every signal of the line processor (a clock of 10 ns) while the
     /// rows given by --lines go through it: from the first pixel of the first row in to the last
-    /// disparity of the last row out (rust-hdl engine, which then runs about ten times slower; with the 64-cell matcher a line of 384 px makes about a hundred megabytes).
+    /// disparity of the last row out (rust-hdl engine, which then runs about ten times slower; a line of 384 px made about a hundred megabytes with the former 64-cell matcher).
     #[arg(long, requires = "lines")]
     vcd: Option<PathBuf>,
     /// Rows of the frame (of the band, with --rows) to trace in the VCD, as A..B (rows A to B-1).
@@ -295,7 +303,7 @@ struct VerilogArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
-    /// Cells of the matcher's systolic array (2, 4, 8, 16, 32 or 64 = N_CELLS; each holds two
+    /// Cells of the matcher's systolic array (2, 4, 8, 16 or 32 = N_CELLS; each holds up to four
     /// reference declivities; --top matcher and stereo only).
     #[arg(long, default_value_t = rtl::params::N_CELLS)]
     cells: usize,
@@ -312,7 +320,7 @@ struct SynthArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: sim::verilog::Top,
-    /// Cells of the matcher's systolic array (2, 4, 8, 16, 32 or 64 = N_CELLS; each holds two
+    /// Cells of the matcher's systolic array (2, 4, 8, 16 or 32 = N_CELLS; each holds up to four
     /// reference declivities; --top matcher and stereo only).
     #[arg(long, default_value_t = rtl::params::N_CELLS)]
     cells: usize,
@@ -853,7 +861,9 @@ fn rtl_match(a: RtlMatchArgs) -> Result<(), SimError> {
         println!("  equal-gain lines    {} (other pairs, golden's optimal gain)", r.equal_gain_lines);
         println!("  mismatch lines      {}", r.mismatch_lines);
         println!("  malformed lines     {}", r.malformed_lines);
+        println!("  off-schedule lines  {}", r.off_schedule_lines);
         println!("  max clocks per line {} (row {})", r.max_cycles_per_line, r.max_cycles_line);
+        println!("  max engine period   {} (a pair's take → the clock after its traceback starts)", r.max_engine_period);
         println!("  simulation          {} clocks in {seconds:.1} s, {:.0} clocks/s", r.cycles, r.sim_cycles_per_s);
         let verdict = match line.agreement {
             Agreement::Identical => "identical",

@@ -9,9 +9,9 @@ pub enum Top {
     /// The declivity detector of one camera (`rtl::declivity_detector`).
     Detector,
     /// The matcher: systolic array of gain cells and traceback
-    /// (`rtl::declivity_matcher`), N_CELLS = 64 cells holding N_MAX = 128
-    /// reference declivities unless --cells says otherwise, the default gain
-    /// rule (robust).
+    /// (`rtl::declivity_matcher`), N_CELLS = 32 cells of four rows holding
+    /// N_MAX = 128 reference declivities unless --cells says otherwise, the
+    /// default gain rule (robust).
     Matcher,
     /// The interpolator (`rtl::interpolator`): a line's matches in, one
     /// disparity per pixel per clock out, the default mode's edge jump.
@@ -35,8 +35,11 @@ impl Top {
     }
 }
 
-/// The array sizes the matcher can be generated with (`--cells`).
-pub const MATCHER_CELLS: [usize; 6] = [2, 4, 8, 16, 32, 64];
+/// The array sizes the matcher can be generated with (`--cells`): up to
+/// the sensor's `N_CELLS` = 32 cells of four rows, arrays of fewer than 16
+/// cells dividing 16 (their phases share a word of the choice memory,
+/// `rtl::choice_word`).
+pub const MATCHER_CELLS: [usize; 5] = [2, 4, 8, 16, 32];
 
 /// The Verilog of `top` (the matcher with `N_CELLS` cells, `N_MAX` rows,
 /// and the default gain rule); its top module is named `top`.
@@ -64,7 +67,6 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
             8 => Some(stereo_verilog::<8>(rule)),
             16 => Some(stereo_verilog::<16>(rule)),
             32 => Some(stereo_verilog::<32>(rule)),
-            64 => Some(stereo_verilog::<64>(rule)),
             _ => None,
         },
         Top::Matcher => match cells {
@@ -73,7 +75,6 @@ pub fn generate_with(top: Top, cells: usize, rule: GainRule) -> Option<String> {
             8 => Some(matcher_verilog::<8>(rule)),
             16 => Some(matcher_verilog::<16>(rule)),
             32 => Some(matcher_verilog::<32>(rule)),
-            64 => Some(matcher_verilog::<64>(rule)),
             _ => None,
         },
     }

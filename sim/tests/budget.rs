@@ -1,7 +1,8 @@
 //! `declivity budget` against the hardware: the per-stage clock numbers of
 //! `sim::budget` equal the clocks measured by simulating the rtl detector,
 //! matcher and interpolator for several sizes (the matcher's worst line
-//! included, on the sensor's 64-cell array); the whole line processor's
+//! included, on the sensor's 32-cell array, alone and back to back on the
+//! matcher's schedule); the whole line processor's
 //! latency (first pixel in → first disparity out), its output's span
 //! (first → last disparity out: the output rows a line period apart, then
 //! the frame's end) and its flush equal the budget's formulas on frames of
@@ -13,13 +14,14 @@
 use std::process::{Command, Output};
 use std::sync::{Arc, Mutex};
 
-use rtl::declivity_matcher::{DeclivityMatcher, GainRule, TAKE_AFTER_MARKER};
+use rtl::declivity_matcher::{line_cycles, line_period, schedule, sweep_cycles, DeclivityMatcher, EngineLine, GainRule, TAKE_AFTER_MARKER};
 use rtl::params::{DT_FRAC_BITS, N_CELLS, N_MAX, POS_FRAC_BITS, W_MAX};
 use rtl::row_check::ROW_FIRST_LAG;
 use rtl::skid_buffer::SKID_LAG;
 use rtl::stereo_line_processor::CHECK_REGISTER_LAG;
 use rtl::depth_stage::DepthCamera;
-use sim::budget::{budget, budget_with_load, matcher_cycles_per_line, Budget, BudgetRequest, RowLoad, StageBudget, MARKER_AFTER_NEXT_TAKE};
+use rtl::traceback::traceback_cycles;
+use sim::budget::{budget, budget_with_load, Budget, BudgetRequest, RowLoad, StageBudget};
 use sim::cosim::VectorRng;
 use sim::detector::{run_lines, DetectorSim};
 use sim::matcher::{golden_match, MatchLine, MatchRecord, MatcherSim};
@@ -186,75 +188,132 @@ fn measure<const N: usize>(pairs: &[(MatchLine, MatchLine)], dispmax: u32) -> Ve
         .collect()
 }
 
+/// The engine's lines of measured pairs on `cells` cells: each one's
+/// second marker, its sweep and its traceback.
+fn engine_lines(got: &[Measured], cells: usize) -> Vec<EngineLine> {
+    got.iter()
+        .map(|g| EngineLine {
+            input_done: g.input_done,
+            sweep: sweep_cycles(g.n, g.m, cells) as u64,
+            traceback: traceback_cycles(g.n, g.m, g.stop_diag, g.k) as u64,
+        })
+        .collect()
+}
+
 /// The worst line of `n` declivities on `N` cells, twice back to back:
 /// the first, taken by an idle engine, shows the latency; the second,
-/// loaded while the engine works on the first, is taken as soon as the
-/// engine is free, so the spacing of the two markers is the engine's
-/// clocks per line. Both equal the budget's.
+/// loaded while the engine sweeps the first, is taken the clock after the
+/// first's traceback starts and its traceback starts when its sweep ends
+/// (`rtl::declivity_matcher::schedule`), so the spacing of the two markers
+/// is the engine's clocks per line back to back, `line_period`. Both equal
+/// the budget's.
 fn check_worst_line<const N: usize>(n: usize) -> Budget {
     let pair = worst_pair(n);
     let got = measure::<N>(&[pair.clone(), pair], WORST_DISPMAX);
     let (first, second) = (&got[0], &got[1]);
     assert_eq!((first.n, first.m, first.k, first.stop_diag), (n, n, n, 0), "the worst path: every pair, stop on anti-diagonal 0");
-    assert!(second.input_done + TAKE_AFTER_MARKER < first.marker - 2, "the second pair waits for the engine");
+    let times = schedule(&engine_lines(&got, N));
+    assert_eq!((first.marker, second.marker), (times[0].marker, times[1].marker), "{N} cells, N = {n}: the markers on the documented schedule");
+    assert_eq!(times[0].take, first.input_done + TAKE_AFTER_MARKER, "the first pair taken by an idle engine");
+    assert_eq!(times[1].take, times[0].start + 1, "the second pair waits for the engine: taken the clock after the first's traceback starts");
+    assert!(second.input_done + TAKE_AFTER_MARKER < times[1].take, "the second pair is in before the engine takes it");
     let b = budget(&request(W_MAX, n, N)).expect("a valid request");
     let m = stage(&b, "matcher");
     let latency = first.marker - first.input_done;
+    assert_eq!(latency, TAKE_AFTER_MARKER + line_cycles(n, n, 0, n, N) as u64, "alone: TAKE_AFTER_MARKER + line_cycles");
     assert_eq!(latency, m.latency_cycles, "{N} cells, N = {n}: second marker → the pair's marker ({})", m.latency_formula);
     assert_eq!(first.last_match.expect("matches") + 1, first.marker, "the last match leaves the clock before the marker");
+    assert_eq!(second.marker - first.marker, line_period(n, n, 0, n, N) as u64, "back to back: line_period");
     assert_eq!(second.marker - first.marker, m.cycles_per_line, "{N} cells, N = {n}: back-to-back markers ({})", m.formula);
     assert_eq!(m.pe_count, Some(N));
+    eprintln!("{N} cells, N = {n}: alone {latency} clocks, back to back {} ({})", m.cycles_per_line, m.formula);
     b
 }
 
 #[test]
 fn matcher_worst_line_clocks_measured_in_simulation_equal_the_budget_on_small_arrays() {
-    // No fold (n within the cells' low rows), with the fold, and a full
-    // 16-cell array.
+    // Two phases without the second (n within the cells' first rows) and
+    // with it (n = 2·K), four phases with the last row's cell early (the
+    // phase before's last row ends the sweep) and late (n = 4·K, its own
+    // ends it), and a 16-cell array full on two phases.
     check_worst_line::<8>(5);
     check_worst_line::<8>(16);
-    check_worst_line::<16>(27);
+    check_worst_line::<8>(27);
+    check_worst_line::<8>(32);
     check_worst_line::<16>(32);
 }
 
-/// The sensor's matcher, 64 cells, on its worst line: n = m = N_MAX.
+/// The sensor's matcher, 32 cells of four rows, on its worst line: n = m =
+/// N_MAX (four phases).
 #[test]
-fn matcher_worst_line_of_n_max_on_the_sensors_64_cells_equals_the_budget() {
+fn matcher_worst_line_of_n_max_on_the_sensors_32_cells_equals_the_budget() {
+    assert_eq!(N_CELLS, 32, "the sensor's array");
     let b = check_worst_line::<N_CELLS>(N_MAX);
+    let m = stage(&b, "matcher");
+    // 845 clocks back to back, 3 + 1239 alone (rtl::declivity_matcher's
+    // doc and tests/rtl_matcher.rs).
+    assert_eq!((m.cycles_per_line, m.latency_cycles), (845, 3 + 1239));
     // The worst line fits the line time of a W_MAX line without blanking;
     // the row check's bound for rows of N_MAX matches (1160, see
     // a_stage_slower_than_the_input_sets_the_period) does not: 136 clocks.
-    assert!(stage(&b, "matcher").cycles_per_line <= W_MAX as u64);
+    assert!(m.cycles_per_line <= W_MAX as u64);
     assert_eq!(b.stall_cycles_per_line, 1160 - W_MAX as u64);
 }
 
-/// Random line pairs of several sizes, back to back: every marker leaves
-/// when the budget's per-line clocks say, the engine taking each pair
-/// `TAKE_AFTER_MARKER` clocks after its second marker or, if busy, once
-/// the previous pair's clocks per line are over; and no pair costs more
-/// than the budget's worst line for `N = max(n, m)`.
+/// Random line pairs of several sizes (two phases and four), back to back:
+/// every marker leaves when the matcher's schedule
+/// (`rtl::declivity_matcher::schedule`: the pair taken `TAKE_AFTER_MARKER`
+/// after its second marker or the clock after the previous traceback
+/// starts, its traceback started when its sweep and the previous traceback
+/// are over) says; and no pair costs more than the budget's worst line for
+/// `N = max(n, m)`, alone or back to back.
 #[test]
-fn matcher_clocks_of_random_pairs_follow_the_per_line_formula_and_stay_within_the_worst() {
+fn matcher_clocks_of_random_pairs_follow_the_schedule_and_stay_within_the_worst() {
     const CELLS: usize = 8;
     let mut rng = VectorRng(0x5eed_0002);
     let mut next = || rng.next();
-    let sizes = [(1, 1), (3, 7), (7, 3), (8, 8), (9, 2), (12, 16), (16, 11), (16, 16), (0, 5), (4, 0), (2, 2), (16, 1)];
+    let sizes = [
+        (1, 1),
+        (3, 7),
+        (7, 3),
+        (8, 8),
+        (9, 2),
+        (12, 16),
+        (16, 11),
+        (20, 9),
+        (16, 16),
+        (0, 5),
+        (4, 0),
+        (2, 2),
+        (32, 30),
+        (25, 3),
+        (16, 1),
+        // Light lines right after a heavy one: their sweeps end before the
+        // heavy line's traceback, so their tracebacks wait for it.
+        (32, 32),
+        (1, 2),
+        (2, 1),
+    ];
     let pairs: Vec<(MatchLine, MatchLine)> =
         sizes.iter().map(|&(n, m)| (random_line(&mut next, n), random_line(&mut next, m))).collect();
     let got = measure::<CELLS>(&pairs, 40 * PX);
-    let mut engine_free: Option<u64> = None;
-    let mut waited = 0;
-    for (g, &(n, m)) in got.iter().zip(&sizes) {
-        let per_line = matcher_cycles_per_line(n, m, g.stop_diag, g.k, CELLS) as u64;
-        let ready = g.input_done + TAKE_AFTER_MARKER;
-        let take = engine_free.map_or(ready, |f| ready.max(f));
-        waited += (take > ready) as usize;
-        assert_eq!(g.marker, take + per_line + MARKER_AFTER_NEXT_TAKE as u64, "n {n} m {m} k {} stop {}", g.k, g.stop_diag);
-        engine_free = Some(take + per_line);
-        let worst = stage(&budget(&request(W_MAX, n.max(m).max(1), CELLS)).expect("valid"), "matcher").cycles_per_line;
-        assert!(per_line <= worst, "n {n} m {m}: {per_line} > worst {worst}");
+    let times = schedule(&engine_lines(&got, CELLS));
+    let (mut waited, mut walk_waited) = (0, 0);
+    for ((g, t), &(n, m)) in got.iter().zip(&times).zip(&sizes) {
+        assert_eq!((g.n, g.m), (n, m));
+        assert_eq!(g.marker, t.marker, "n {n} m {m} k {} stop {}: {t:?}", g.k, g.stop_diag);
+        waited += (t.take > g.input_done + TAKE_AFTER_MARKER) as usize;
+        walk_waited += (t.start > t.take + sweep_cycles(n, m, CELLS) as u64) as usize;
+        let b = budget(&request(W_MAX, n.max(m).max(1), CELLS)).expect("valid");
+        let worst = stage(&b, "matcher");
+        let period = line_period(n, m, g.stop_diag, g.k, CELLS) as u64;
+        assert!(period <= worst.cycles_per_line, "n {n} m {m}: {period} > worst {}", worst.cycles_per_line);
+        let alone = TAKE_AFTER_MARKER + line_cycles(n, m, g.stop_diag, g.k, CELLS) as u64;
+        assert!(alone <= worst.latency_cycles, "n {n} m {m}: {alone} > worst {}", worst.latency_cycles);
     }
     assert!(waited >= 3, "pairs taken back to back: {waited}");
+    assert!(walk_waited >= 1, "a traceback waited for the one before: {walk_waited}");
+    eprintln!("{waited} of {} pairs waited for the engine, {walk_waited} tracebacks for the one before", sizes.len());
 }
 
 // ===========================================================================
@@ -445,10 +504,12 @@ fn line_processor_latency_and_frame_end_equal_the_budget_for_rows_with_flat_neig
 }
 
 /// Frames whose rows are all alike (the row check's clocks within
-/// `row_check_cycles`, measured on the block), with and without hblank.
+/// `row_check_cycles`, measured on the block), with and without hblank;
+/// lines of up to `2·TOP_CELLS` = 16 declivities take the matcher's two
+/// phases, 20 its four.
 #[test]
 fn line_processor_latency_and_frame_end_equal_the_budget_for_rows_alike() {
-    for (w, h, steps, hblank) in [(64, 5, 4, 0), (128, 8, 7, 0), (300, 6, 16, 0), (300, 7, 9, 37)] {
+    for (w, h, steps, hblank) in [(64, 5, 4, 0), (128, 8, 7, 0), (300, 6, 16, 0), (300, 6, 20, 0), (300, 7, 9, 37)] {
         let (left, right) = stepped_pair(w, h, steps, Rows::All);
         let (load, _) = frame_load(&left, &right);
         let bound = rtl::row_check::row_check_cycles(steps, steps, steps);
@@ -509,7 +570,7 @@ fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
     assert_eq!(beyond(verilog_dp16kd), of(&new_stages, rams));
     assert_eq!(r.memory_bits, 2 * detector + matcher + interpolator + beyond(verilog_memory_bits));
     assert_eq!(r.dp16kd_instances, 2 * verilog_dp16kd(&det_v) + verilog_dp16kd(&mat_v) + verilog_dp16kd(&int_v) + beyond(verilog_dp16kd));
-    assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell, r.median_line_buffers), (2, 4, 64, 2, 4));
+    assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell, r.median_line_buffers), (2, 4, 32, 4, 4));
 }
 
 // ===========================================================================
@@ -615,7 +676,9 @@ fn cli_bad_sizes_exit_non_zero_with_a_message_naming_the_problem() {
         ("--n-max", "0", "--n-max 0"),
         ("--n-max", "129", "N_MAX = 128"),
         ("--cells", "5", "--cells 5"),
-        ("--cells", "32", "need at least 64 cells"),
+        ("--cells", "16", "need at least 32 cells"),
+        ("--cells", "16", "(4 per cell)"),
+        ("--cells", "64", "--cells 64"),
         ("--clock-mhz", "0", "--clock-mhz 0"),
         ("--clock-mhz", "-125", "--clock-mhz -125"),
         ("--dispmax", "0.5", "greater than 1"),

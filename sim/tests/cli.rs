@@ -101,13 +101,15 @@ fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
     GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
     std::fs::write(p.join("junk.png"), b"not an image").unwrap();
     std::fs::create_dir(p.join("empty")).unwrap();
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 7] = [
         (&["depth", "missing.png", "r.png", "--dispmax", "8"], "missing.png"),
         (&["depth", "junk.png", "r.png", "--dispmax", "8"], "cannot read image"),
         (&["depth", "l.png", "small.png", "--dispmax", "8"], "differ in size"),
         (&["depth", "l.png", "r.png", "--dispmax", "1"], "dispmax must be greater than 1"),
         (&["eval", "empty"], "nothing to evaluate"),
         (&["depth", "l.png", "r.png", "--dispmax", "8", "--graph-line", "10"], "outside the image"),
+        // The sensor's array is 32 cells of four rows; 64 is not generated.
+        (&["verilog", "--top", "matcher", "--cells", "64"], "generated with [2, 4, 8, 16, 32] cells"),
     ];
     for (args, needle) in cases {
         let o = declivity(args, p);
@@ -265,8 +267,10 @@ fn rtl_match_json_on_a_few_rows_agrees_with_golden_and_draws_the_graph() {
         "equal_gain_lines",
         "mismatch_lines",
         "malformed_lines",
+        "off_schedule_lines",
         "max_cycles_per_line",
         "max_cycles_line",
+        "max_engine_period",
         "cycles",
         "sim_cycles_per_s",
         "rule",
@@ -280,6 +284,8 @@ fn rtl_match_json_on_a_few_rows_agrees_with_golden_and_draws_the_graph() {
     assert_eq!(v["identical_lines"], 4, "{out}");
     assert_eq!(v["mismatch_lines"], 0, "{out}");
     assert_eq!(v["malformed_lines"], 0, "{out}");
+    assert_eq!(v["off_schedule_lines"], 0, "every marker on rtl::declivity_matcher::schedule: {out}");
+    assert!(v["max_engine_period"].as_u64().unwrap() > 0, "{out}");
     assert_eq!(v["rule"], "robust", "the default rule");
     assert_eq!(v["dispmax"], 16.0);
     assert_eq!(v["rows"], serde_json::json!([140, 144]));
@@ -305,6 +311,7 @@ fn rtl_match_text_summary_and_graph_line() {
     let (out, err) = text(&o);
     assert!(o.status.success(), "stdout {out}\nstderr {err}");
     assert!(out.contains("identical lines     2 of 2") && out.contains("paper rule"), "{out}");
+    assert!(out.contains("off-schedule lines  0") && out.contains("max engine period"), "{out}");
     assert!(dir.path().join("declivity-out/rtl-match-left_gray/graph_rtl_line_10.png").is_file(), "{out}");
 }
 
