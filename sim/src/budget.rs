@@ -129,13 +129,14 @@
 
 use rtl::adaptive_threshold::THRESHOLD_LATENCY;
 use rtl::block_ram::{DP16KD_ADDR_BITS, DP16KD_WIDTH};
+use rtl::lut_ram::DPR16X4_WIDTH;
 use rtl::declivity_detector::{line_starts, MIN_LINE_PERIOD};
 use rtl::declivity_matcher::{line_cycles, line_period, sweep_cycles, ENGINE_LAG, TAKE_AFTER_MARKER};
 use rtl::depth_stage::DEPTH_LAG;
 use rtl::interpolator::{LINE_BITS, LINE_QUEUE, PIXEL_LAG, SEGMENT_BITS, SEGMENT_LAG};
 use rtl::params::{
     CELLS_PER_CHOICE_WORD, CHOICE_WORDS, CHOICE_WORD_BITS, DEPTH_INDEX_BITS, DEPTH_WORD_BITS, DIAG_BITS, DISPMAX_BITS,
-    HIST_ADDR_BITS, HIST_COUNT_BITS, INDEX_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, N_CELLS,
+    HIST_ADDR_BITS, HIST_COUNT_BITS, INDEX_BITS, LEVELS_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, N_CELLS,
     N_MAX, PIXEL_BITS, POS_BITS, POS_FRAC_BITS, RECIP_BITS, RECIP_INDEX_BITS, ROWS_PER_CELL, ROW_ADDR_BITS, ROW_BANK_BITS,
     ROW_ENTRY_BITS, SEG_ADDR_BITS, WIDTH_BITS, W_MAX,
 };
@@ -323,6 +324,13 @@ pub const MIN_HEIGHT: usize = 4;
 pub const fn dp16kd_of(word_bits: usize, words: usize) -> usize {
     word_bits.div_ceil(DP16KD_WIDTH) * words.div_ceil(1 << DP16KD_ADDR_BITS)
 }
+
+/// Bits of a reference row in a gain cell's LUT RAM: the position and its
+/// polarity, and the six levels (`rtl::gain_cell`).
+pub const REFERENCE_ROW_BITS: usize = POS_BITS + 1 + LEVELS_BITS;
+/// `TRELLIS_DPR16X4`s of one gain cell's rows: one per four bits of each of
+/// its two LUT RAMs (`rtl::lut_ram`).
+pub const REFERENCE_ROW_DPR16X4: usize = (POS_BITS + 1).div_ceil(DPR16X4_WIDTH) + LEVELS_BITS.div_ceil(DPR16X4_WIDTH);
 
 /// One memory of a block, as rtl declares it.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -817,6 +825,12 @@ pub struct Resources {
     pub pe_count: usize,
     /// Reference declivities per cell.
     pub rows_per_cell: usize,
+    /// The cells' reference rows in LUT RAM (`rtl::lut_ram`: a cell's four
+    /// rows of position, polarity and six levels), their bits and the
+    /// `TRELLIS_DPR16X4` primitives that hold them (four bits each). Not in
+    /// `memories`: the primitives are instantiated, not inferred.
+    pub reference_row_bits: usize,
+    pub reference_row_dpr16x4: usize,
     pub choice_memory_bits: usize,
     /// The record memories' bits, their position copies' included (all of
     /// `rtl::record_memory::RecordMemory`'s RAMs).
@@ -849,6 +863,8 @@ impl Resources {
             histogram_banks: sum(HISTOGRAM, |m| m.copies * m.banks),
             histogram_bits: sum(HISTOGRAM, |m| m.bits),
             pe_count: stages.iter().filter_map(|s| s.pe_count).sum(),
+            reference_row_bits: stages.iter().filter_map(|s| s.pe_count).sum::<usize>() * ROWS_PER_CELL * REFERENCE_ROW_BITS,
+            reference_row_dpr16x4: stages.iter().filter_map(|s| s.pe_count).sum::<usize>() * REFERENCE_ROW_DPR16X4,
             rows_per_cell: stages.iter().filter_map(|s| s.rows_per_pe).max().unwrap_or(0),
             choice_memory_bits: sum(CHOICE_MEMORY, |m| m.bits),
             record_memory_bits: sum(RECORD_MEMORY, |m| m.bits) + sum(POSITION_COPY, |m| m.bits),
@@ -1295,6 +1311,15 @@ pub fn report_text(b: &Budget) -> String {
     let r = &b.resources;
     let _ = writeln!(o, "resources (as generated; memories: copies × banks × words × bits)");
     let _ = writeln!(o, "  gain cells (PEs)   {}, {} reference rows each ({} rows)", r.pe_count, r.rows_per_cell, r.pe_count * r.rows_per_cell);
+    let _ = writeln!(
+        o,
+        "  reference rows     {} × {} words × {} bit = {} bit in LUT RAM, {} TRELLIS_DPR16X4 instantiated (GainCell::rows_pos, rows_levs)",
+        r.pe_count,
+        r.rows_per_cell,
+        REFERENCE_ROW_BITS,
+        r.reference_row_bits,
+        r.reference_row_dpr16x4
+    );
     for m in &b.resources.memories {
         let rams = m.dp16kd.map_or("inferred".to_string(), |n| format!("{n} DP16KD"));
         let _ = writeln!(

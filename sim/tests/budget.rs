@@ -571,6 +571,10 @@ fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
     assert_eq!(r.memory_bits, 2 * detector + matcher + interpolator + beyond(verilog_memory_bits));
     assert_eq!(r.dp16kd_instances, 2 * verilog_dp16kd(&det_v) + verilog_dp16kd(&mat_v) + verilog_dp16kd(&int_v) + beyond(verilog_dp16kd));
     assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell, r.median_line_buffers), (2, 4, 32, 4, 4));
+    // The cells' rows in LUT RAM: the primitives the matcher instantiates,
+    // 16 bits used of each (4 words of 4 bits), the last of each RAM partly.
+    assert_eq!(mat_v.matches("TRELLIS_DPR16X4 #(").count(), r.reference_row_dpr16x4);
+    assert!(r.reference_row_bits <= 16 * r.reference_row_dpr16x4 && r.reference_row_bits > 16 * (r.reference_row_dpr16x4 - 2 * r.pe_count));
 }
 
 // ===========================================================================
