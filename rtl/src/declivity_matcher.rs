@@ -303,7 +303,12 @@ pub struct DeclivityMatcher<const N: usize> {
     epbank: DFF<Bit>,
     // The traceback: busy from its start to its marker, with its line's
     // counts, banks and flags; a swept line waiting for it (`tq`).
-    tb_busy: DFF<Bit>,
+    // (Busy is `tb_begun ^ tb_ended`: each flips on its own event, so that
+    // no register's input depends on both the traceback's marker and the
+    // logic that starts it; Verilator then sees no loop through the
+    // traceback.)
+    tb_begun: DFF<Bit>,
+    tb_ended: DFF<Bit>,
     t_n: DFF<Bits<COUNT_BITS>>,
     t_m: DFF<Bits<COUNT_BITS>>,
     t_bank: DFF<Bit>,
@@ -412,6 +417,7 @@ pub struct DeclivityMatcher<const N: usize> {
     line_base: Signal<Local, Bits<COPY_ADDR_BITS>>,
     tb_base: Signal<Local, Bits<COPY_ADDR_BITS>>,
     tb_start: Signal<Local, Bit>,
+    tb_busy: Signal<Local, Bit>,
     tb_from_q: Signal<Local, Bit>,
     handoff: Signal<Local, Bit>,
     take: Signal<Local, Bit>,
@@ -563,6 +569,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng: Default::default(),
             ebank: Default::default(),
             epbank: Default::default(),
+            tb_begun: Default::default(),
+            tb_ended: Default::default(),
             tb_busy: Default::default(),
             t_n: Default::default(),
             t_m: Default::default(),
@@ -745,7 +753,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, lpbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_pbank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, epbank, tb_busy, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -951,13 +959,14 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.f3_reg.d.next = bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val())
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val())
             + bit_cast::<GAIN_BITS, DT_SUM_BITS>(self.e_dt_sum.q.val());
+        self.tb_busy.next = self.tb_begun.q.val() ^ self.tb_ended.q.val();
         // The sweep engine takes a waiting pair when it is idle, no swept line
         // waits for the traceback, and the traceback is not on the bank of the
         // choice memory the pair will write (lines alternate between two).
         self.take.next = (self.eng.q.val() == self.eng_idle.val())
             & self.pend.q.val()
             & !self.tq.q.val()
-            & !(self.tb_busy.q.val() & (self.t_bank.q.val() == self.pend_bank.q.val()));
+            & !(self.tb_busy.val() & (self.t_bank.q.val() == self.pend_bank.q.val()));
         if self.take.val() {
             self.pend.d.next = false;
             self.eng.d.next = self.eng_sweep.val();
@@ -1030,8 +1039,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // traceback's start goes to its walk registers, far from the engine).
         // The swept line's traceback starts then if the traceback is free,
         // or waits in `tq` until it is; the next sweep goes on meanwhile.
-        self.tb_from_q.next = self.tq.q.val() & !self.tb_busy.q.val();
-        self.tb_start.next = self.tb_from_q.val() | (self.sweep_done.q.val() & !self.tb_busy.q.val() & !self.tq.q.val());
+        self.tb_from_q.next = self.tq.q.val() & !self.tb_busy.val();
+        self.tb_start.next = self.tb_from_q.val() | (self.sweep_done.q.val() & !self.tb_busy.val() & !self.tq.q.val());
         self.traceback.start.next = self.tb_start.val();
         self.traceback.n.next = self.en.q.val();
         self.traceback.m.next = self.em.q.val();
@@ -1040,7 +1049,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.traceback.m.next = self.tq_m.q.val();
         }
         if self.tb_start.val() {
-            self.tb_busy.d.next = true;
+            self.tb_begun.d.next = !self.tb_begun.q.val();
             self.t_n.d.next = self.en.q.val();
             self.t_m.d.next = self.em.q.val();
             self.t_bank.d.next = self.ebank.q.val();
@@ -1060,9 +1069,9 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             }
         }
         if self.traceback.out_last.val() {
-            self.tb_busy.d.next = false;
+            self.tb_ended.d.next = !self.tb_ended.q.val();
         }
-        if self.sweep_done.q.val() & (self.tb_busy.q.val() | self.tq.q.val()) {
+        if self.sweep_done.q.val() & (self.tb_busy.val() | self.tq.q.val()) {
             self.tq.d.next = true;
             self.tq_n.d.next = self.en.q.val();
             self.tq_m.d.next = self.em.q.val();
