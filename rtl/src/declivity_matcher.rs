@@ -432,10 +432,13 @@ pub struct DeclivityMatcher<const N: usize> {
     n_p4: DFF<Bit>,
     n_klast: DFF<Bits<PHASE_BITS>>,
     n_part: DFF<Bits<SWEEP_BITS>>,
-    n_m1: Signal<Local, Bits<COUNT_BITS>>,
+    // n - 1 (the count before the last record: the loader keeps it beside
+    // the count, so that no subtraction is on the way to `n_part`).
+    r_count_m1: DFF<Bits<COUNT_BITS>>,
     n_kl: Signal<Local, Bits<PHASE_BITS>>,
-    n_c4: Signal<Local, Bits<SWEEP_BITS>>,
-    n_wrap: Signal<Local, Bits<SWEEP_BITS>>,
+    n_c: Signal<Local, Bits<INDEX_BITS>>,
+    n_own: Signal<Local, Bits<SWEEP_BITS>>,
+    n_before: Signal<Local, Bits<SWEEP_BITS>>,
     m_part: Signal<Local, Bits<SWEEP_BITS>>,
     // The waiting pair's sweep: its last clock less one, its phases.
     pend_end_m1: DFF<Bits<SWEEP_BITS>>,
@@ -467,10 +470,11 @@ pub struct DeclivityMatcher<const N: usize> {
     eng_sweep: Constant<Bits<2>>,
     sweep_tail: Constant<Bits<SWEEP_BITS>>,
     sweep_tail1: Constant<Bits<SWEEP_BITS>>,
-    wrap1: Constant<Bits<SWEEP_BITS>>,
-    wrap2: Constant<Bits<SWEEP_BITS>>,
-    wrap_c: Constant<Bits<SWEEP_BITS>>,
-    odd_c: Constant<Bits<SWEEP_BITS>>,
+    own_k2: Constant<Bits<SWEEP_BITS>>,
+    own_k3: Constant<Bits<SWEEP_BITS>>,
+    before_k2: Constant<Bits<SWEEP_BITS>>,
+    before_k3: Constant<Bits<SWEEP_BITS>>,
+    own_from: Constant<Bits<INDEX_BITS>>,
     engine_lag: Constant<Bits<SWEEP_BITS>>,
     cells_c: Constant<Bits<COUNT_BITS>>,
     cells_2c: Constant<Bits<COUNT_BITS>>,
@@ -677,10 +681,11 @@ impl<const N: usize> DeclivityMatcher<N> {
             n_p4: Default::default(),
             n_klast: Default::default(),
             n_part: Default::default(),
-            n_m1: Default::default(),
+            r_count_m1: Default::default(),
             n_kl: Default::default(),
-            n_c4: Default::default(),
-            n_wrap: Default::default(),
+            n_c: Default::default(),
+            n_own: Default::default(),
+            n_before: Default::default(),
             m_part: Default::default(),
             pend_end_m1: Default::default(),
             pend_fold: Default::default(),
@@ -710,10 +715,11 @@ impl<const N: usize> DeclivityMatcher<N> {
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             sweep_tail: Constant::new(((ENGINE_LAG - 5) as u64).into()),
             sweep_tail1: Constant::new(((ENGINE_LAG - 4) as u64).into()),
-            wrap1: Constant::new(((2 * N + 1 + ENGINE_LAG - 5) as u64).into()),
-            wrap2: Constant::new(((2 * (2 * N + 1) + ENGINE_LAG - 5) as u64).into()),
-            wrap_c: Constant::new(((4 * (N - 1)) as u64).into()),
-            odd_c: Constant::new(((2 * N + 1) as u64).into()),
+            own_k2: Constant::new(((2 * (2 * N + 1) + ENGINE_LAG - 5) as u64).into()),
+            own_k3: Constant::new(((3 * (2 * N + 1) + ENGINE_LAG - 5) as u64).into()),
+            before_k2: Constant::new(((4 * (N - 1) + (2 * N + 1) + ENGINE_LAG - 5) as u64).into()),
+            before_k3: Constant::new(((4 * (N - 1) + 2 * (2 * N + 1) + ENGINE_LAG - 5) as u64).into()),
+            own_from: Constant::new((((2 * N) as u64).saturating_sub(5).div_ceil(4)).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             cells_c: Constant::new((N as u64).into()),
             cells_2c: Constant::new(((2 * N) as u64).into()),
@@ -753,7 +759,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, lpbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_pbank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -835,6 +841,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         if self.r_take.val() {
             if self.r_count.q.val() < self.n_max.val() {
                 self.r_count.d.next = self.r_count.q.val() + 1;
+                self.r_count_m1.d.next = self.r_count.q.val();
             } else {
                 self.r_flags_full.d.next = true;
             }
@@ -880,30 +887,30 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // last row's node and phase k_last - 1's last row's,
         // `max(4·c_last + 2N + 1, 4·(N - 1))`, and the tail. The other
         // side's part, `2m` or `4m`, is added at the handoff.
-        self.n_m1.next = self.r_count.q.val() - 1;
+        // With four phases the last row n - 1 = c_last + N·k_last, k_last 2
+        // or 3: `n_part` is `4·c_last + k_last·(2N + 1)` and the tail when
+        // the last row's node is the later (`c_last` from `own_from` on),
+        // `4·(N - 1) + (k_last - 1)·(2N + 1)` and the tail otherwise; with
+        // two, `2n + [n > N]` and the tail. One adder each.
+        self.n_kl.next = bit_cast::<PHASE_BITS, COUNT_BITS>(self.r_count_m1.q.val() >> self.cells_log2.val());
+        self.n_c.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.r_count_m1.q.val()) & self.cells_mask.val();
         self.n_p4.d.next = self.r_count.q.val() > self.cells_2c.val();
-        self.n_kl.next = bit_cast::<PHASE_BITS, COUNT_BITS>(self.n_m1.val() >> self.cells_log2.val());
         self.n_klast.d.next = self.n_kl.val();
-        self.n_c4.next = (bit_cast::<SWEEP_BITS, INDEX_BITS>(
-            bit_cast::<INDEX_BITS, COUNT_BITS>(self.n_m1.val()) & self.cells_mask.val(),
-        ) << self.bit2.val())
-            + self.odd_c.val();
-        if self.n_c4.val() < self.wrap_c.val() {
-            self.n_c4.next = self.wrap_c.val();
-        }
-        self.n_wrap.next = self.wrap1.val();
+        self.n_own.next = (bit_cast::<SWEEP_BITS, INDEX_BITS>(self.n_c.val()) << self.bit2.val()) + self.own_k2.val();
+        self.n_before.next = self.before_k2.val();
         if self.n_kl.val().all() {
-            self.n_wrap.next = self.wrap2.val();
+            self.n_own.next = (bit_cast::<SWEEP_BITS, INDEX_BITS>(self.n_c.val()) << self.bit2.val()) + self.own_k3.val();
+            self.n_before.next = self.before_k3.val();
         }
-        self.n_part.d.next = self.n_wrap.val() + self.n_c4.val();
+        self.n_part.d.next = self.n_before.val();
+        if self.n_c.val() >= self.own_from.val() {
+            self.n_part.d.next = self.n_own.val();
+        }
         if self.r_count.q.val() <= self.cells_2c.val() {
-            self.n_part.d.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
-                + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
-                + self.sweep_tail.val();
+            self.n_part.d.next = (bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val()) << self.bit1.val()) + self.sweep_tail.val();
             if self.r_count.q.val() > self.cells_c.val() {
-                self.n_part.d.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
-                    + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val())
-                    + self.sweep_tail1.val();
+                self.n_part.d.next =
+                    (bit_cast::<SWEEP_BITS, COUNT_BITS>(self.r_count.q.val()) << self.bit1.val()) + self.sweep_tail1.val();
             }
         }
         self.m_part.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.o_count.q.val()) << self.bit1.val();
