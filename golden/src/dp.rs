@@ -363,16 +363,21 @@ pub fn banded_dp(b: &BandedGains) -> Path {
 pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> Path {
     let n = bands.len();
     // Choices of the band cells, row after row; offs[i] = first of row i.
-    let mut offs = Vec::with_capacity(n);
-    let mut band_c = Vec::with_capacity(bands.iter().map(|&(lo, hi)| hi.saturating_sub(lo)).sum());
-    let mut tails = Vec::with_capacity(n); // T_i
+    // (Sized up front and written by index: no growth check in the loop.)
+    let mut offs = vec![0usize; n];
+    let mut cells = 0usize;
+    for (off, &(lo, hi)) in offs.iter_mut().zip(bands) {
+        *off = cells;
+        cells += hi.saturating_sub(lo);
+    }
+    let mut band_c = vec![Choice::Start; cells];
+    let mut tails = vec![0.0f64; n]; // T_i
     // q[j] = P(current row, j) for j <= filled; beyond, the tail T.
     let mut q = vec![0.0f64; m + 1];
     let mut filled = 0usize;
     let mut tail = 0.0f64;
     for (i, &(lo0, hi0)) in bands.iter().enumerate() {
         debug_assert!(hi0 <= m, "band inside the table");
-        offs.push(band_c.len());
         if hi0 > lo0 {
             // 1-based columns lo ..= hi.
             let (lo, hi) = (lo0 + 1, hi0);
@@ -382,17 +387,19 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(u
             }
             let mut diag = q[lo - 1];
             let mut left = q[lo - 1];
-            for j in lo..=hi {
-                let up = q[j];
-                let (pij, c) = cell_step_g(gain(i, j - 1) + diag, up, left);
+            let row_c = &mut band_c[offs[i]..][..hi - lo + 1];
+            // Column j (0-based) is q[j + 1].
+            for ((j, qj), c) in (lo0..).zip(&mut q[lo..hi + 1]).zip(row_c) {
+                let up = *qj;
+                let (pij, choice) = cell_step_g(gain(i, j) + diag, up, left);
                 diag = up;
-                q[j] = pij;
+                *qj = pij;
                 left = pij;
-                band_c.push(c);
+                *c = choice;
             }
             tail = tail.max(q[hi]);
         }
-        tails.push(tail);
+        tails[i] = tail;
     }
 
     // The traceback of `traceback`, with the choices outside the bands

@@ -208,7 +208,9 @@ impl LineGain {
     /// Eq. 7 for a node inside the search area: `f(gmax) - (lpd + rpd)` (or
     /// the similar side's distance alone for a one-sided node when the mode
     /// scores them), or [`REJECTED`]; equal to [`node_gain`] there.
-    #[inline]
+    // Always inlined: called out of line, the DP's loop (which calls it per
+    // band cell) keeps its running values in memory across the call.
+    #[inline(always)]
     pub fn gain(&self, reference: &Neighbours, other: &Neighbours) -> f64 {
         let (l2, r2, same) = if self.relative {
             // Eight lanes at once (the padding lanes are 0 on both sides).

@@ -91,23 +91,25 @@ pub struct LineResult {
 /// `others`, one pair per position of `refs` (sorted too). Both bounds are
 /// non-decreasing, so one sweep finds them all.
 pub fn search_bands(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
-    let mut padded = Vec::with_capacity(others.len() + 1);
+    let mut padded = Vec::with_capacity(others.len() + 2);
     padded.extend_from_slice(others);
-    padded.push(f64::INFINITY);
+    padded.extend([f64::INFINITY; 2]);
     search_bands_padded(refs, &padded, params)
 }
 
-/// [`search_bands`] on `others` followed by a `+∞` sentinel, which no bound
-/// passes in either view (its disparity is `-∞` or `+∞`): each bound takes
-/// two steps without a branch, then loops only when it moves further.
+/// [`search_bands`] on `others` followed by two `+∞` sentinels, which no
+/// bound passes in either view (their disparity is `-∞` or `+∞`): each bound
+/// moves up to two steps without a branch, then loops only when it moves
+/// further.
 fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
-    debug_assert_eq!(others.last(), Some(&f64::INFINITY));
+    debug_assert!(others.len() >= 2 && others[others.len() - 2..] == [f64::INFINITY; 2]);
     let dispmax = params.dispmax;
-    // Moves a bound past the columns `before` holds for: two steps without a
-    // branch, then a loop only when it moves further.
+    // Moves a bound past the columns `before` holds for. Positions are
+    // sorted, so `before` holds for a run of columns from `k` on (if at all)
+    // and the two first steps are one sum of two independent tests, not a
+    // chain of two: the next ones are a loop, seldom taken.
     fn advance(mut k: usize, before: impl Fn(usize) -> bool) -> usize {
-        k += before(k) as usize;
-        k += before(k) as usize;
+        k += before(k) as usize + before(k + 1) as usize;
         while before(k) {
             k += 1;
         }
@@ -175,11 +177,11 @@ pub fn gain_table(reference: &LineFeatures, other: &LineFeatures, params: &Param
 /// [`banded_gains`], with the gains computed as the DP sweeps them.)
 pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
     let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
-    let mut others: Vec<f64> = Vec::with_capacity(other.declivities.len() + 1);
+    let mut others: Vec<f64> = Vec::with_capacity(other.declivities.len() + 2);
     others.extend(other.declivities.iter().map(|d| d.position));
-    others.push(f64::INFINITY);
+    others.extend([f64::INFINITY; 2]);
     let bands = search_bands_padded(&refs, &others, params);
-    others.pop();
+    others.truncate(others.len() - 2);
     let rule = LineGain::new(reference.dt, other.dt, params.mode);
     let (rn, on): (Vec<Neighbours>, Vec<Neighbours>) = (
         reference.declivities.iter().map(Neighbours::from).collect(),
@@ -196,7 +198,9 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
             x_ref: refs[i],
             x_other: others[j],
             disparity: pair_disparity(refs[i], others[j], params.ref_view),
-            gain: gain(i, j),
+            // Not `gain(i, j)`: with one call site the closure is inlined
+            // into the DP's loop.
+            gain: rule.gain(&rn[i], &on[j]),
             edge: false,
         })
         .collect();
