@@ -107,12 +107,21 @@ pub fn declivity_bounds_reference(line: &[u8]) -> DeclivityBounds<'_> {
 /// amplitude `I(start) - I(x_i)` is known there and tested against
 /// `threshold`.
 pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
+    let mut spans = Vec::new();
+    declivity_spans_into(line, threshold, &mut spans);
+    spans
+}
+
+/// [`declivity_spans`] into `spans` (cleared first), so that its allocation
+/// can be reused from line to line.
+pub fn declivity_spans_into(line: &[u8], threshold: u32, spans: &mut Vec<(usize, usize)>) {
+    spans.clear();
     let n = line.len();
     if n < 2 {
-        return Vec::new();
+        return;
     }
     let gradients = n - 1;
-    let mut spans = Vec::with_capacity(n);
+    spans.reserve(n);
     // The declivities a block closes: the first k are kept; each is written
     // into slot k, which the next one overwrites unless it was kept (no
     // branch on the outcome). A block has at most 64 starts.
@@ -144,13 +153,19 @@ pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
             if !seen {
                 starts |= nz & nz.wrapping_neg(); // the line's first non-zero gradient
             }
+            // nz with its bits reversed: the nearest non-zero gradient below a
+            // bit is then a trailing zero count (fast) rather than a leading
+            // one (a slow `bsr` on x86-64 without `lzcnt`).
+            let rnz = nz.reverse_bits();
             let mut k = 0usize;
             while starts != 0 {
                 let p = starts.trailing_zeros() as usize;
                 starts &= starts - 1;
+                // Bit j: gradient p - 1 - j is non-zero; none in the block
+                // only before its first start.
+                let below = (rnz >> (63 - p)) >> 1;
+                let e = if below != 0 { base + p - below.trailing_zeros() as usize } else { end };
                 let x = base + p;
-                let earlier = nz & ((1u64 << p) - 1);
-                let e = if earlier != 0 { base + 64 - earlier.leading_zeros() as usize } else { end };
                 closed[k] = (start, e);
                 k += (seen & (line[x].abs_diff(start_level) as u32 > threshold)) as usize;
                 seen = true;
@@ -166,7 +181,6 @@ pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
     if seen && line[end].abs_diff(start_level) as u32 > threshold {
         spans.push((start, end));
     }
-    spans
 }
 
 /// Bit masks of the gradients of `w` (at most 65 pixels, so at most 64
@@ -304,7 +318,14 @@ pub fn all_declivities(line: &[u8]) -> Vec<Declivity> {
 /// runs inside the extrema pass ([`declivity_spans`]); only the kept
 /// declivities are bounded and described.
 pub fn characteristic_declivities(line: &[u8], dt: f64) -> Vec<Declivity> {
-    declivity_spans(line, integer_threshold(dt)).into_iter().map(|(s, e)| describe(line, s, e)).collect()
+    characteristic_declivities_with(line, dt, &mut Vec::new())
+}
+
+/// [`characteristic_declivities`] with `spans` as the extrema pass's
+/// working vector (its allocation reused from line to line).
+pub fn characteristic_declivities_with(line: &[u8], dt: f64, spans: &mut Vec<(usize, usize)>) -> Vec<Declivity> {
+    declivity_spans_into(line, integer_threshold(dt), spans);
+    spans.iter().map(|&(s, e)| describe(line, s, e)).collect()
 }
 
 #[cfg(test)]

@@ -122,9 +122,14 @@ pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &m
 
 /// The median of 1, 3 or 5 rows, column by column, into `out_row`: the
 /// networks of [`vertical_median`], on the rows top to bottom.
+///
+/// Disparities are `+0` or positive, never NaN or `-0`: two values that
+/// compare equal are the same bits, so either may be taken on a tie, and
+/// `min`/`max` are written as the single instructions of x86-64 take them
+/// (`a < b ? a : b`, `a > b ? a : b`).
 pub fn median_of_rows(rows: &[&[f64]], out_row: &mut [f64]) {
     let min = |a: f64, b: f64| if a < b { a } else { b };
-    let max = |a: f64, b: f64| if a < b { b } else { a };
+    let max = |a: f64, b: f64| if a > b { a } else { b };
     let median3 = |a: f64, b: f64, c: f64| max(min(a, b), min(max(a, b), c));
     match *rows {
         [row] => out_row.copy_from_slice(row),

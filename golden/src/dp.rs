@@ -360,20 +360,45 @@ pub fn banded_dp(b: &BandedGains) -> Path {
 /// each band cell `(i, j)` ([`NO_NODE`] where there is no node). The gains
 /// are asked for once each, row by row, left to right, so they can be
 /// computed on the fly.
-pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> Path {
+pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], gain: impl FnMut(usize, usize) -> f64) -> Path {
+    let mut buffers = DpBuffers::default();
+    let gain = banded_dp_in(&mut buffers, m, bands, gain);
+    Path { gain, nodes: buffers.nodes }
+}
+
+/// The working tables of [`banded_dp_in`], kept from one line to the next so
+/// that their allocations are reused; `nodes` holds the last path found.
+#[derive(Debug, Clone, Default)]
+pub struct DpBuffers {
+    offs: Vec<usize>,
+    band_c: Vec<Choice>,
+    tails: Vec<f64>,
+    q: Vec<f64>,
+    /// The nodes of the last path, in increasing order.
+    pub nodes: Vec<(usize, usize)>,
+}
+
+/// [`banded_dp_with`] in reused tables: returns the path's gain and leaves
+/// its nodes in `buffers.nodes`.
+pub fn banded_dp_in(buffers: &mut DpBuffers, m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> f64 {
     let n = bands.len();
+    let DpBuffers { offs, band_c, tails, q, nodes } = buffers;
     // Choices of the band cells, row after row; offs[i] = first of row i.
     // (Sized up front and written by index: no growth check in the loop.)
-    let mut offs = vec![0usize; n];
+    offs.clear();
     let mut cells = 0usize;
-    for (off, &(lo, hi)) in offs.iter_mut().zip(bands) {
-        *off = cells;
+    offs.extend(bands.iter().map(|&(lo, hi)| {
+        let off = cells;
         cells += hi.saturating_sub(lo);
-    }
-    let mut band_c = vec![Choice::Start; cells];
-    let mut tails = vec![0.0f64; n]; // T_i
+        off
+    }));
+    band_c.clear();
+    band_c.resize(cells, Choice::Start);
+    tails.clear();
+    tails.resize(n, 0.0); // T_i
     // q[j] = P(current row, j) for j <= filled; beyond, the tail T.
-    let mut q = vec![0.0f64; m + 1];
+    q.clear();
+    q.resize(m + 1, 0.0);
     let mut filled = 0usize;
     let mut tail = 0.0f64;
     for (i, &(lo0, hi0)) in bands.iter().enumerate() {
@@ -411,7 +436,7 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(u
     // does so without looking at P: from a cell with P = 0 every cell the
     // walk can reach has P = 0 and holds no node, so the path's nodes are
     // those of `prefix_max_dp`'s traceback.
-    let mut nodes = Vec::new();
+    nodes.clear();
     let (mut i, mut j) = (n, m);
     while i > 0 && j > 0 {
         let (lo0, hi0) = bands[i - 1];
@@ -430,11 +455,11 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(u
             } else {
                 j = hi0;
             }
-        } else if !step_back(band_c[offs[i - 1] + j - 1 - lo0], &mut i, &mut j, &mut nodes) {
+        } else if !step_back(band_c[offs[i - 1] + j - 1 - lo0], &mut i, &mut j, nodes) {
             break;
         }
     }
     nodes.reverse();
     // P(N,M) = T_N: no column lies right of the last one.
-    Path { gain: tails.last().copied().unwrap_or(0.0), nodes }
+    tails.last().copied().unwrap_or(0.0)
 }

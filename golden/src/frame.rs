@@ -4,7 +4,7 @@ use rayon::prelude::*;
 
 use crate::disparity::{interpolate_into, median_of_rows, vertical_median, Anchor};
 use crate::error::GoldenError;
-use crate::line::{process_line, LineResult, Match};
+use crate::line::{process_line_in, LineBuffers, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
 
 /// An 8-bit grey image, row-major.
@@ -149,11 +149,15 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
         });
     }
     let (w, h) = (left.width, left.height);
-    // 1. Every pair of lines, independently.
-    let one_line = |y: usize| process_line(left.row(y), right.row(y), params);
+    // 1. Every pair of lines, independently (each thread reuses its working
+    // vectors from line to line).
+    let one_line = |buffers: &mut LineBuffers, y: usize| process_line_in(buffers, left.row(y), right.row(y), params);
     let lines: Vec<LineResult> = match threads {
-        Threads::One => (0..h).map(one_line).collect(),
-        Threads::All => (0..h).into_par_iter().map(one_line).collect(),
+        Threads::One => {
+            let mut buffers = LineBuffers::default();
+            (0..h).map(|y| one_line(&mut buffers, y)).collect()
+        }
+        Threads::All => (0..h).into_par_iter().map_init(LineBuffers::default, one_line).collect(),
     };
     Ok(finish_frame(lines, w, h, params, threads))
 }

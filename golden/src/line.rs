@@ -2,11 +2,11 @@
 //! characteristic declivities (eq. 3), nodes and gains (eq. 4–8), the optimal
 //! path (eq. 9), the matches and their disparities.
 
-use crate::declivity::{characteristic_declivities, Declivity};
+use crate::declivity::{characteristic_declivities_with, Declivity};
 use crate::disparity::Anchor;
-use crate::dp::{banded_dp_with, BandedGains, GainTable};
+use crate::dp::{banded_dp_in, BandedGains, DpBuffers, GainTable};
 #[cfg(doc)]
-use crate::dp::banded_dp;
+use crate::dp::{banded_dp, banded_dp_with};
 use crate::gain::{gmax, node_gain, pair_disparity, LineGain, Neighbours};
 use crate::noise::{noise_sigma, threshold};
 use crate::params::{Params, RefView};
@@ -39,9 +39,28 @@ pub fn line_features_with(line: &[u8], limits: Option<crate::hardware::HardwareL
 
 /// Segments one line: σ, `d_t` (eq. 2) and the characteristic declivities.
 pub fn line_features(line: &[u8]) -> LineFeatures {
+    line_features_in(&mut LineBuffers::default(), line)
+}
+
+/// [`line_features`] with the working vectors of `buffers`.
+pub fn line_features_in(buffers: &mut LineBuffers, line: &[u8]) -> LineFeatures {
     let sigma = noise_sigma(line);
     let dt = threshold(sigma);
-    LineFeatures { sigma, dt, declivities: characteristic_declivities(line, dt) }
+    LineFeatures { sigma, dt, declivities: characteristic_declivities_with(line, dt, &mut buffers.spans) }
+}
+
+/// The working vectors of the segmentation and the matching of a line, kept
+/// from one line to the next ([`process_line_in`]; `process_frame` keeps
+/// one per thread) so that a frame does not allocate and free them for
+/// every line. Their contents between calls mean nothing.
+#[derive(Debug, Clone, Default)]
+pub struct LineBuffers {
+    spans: Vec<(usize, usize)>,
+    refs: Vec<f64>,
+    others: Vec<f64>,
+    bands: Vec<(usize, usize)>,
+    neighbours: Vec<Neighbours>,
+    dp: DpBuffers,
 }
 
 /// A matched pair of declivities on the optimal path.
@@ -94,14 +113,16 @@ pub fn search_bands(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize
     let mut padded = Vec::with_capacity(others.len() + 2);
     padded.extend_from_slice(others);
     padded.extend([f64::INFINITY; 2]);
-    search_bands_padded(refs, &padded, params)
+    let mut bands = Vec::with_capacity(refs.len());
+    search_bands_padded(refs, &padded, params, &mut bands);
+    bands
 }
 
 /// [`search_bands`] on `others` followed by two `+∞` sentinels, which no
 /// bound passes in either view (their disparity is `-∞` or `+∞`): each bound
 /// moves up to two steps without a branch, then loops only when it moves
 /// further.
-fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
+fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params, bands: &mut Vec<(usize, usize)>) {
     debug_assert!(others.len() >= 2 && others[others.len() - 2..] == [f64::INFINITY; 2]);
     let dispmax = params.dispmax;
     // Moves a bound past the columns `before` holds for. Positions are
@@ -116,8 +137,8 @@ fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params) -> Vec<(us
         k
     }
     let (mut lo, mut hi) = (0usize, 0usize);
-    refs.iter()
-        .map(|&x_ref| {
+    bands.clear();
+    bands.extend(refs.iter().map(|&x_ref| {
             let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
             // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
             match params.ref_view {
@@ -132,9 +153,8 @@ fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params) -> Vec<(us
                     hi = advance(hi, |j| d(j) < dispmax);
                 }
             }
-            (lo, hi.max(lo))
-        })
-        .collect()
+        (lo, hi.max(lo))
+    }));
 }
 
 /// The graph of two lines as bands of nodes with their gains (eq. 4–8); the
@@ -176,20 +196,27 @@ pub fn gain_table(reference: &LineFeatures, other: &LineFeatures, params: &Param
 /// order and the path's gain. (The same as [`banded_dp`] on
 /// [`banded_gains`], with the gains computed as the DP sweeps them.)
 pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
-    let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
-    let mut others: Vec<f64> = Vec::with_capacity(other.declivities.len() + 2);
+    match_lines_in(&mut LineBuffers::default(), reference, other, params)
+}
+
+/// [`match_lines`] with the working vectors of `buffers`.
+pub fn match_lines_in(buffers: &mut LineBuffers, reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
+    let LineBuffers { refs, others, bands, neighbours, dp, .. } = buffers;
+    refs.clear();
+    refs.extend(reference.declivities.iter().map(|d| d.position));
+    others.clear();
     others.extend(other.declivities.iter().map(|d| d.position));
     others.extend([f64::INFINITY; 2]);
-    let bands = search_bands_padded(&refs, &others, params);
+    search_bands_padded(refs, others, params, bands);
     others.truncate(others.len() - 2);
     let rule = LineGain::new(reference.dt, other.dt, params.mode);
-    let (rn, on): (Vec<Neighbours>, Vec<Neighbours>) = (
-        reference.declivities.iter().map(Neighbours::from).collect(),
-        other.declivities.iter().map(Neighbours::from).collect(),
-    );
+    // The reference declivities' neighbours, then the other view's.
+    neighbours.clear();
+    neighbours.extend(reference.declivities.iter().chain(&other.declivities).map(Neighbours::from));
+    let (rn, on) = neighbours.split_at(refs.len());
     let gain = |i: usize, j: usize| rule.gain(&rn[i], &on[j]);
-    let path = banded_dp_with(others.len(), &bands, gain);
-    let matches = path
+    let path_gain = banded_dp_in(dp, others.len(), bands, gain);
+    let matches = dp
         .nodes
         .iter()
         .map(|&(i, j)| Match {
@@ -204,18 +231,27 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
             edge: false,
         })
         .collect();
-    (matches, path.gain)
+    (matches, path_gain)
 }
 
 /// One pair of epipolar lines (same row of the left and right image) through
 /// segmentation and matching, with the reference view of `params`.
 pub fn process_line(left: &[u8], right: &[u8], params: &Params) -> LineResult {
-    let (l, r) = (line_features_with(left, params.hardware), line_features_with(right, params.hardware));
+    process_line_in(&mut LineBuffers::default(), left, right, params)
+}
+
+/// [`process_line`] with the working vectors of `buffers`.
+pub fn process_line_in(buffers: &mut LineBuffers, left: &[u8], right: &[u8], params: &Params) -> LineResult {
+    let mut features = |line: &[u8]| match params.hardware {
+        None => line_features_in(buffers, line),
+        Some(_) => line_features_with(line, params.hardware),
+    };
+    let (l, r) = (features(left), features(right));
     let (reference, other) = match params.ref_view {
         RefView::Left => (l, r),
         RefView::Right => (r, l),
     };
-    let (matches, path_gain) = match_lines(&reference, &other, params);
+    let (matches, path_gain) = match_lines_in(buffers, &reference, &other, params);
     LineResult { reference, other, matches, path_gain }
 }
 
