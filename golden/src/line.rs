@@ -212,7 +212,7 @@ pub fn match_lines_in(buffers: &mut LineBuffers, reference: &LineFeatures, other
     let rule = LineGain::new(reference.dt, other.dt, params.mode);
     // The reference declivities' neighbours, then the other view's.
     neighbours.clear();
-    neighbours.extend(reference.declivities.iter().chain(&other.declivities).map(Neighbours::from));
+    neighbours.extend(reference.declivities.iter().chain(&other.declivities).map(|d| rule.neighbours(d)));
     let (rn, on) = neighbours.split_at(refs.len());
     let gain = |i: usize, j: usize| rule.gain(&rn[i], &on[j]);
     let path_gain = banded_dp_in(dp, others.len(), bands, gain);
