@@ -110,27 +110,30 @@ pub struct LineResult {
 /// `others`, one pair per position of `refs` (sorted too). Both bounds are
 /// non-decreasing, so one sweep finds them all.
 pub fn search_bands(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
-    let mut padded = Vec::with_capacity(others.len() + 2);
+    let mut padded = Vec::with_capacity(others.len() + BAND_PAD);
     padded.extend_from_slice(others);
-    padded.extend([f64::INFINITY; 2]);
+    padded.extend([f64::INFINITY; BAND_PAD]);
     let mut bands = Vec::with_capacity(refs.len());
     search_bands_padded(refs, &padded, params, &mut bands);
     bands
 }
 
-/// [`search_bands`] on `others` followed by two `+∞` sentinels, which no
-/// bound passes in either view (their disparity is `-∞` or `+∞`): each bound
-/// moves up to two steps without a branch, then loops only when it moves
-/// further.
+/// `+∞` sentinels after the other view's positions in [`search_bands_padded`].
+const BAND_PAD: usize = 4;
+
+/// [`search_bands`] on `others` followed by [`BAND_PAD`] `+∞` sentinels,
+/// which no bound passes in either view (their disparity is `-∞` or `+∞`):
+/// each bound moves up to four steps without a branch, then loops only when
+/// it moves further.
 fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params, bands: &mut Vec<(usize, usize)>) {
-    debug_assert!(others.len() >= 2 && others[others.len() - 2..] == [f64::INFINITY; 2]);
+    debug_assert!(others.len() >= BAND_PAD && others[others.len() - BAND_PAD..] == [f64::INFINITY; BAND_PAD]);
     let dispmax = params.dispmax;
     // Moves a bound past the columns `before` holds for. Positions are
     // sorted, so `before` holds for a run of columns from `k` on (if at all)
-    // and the two first steps are one sum of two independent tests, not a
-    // chain of two: the next ones are a loop, seldom taken.
+    // and the first steps are one sum of independent tests, not a chain:
+    // the next ones are a loop, seldom taken.
     fn advance(mut k: usize, before: impl Fn(usize) -> bool) -> usize {
-        k += before(k) as usize + before(k + 1) as usize;
+        k += (0..BAND_PAD).map(|t| before(k + t) as usize).sum::<usize>();
         while before(k) {
             k += 1;
         }
@@ -206,9 +209,9 @@ pub fn match_lines_in(buffers: &mut LineBuffers, reference: &LineFeatures, other
     refs.extend(reference.declivities.iter().map(|d| d.position));
     others.clear();
     others.extend(other.declivities.iter().map(|d| d.position));
-    others.extend([f64::INFINITY; 2]);
+    others.extend([f64::INFINITY; BAND_PAD]);
     search_bands_padded(refs, others, params, bands);
-    others.truncate(others.len() - 2);
+    others.truncate(others.len() - BAND_PAD);
     let rule = LineGain::new(reference.dt, other.dt, params.mode);
     // The reference declivities' neighbours, then the other view's.
     neighbours.clear();
