@@ -406,22 +406,25 @@ pub fn banded_dp_in(buffers: &mut DpBuffers, m: usize, bands: &[(usize, usize)],
         if hi0 > lo0 {
             // 1-based columns lo ..= hi.
             let (lo, hi) = (lo0 + 1, hi0);
-            while filled < hi {
-                filled += 1;
-                q[filled] = tail;
-            }
-            let mut diag = q[lo - 1];
-            let mut left = q[lo - 1];
+            // q[j] for j > filled was never written: it stands for the tail
+            // T of the rows above (read as such without a branch; q[lo - 1]
+            // is written back, as the rows below may read it).
+            let read = |qj: f64, j: usize| if j > filled { tail } else { qj };
+            let start = read(q[lo - 1], lo - 1);
+            q[lo - 1] = start;
+            let mut diag = start;
+            let mut left = start;
             let row_c = &mut band_c[offs[i]..][..hi - lo + 1];
             // Column j (0-based) is q[j + 1].
             for ((j, qj), c) in (lo0..).zip(&mut q[lo..hi + 1]).zip(row_c) {
-                let up = *qj;
+                let up = read(*qj, j + 1);
                 let (pij, choice) = cell_step_g(gain(i, j) + diag, up, left);
                 diag = up;
                 *qj = pij;
                 left = pij;
                 *c = choice;
             }
+            filled = filled.max(hi);
             tail = tail.max(q[hi]);
         }
         tails[i] = tail;
@@ -436,7 +439,11 @@ pub fn banded_dp_in(buffers: &mut DpBuffers, m: usize, bands: &[(usize, usize)],
     // does so without looking at P: from a cell with P = 0 every cell the
     // walk can reach has P = 0 and holds no node, so the path's nodes are
     // those of `prefix_max_dp`'s traceback.
+    // The nodes are written unconditionally into slot k, which only a node
+    // move keeps (no branch on the choice); a path has at most min(n, m).
     nodes.clear();
+    nodes.resize(n.min(m) + 1, (0, 0));
+    let mut k = 0usize;
     let (mut i, mut j) = (n, m);
     while i > 0 && j > 0 {
         let (lo0, hi0) = bands[i - 1];
@@ -455,10 +462,19 @@ pub fn banded_dp_in(buffers: &mut DpBuffers, m: usize, bands: &[(usize, usize)],
             } else {
                 j = hi0;
             }
-        } else if !step_back(band_c[offs[i - 1] + j - 1 - lo0], &mut i, &mut j, nodes) {
-            break;
+        } else {
+            // `step_back`'s move.
+            let c = band_c[offs[i - 1] + j - 1 - lo0];
+            if c == Choice::Start {
+                break;
+            }
+            nodes[k] = (i - 1, j - 1);
+            k += (c == Choice::Node) as usize;
+            i -= matches!(c, Choice::Node | Choice::Up) as usize;
+            j -= matches!(c, Choice::Node | Choice::Left) as usize;
         }
     }
+    nodes.truncate(k);
     nodes.reverse();
     // P(N,M) = T_N: no column lies right of the last one.
     tails.last().copied().unwrap_or(0.0)
