@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use crate::disparity::{interpolate_into, median_of_rows, vertical_median, Anchor};
+use crate::disparity::{interpolate_chunked, interpolate_into, median_of_rows, vertical_median, Anchor};
 use crate::error::GoldenError;
 use crate::line::{process_line_in, LineBuffers, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
@@ -214,7 +214,7 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
     let mut interpolate = |line: &LineResult, out: &mut [f64]| {
         anchors.clear();
         anchors.extend(line.matches.iter().map(|m| m.anchor()));
-        interpolate_into(&anchors, params.ends, features.edge_jump, out);
+        interpolate_chunked(&anchors, params.ends, features.edge_jump, out);
     };
     let mut disparity = Vec::with_capacity(w * h);
     if rows <= 1 {
