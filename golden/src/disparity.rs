@@ -94,6 +94,11 @@ pub fn interpolate_chunked(anchors: &[Anchor], ends: EndRule, jump: Option<f64>,
         return;
     };
     let width = out.len();
+    // Pixel indices converted through i32 (two at a time on x86-64): rows of
+    // fewer than 2^31 pixels.
+    if i32::try_from(width).is_err() {
+        return interpolate_into(anchors, ends, jump, out);
+    }
     let first_at_or_after = |x: f64| first_at_or_after(x, width);
     let (held_first, held_last) = match ends {
         EndRule::Hold => (first.d, last.d),
@@ -113,7 +118,7 @@ pub fn interpolate_chunked(anchors: &[Anchor], ends: EndRule, jump: Option<f64>,
             match out.get_mut(x..x + CHUNK) {
                 Some(chunk) => {
                     for (k, v) in chunk.iter_mut().enumerate() {
-                        *v = base + slope * (pixel_centre(x + k) - a.x);
+                        *v = base + slope * ((x + k) as i32 as f64 - a.x);
                     }
                 }
                 // The row's last pixels: one at a time, to the segment's end.
