@@ -248,8 +248,9 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
     disparity
 }
 
-/// [`confirmed_matches`] as one flat list of flags, row after row, and the
-/// index of each row's first flag: the same merge of each pair of adjacent
+/// [`confirmed_matches`] as one flat list of flags, row after row (each
+/// row's flags followed by three unused slots), and the index of each row's
+/// first flag: the same merge of each pair of adjacent
 /// rows, without a branch on the data where it can be avoided (mispredicted
 /// branches were most of its time in a frame). The positions and disparities
 /// are copied out of the matches, each row closed by three `+∞` positions;

@@ -142,20 +142,20 @@ fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params, bands: &mu
     let (mut lo, mut hi) = (0usize, 0usize);
     bands.clear();
     bands.extend(refs.iter().map(|&x_ref| {
-            let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
-            // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
-            match params.ref_view {
-                // d falls as x_other grows.
-                RefView::Left => {
-                    lo = advance(lo, |j| d(j) >= dispmax);
-                    hi = advance(hi, |j| d(j) > 0.0);
-                }
-                // d grows with x_other.
-                RefView::Right => {
-                    lo = advance(lo, |j| d(j) <= 0.0);
-                    hi = advance(hi, |j| d(j) < dispmax);
-                }
+        let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
+        // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
+        match params.ref_view {
+            // d falls as x_other grows.
+            RefView::Left => {
+                lo = advance(lo, |j| d(j) >= dispmax);
+                hi = advance(hi, |j| d(j) > 0.0);
             }
+            // d grows with x_other.
+            RefView::Right => {
+                lo = advance(lo, |j| d(j) <= 0.0);
+                hi = advance(hi, |j| d(j) < dispmax);
+            }
+        }
         (lo, hi.max(lo))
     }));
 }
