@@ -287,6 +287,10 @@ fn position_sums_windowed(line: &[u8], start: usize, end: usize) -> (u64, u64) {
 /// `I(x_{i+1} + k)` for k = 0, 1, 2, clamped at the line's ends.
 #[inline]
 pub fn neighbour_levels(line: &[u8], start: usize, end: usize) -> ([u8; 3], [u8; 3]) {
+    // Away from the line's ends (nearly always): two slices, no clamping.
+    if let (Some(&[l2, l1, l0]), Some(&[r0, r1, r2])) = (start.checked_sub(2).and_then(|s| line.get(s..=start)), line.get(end..end + 3)) {
+        return ([l0, l1, l2], [r0, r1, r2]);
+    }
     let last = line.len() - 1;
     let left = [0, 1, 2].map(|k| line[start.saturating_sub(k)]);
     let right = [0, 1, 2].map(|k| line[(end + k).min(last)]);
@@ -339,6 +343,22 @@ mod tests {
             let dt = dt10 as f64 / 10.0;
             for a in -300i32..=300 {
                 assert_eq!(is_characteristic(a, dt), a.unsigned_abs() > integer_threshold(dt), "a {a}, dt {dt}");
+            }
+        }
+    }
+
+    #[test]
+    fn neighbour_levels_are_the_clamped_levels() {
+        let mut rng = crate::test_rng::TestRng::new(0x7e1e_0e15_0c1a_3b2d);
+        for _ in 0..300 {
+            let n = 2 + (rng.next() % 12) as usize;
+            let line: Vec<u8> = (0..n).map(|_| (rng.next() % 256) as u8).collect();
+            for start in 0..n - 1 {
+                for end in start + 1..n {
+                    let clamp = |x: isize| line[x.clamp(0, n as isize - 1) as usize];
+                    let want = ([0, 1, 2].map(|k| clamp(start as isize - k)), [0, 1, 2].map(|k| clamp((end + k) as isize)));
+                    assert_eq!(neighbour_levels(&line, start, end), want, "{start}..{end} of {line:?}");
+                }
             }
         }
     }
