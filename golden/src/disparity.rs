@@ -56,33 +56,108 @@ pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, jump: Option<f64>, ou
     // last anchor on (its own value at x = x_last, held or empty beyond).
     let begin = first_at_or_after(first.x);
     out[..begin].fill(held_first);
+    let mut from = begin;
     for w in anchors.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let segment = &mut out[first_at_or_after(a.x)..first_at_or_after(b.x)];
+        let to = first_at_or_after(b.x);
+        let segment = &mut out[from..to];
         if jump.is_some_and(|j| (a.d - b.d).abs() > j) {
             segment.fill(a.d.min(b.d));
-            continue;
+        } else {
+            let slope = (b.d - a.d) / (b.x - a.x);
+            for (x, v) in (from..).zip(segment) {
+                *v = a.d + slope * (pixel_centre(x) - a.x);
+            }
         }
-        let slope = (b.d - a.d) / (b.x - a.x);
-        let from = first_at_or_after(a.x);
-        for (x, v) in segment.iter_mut().enumerate() {
-            *v = a.d + slope * ((from + x) as f64 - a.x);
-        }
+        from = to;
     }
-    let mut tail = first_at_or_after(last.x);
-    if tail < width && tail as f64 == last.x {
+    // `from` is now the first centre at or after the last anchor.
+    let mut tail = from;
+    if tail < width && pixel_centre(tail) == last.x {
         out[tail] = last.d;
         tail += 1;
     }
     out[tail..].fill(held_last);
 }
 
+/// [`interpolate_into`], the same values, with fewer branches on the data
+/// (the frame pipeline's path): a segment between two anchors is written
+/// [`CHUNK`] pixels at a time, the last chunk running past the segment's end
+/// into pixels that the next segments or the held end overwrite (segments
+/// are written left to right and each starts where the previous one ends),
+/// and a jump is the ramp of slope 0 from the smaller disparity
+/// (`d + 0·(x - x_a) = d`: every disparity is positive), so that neither the
+/// length of a segment nor its kind is a branch per pixel or per segment.
+pub fn interpolate_chunked(anchors: &[Anchor], ends: EndRule, jump: Option<f64>, out: &mut [f64]) {
+    let (Some(first), Some(last)) = (anchors.first(), anchors.last()) else {
+        out.fill(NO_DISPARITY);
+        return;
+    };
+    let width = out.len();
+    // Pixel indices converted through i32 (two at a time on x86-64): rows of
+    // fewer than 2^31 pixels.
+    if i32::try_from(width).is_err() {
+        return interpolate_into(anchors, ends, jump, out);
+    }
+    let first_at_or_after = |x: f64| first_at_or_after(x, width);
+    let (held_first, held_last) = match ends {
+        EndRule::Hold => (first.d, last.d),
+        EndRule::Empty => (NO_DISPARITY, NO_DISPARITY),
+    };
+    let begin = first_at_or_after(first.x);
+    out[..begin].fill(held_first);
+    let jump = jump.unwrap_or(f64::INFINITY);
+    let mut from = begin;
+    for w in anchors.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let to = first_at_or_after(b.x);
+        let is_jump = (a.d - b.d).abs() > jump;
+        let (base, slope) = (if is_jump { a.d.min(b.d) } else { a.d }, if is_jump { 0.0 } else { (b.d - a.d) / (b.x - a.x) });
+        let mut x = from;
+        while x < to {
+            match out.get_mut(x..x + CHUNK) {
+                Some(chunk) => {
+                    for (k, v) in chunk.iter_mut().enumerate() {
+                        *v = base + slope * ((x + k) as i32 as f64 - a.x);
+                    }
+                }
+                // The row's last pixels: one at a time, to the segment's end.
+                None => {
+                    for (k, v) in out[x..to].iter_mut().enumerate() {
+                        *v = base + slope * (pixel_centre(x + k) - a.x);
+                    }
+                }
+            }
+            x += CHUNK;
+        }
+        from = to;
+    }
+    let mut tail = from;
+    if tail < width && pixel_centre(tail) == last.x {
+        out[tail] = last.d;
+        tail += 1;
+    }
+    out[tail..].fill(held_last);
+}
+
+/// Pixels written at once by [`interpolate_chunked`].
+const CHUNK: usize = 8;
+
 /// The first pixel centre at or after `x`, as an index of a row of `width`
-/// pixels (a ceiling without a call to libm's `ceil`).
+/// pixels (a ceiling without a call to libm's `ceil`). Through `i64`, whose
+/// conversions to and from `f64` are single instructions on x86-64 (those of
+/// `usize` are not); a row is far shorter than `2^63` pixels.
 fn first_at_or_after(x: f64, width: usize) -> usize {
     let x = x.max(0.0);
-    let t = x as usize;
-    (t + ((t as f64) < x) as usize).min(width)
+    let t = x as i64;
+    (t as usize + ((t as f64) < x) as usize).min(width)
+}
+
+/// The coordinate of pixel centre `x`, exact (through `i64`, as in
+/// [`first_at_or_after`]).
+#[inline]
+fn pixel_centre(x: usize) -> f64 {
+    x as i64 as f64
 }
 
 /// The vertical median of a dense map over `rows` rows (1, 3 or 5) centred
@@ -97,32 +172,46 @@ fn first_at_or_after(x: f64, width: usize) -> usize {
 /// 18.9 to 18.1 but cost as much time as the rest of the method on this
 /// machine without SIMD intrinsics; five were kept.)
 pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &mut [f64], y: usize) {
+    assert!(matches!(rows, 1 | 3 | 5), "vertical median over {rows} rows: 1, 3 or 5 are supported");
     let height = disparity.len() / width;
+    let half = (rows / 2) as isize;
     let row = |dy: isize| {
         let yy = (y as isize + dy).clamp(0, height as isize - 1) as usize;
         &disparity[yy * width..(yy + 1) * width]
     };
+    let rows: Vec<&[f64]> = (-half..=half).map(row).collect();
+    median_of_rows(&rows, out_row);
+}
+
+/// The median of 1, 3 or 5 rows, column by column, into `out_row`: the
+/// networks of [`vertical_median`], on the rows top to bottom.
+///
+/// Disparities are `+0` or positive, never NaN or `-0`: two values that
+/// compare equal are the same bits, so either may be taken on a tie, and
+/// `min`/`max` are written as the single instructions of x86-64 take them
+/// (`a < b ? a : b`, `a > b ? a : b`).
+pub fn median_of_rows(rows: &[&[f64]], out_row: &mut [f64]) {
     let min = |a: f64, b: f64| if a < b { a } else { b };
-    let max = |a: f64, b: f64| if a < b { b } else { a };
+    let max = |a: f64, b: f64| if a > b { a } else { b };
     let median3 = |a: f64, b: f64, c: f64| max(min(a, b), min(max(a, b), c));
-    match rows {
-        1 => out_row.copy_from_slice(row(0)),
+    match *rows {
+        [row] => out_row.copy_from_slice(row),
         // Zipped rows rather than indices: no bounds checks, so the loops
         // vectorize.
-        3 => {
-            let rows = row(-1).iter().zip(row(0)).zip(row(1));
+        [above, centre, below] => {
+            let rows = above.iter().zip(centre).zip(below);
             for (v, ((&a, &b), &c)) in out_row.iter_mut().zip(rows) {
                 *v = median3(a, b, c);
             }
         }
-        5 => {
-            let rows = row(-2).iter().zip(row(-1)).zip(row(0)).zip(row(1)).zip(row(2));
+        [r0, r1, centre, r3, r4] => {
+            let rows = r0.iter().zip(r1).zip(centre).zip(r3).zip(r4);
             for (v, ((((&a, &b), &e), &c), &d)) in out_row.iter_mut().zip(rows) {
                 let (lo, hi) = (max(min(a, b), min(c, d)), min(max(a, b), max(c, d)));
                 *v = median3(lo, hi, e);
             }
         }
-        _ => panic!("vertical median over {rows} rows: 1, 3 or 5 are supported"),
+        _ => panic!("vertical median over {} rows: 1, 3 or 5 are supported", rows.len()),
     }
 }
 
@@ -153,6 +242,32 @@ mod tests {
                     for (x, &got) in out.iter().enumerate() {
                         assert_eq!(got, median_by_sorting(&map, w, rows, x, y), "rows {rows}, ({x}, {y}) of {map:?}");
                     }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn chunked_interpolation_equals_the_reference() {
+        let mut rng = crate::test_rng::TestRng::new(0x1e7e_c4a5_0b0e_0001);
+        for case in 0..3000 {
+            let width = 1 + (rng.next() % 80) as usize;
+            // Anchors at strictly increasing positions, some closer than a
+            // pixel, some outside the row; positive disparities with jumps.
+            let mut x = (rng.next() % 40) as f64 / 4.0 - 5.0;
+            let anchors: Vec<Anchor> = (0..rng.next() % 12)
+                .map(|_| {
+                    x += (1 + rng.next() % 40) as f64 / 8.0;
+                    Anchor { x, d: 0.5 + (rng.next() % 200) as f64 / 7.0 }
+                })
+                .collect();
+            for ends in [EndRule::Hold, EndRule::Empty] {
+                for jump in [None, Some(2.0), Some(6.0)] {
+                    let (mut want, mut got) = (vec![-1.0; width], vec![-2.0; width]);
+                    interpolate_into(&anchors, ends, jump, &mut want);
+                    interpolate_chunked(&anchors, ends, jump, &mut got);
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&got), bits(&want), "case {case}, {ends:?}, {jump:?}, {anchors:?}");
                 }
             }
         }

@@ -360,39 +360,74 @@ pub fn banded_dp(b: &BandedGains) -> Path {
 /// each band cell `(i, j)` ([`NO_NODE`] where there is no node). The gains
 /// are asked for once each, row by row, left to right, so they can be
 /// computed on the fly.
-pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> Path {
+pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], gain: impl FnMut(usize, usize) -> f64) -> Path {
+    let mut buffers = DpBuffers::default();
+    let gain = banded_dp_in(&mut buffers, m, bands, gain);
+    Path { gain, nodes: buffers.nodes }
+}
+
+/// The working tables of [`banded_dp_in`], kept from one line to the next so
+/// that their allocations are reused; `nodes` holds the last path found.
+#[derive(Debug, Clone, Default)]
+pub struct DpBuffers {
+    offs: Vec<usize>,
+    band_c: Vec<Choice>,
+    tails: Vec<f64>,
+    q: Vec<f64>,
+    /// The nodes of the last path, in increasing order.
+    pub nodes: Vec<(usize, usize)>,
+}
+
+/// [`banded_dp_with`] in reused tables: returns the path's gain and leaves
+/// its nodes in `buffers.nodes`.
+pub fn banded_dp_in(buffers: &mut DpBuffers, m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> f64 {
     let n = bands.len();
+    let DpBuffers { offs, band_c, tails, q, nodes } = buffers;
     // Choices of the band cells, row after row; offs[i] = first of row i.
-    let mut offs = Vec::with_capacity(n);
-    let mut band_c = Vec::with_capacity(bands.iter().map(|&(lo, hi)| hi.saturating_sub(lo)).sum());
-    let mut tails = Vec::with_capacity(n); // T_i
+    // (Sized up front and written by index: no growth check in the loop.)
+    offs.clear();
+    let mut cells = 0usize;
+    offs.extend(bands.iter().map(|&(lo, hi)| {
+        let off = cells;
+        cells += hi.saturating_sub(lo);
+        off
+    }));
+    band_c.clear();
+    band_c.resize(cells, Choice::Start);
+    tails.clear();
+    tails.resize(n, 0.0); // T_i
     // q[j] = P(current row, j) for j <= filled; beyond, the tail T.
-    let mut q = vec![0.0f64; m + 1];
+    q.clear();
+    q.resize(m + 1, 0.0);
     let mut filled = 0usize;
     let mut tail = 0.0f64;
     for (i, &(lo0, hi0)) in bands.iter().enumerate() {
         debug_assert!(hi0 <= m, "band inside the table");
-        offs.push(band_c.len());
         if hi0 > lo0 {
             // 1-based columns lo ..= hi.
             let (lo, hi) = (lo0 + 1, hi0);
-            while filled < hi {
-                filled += 1;
-                q[filled] = tail;
-            }
-            let mut diag = q[lo - 1];
-            let mut left = q[lo - 1];
-            for j in lo..=hi {
-                let up = q[j];
-                let (pij, c) = cell_step_g(gain(i, j - 1) + diag, up, left);
+            // q[j] for j > filled was never written: it stands for the tail
+            // T of the rows above (read as such without a branch; q[lo - 1]
+            // is written back, as the rows below may read it).
+            let read = |qj: f64, j: usize| if j > filled { tail } else { qj };
+            let start = read(q[lo - 1], lo - 1);
+            q[lo - 1] = start;
+            let mut diag = start;
+            let mut left = start;
+            let row_c = &mut band_c[offs[i]..][..hi - lo + 1];
+            // Column j (0-based) is q[j + 1].
+            for ((j, qj), c) in (lo0..).zip(&mut q[lo..hi + 1]).zip(row_c) {
+                let up = read(*qj, j + 1);
+                let (pij, choice) = cell_step_g(gain(i, j) + diag, up, left);
                 diag = up;
-                q[j] = pij;
+                *qj = pij;
                 left = pij;
-                band_c.push(c);
+                *c = choice;
             }
+            filled = filled.max(hi);
             tail = tail.max(q[hi]);
         }
-        tails.push(tail);
+        tails[i] = tail;
     }
 
     // The traceback of `traceback`, with the choices outside the bands
@@ -404,7 +439,11 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(u
     // does so without looking at P: from a cell with P = 0 every cell the
     // walk can reach has P = 0 and holds no node, so the path's nodes are
     // those of `prefix_max_dp`'s traceback.
-    let mut nodes = Vec::new();
+    // The nodes are written unconditionally into slot k, which only a node
+    // move keeps (no branch on the choice); a path has at most min(n, m).
+    nodes.clear();
+    nodes.resize(n.min(m) + 1, (0, 0));
+    let mut k = 0usize;
     let (mut i, mut j) = (n, m);
     while i > 0 && j > 0 {
         let (lo0, hi0) = bands[i - 1];
@@ -423,11 +462,20 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(u
             } else {
                 j = hi0;
             }
-        } else if !step_back(band_c[offs[i - 1] + j - 1 - lo0], &mut i, &mut j, &mut nodes) {
-            break;
+        } else {
+            // `step_back`'s move.
+            let c = band_c[offs[i - 1] + j - 1 - lo0];
+            if c == Choice::Start {
+                break;
+            }
+            nodes[k] = (i - 1, j - 1);
+            k += (c == Choice::Node) as usize;
+            i -= matches!(c, Choice::Node | Choice::Up) as usize;
+            j -= matches!(c, Choice::Node | Choice::Left) as usize;
         }
     }
+    nodes.truncate(k);
     nodes.reverse();
     // P(N,M) = T_N: no column lies right of the last one.
-    Path { gain: tails.last().copied().unwrap_or(0.0), nodes }
+    tails.last().copied().unwrap_or(0.0)
 }

@@ -2,9 +2,9 @@
 
 use rayon::prelude::*;
 
-use crate::disparity::{interpolate_into, vertical_median, Anchor};
+use crate::disparity::{interpolate_chunked, interpolate_into, median_of_rows, vertical_median, Anchor};
 use crate::error::GoldenError;
-use crate::line::{process_line, LineResult, Match};
+use crate::line::{process_line_in, LineBuffers, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
 
 /// An 8-bit grey image, row-major.
@@ -124,11 +124,13 @@ pub fn confirmed_matches(lines: &[LineResult]) -> Vec<Vec<bool>> {
 /// Flags the matches of a row whose disparity differs by more than `jump`
 /// from that of the previous or the next match ([`crate::Features::edge_flag`]).
 pub fn flag_edge_matches(matches: &mut [Match], jump: f64) {
-    let d: Vec<f64> = matches.iter().map(|m| m.disparity).collect();
-    for (k, m) in matches.iter_mut().enumerate() {
-        let before = k > 0 && (d[k] - d[k - 1]).abs() > jump;
-        let after = k + 1 < d.len() && (d[k] - d[k + 1]).abs() > jump;
-        m.edge = before || after;
+    // A jump between matches k-1 and k flags both; `prev` carries the flag
+    // of the jump before k.
+    let mut prev = false;
+    for k in 0..matches.len() {
+        let next = k + 1 < matches.len() && (matches[k].disparity - matches[k + 1].disparity).abs() > jump;
+        matches[k].edge = prev | next;
+        prev = next;
     }
 }
 
@@ -147,11 +149,15 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
         });
     }
     let (w, h) = (left.width, left.height);
-    // 1. Every pair of lines, independently.
-    let one_line = |y: usize| process_line(left.row(y), right.row(y), params);
+    // 1. Every pair of lines, independently (each thread reuses its working
+    // vectors from line to line).
+    let one_line = |buffers: &mut LineBuffers, y: usize| process_line_in(buffers, left.row(y), right.row(y), params);
     let lines: Vec<LineResult> = match threads {
-        Threads::One => (0..h).map(one_line).collect(),
-        Threads::All => (0..h).into_par_iter().map(one_line).collect(),
+        Threads::One => {
+            let mut buffers = LineBuffers::default();
+            (0..h).map(|y| one_line(&mut buffers, y)).collect()
+        }
+        Threads::All => (0..h).into_par_iter().map_init(LineBuffers::default, one_line).collect(),
     };
     Ok(finish_frame(lines, w, h, params, threads))
 }
@@ -164,10 +170,10 @@ pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Par
     let features = params.mode.features();
     // 2. Matches confirmed by a neighbouring row.
     if features.consistent {
-        let kept = confirmed_matches(&lines);
-        for (line, kept) in lines.iter_mut().zip(kept) {
-            let mut k = kept.into_iter();
-            line.matches.retain(|_| k.next().unwrap_or(false));
+        let (kept, first) = confirmed_flags(&lines);
+        for (line, &first) in lines.iter_mut().zip(&first) {
+            let mut k = kept[first..].iter();
+            line.matches.retain(|_| *k.next().expect("a flag per match"));
         }
     }
     // 3. Matches next to a disparity jump flagged.
@@ -176,26 +182,128 @@ pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Par
             flag_edge_matches(&mut line.matches, jump);
         }
     }
-    // 4. Interpolation along each reference row (every match anchors it).
-    let mut disparity = vec![0.0; w * h];
-    let interpolate = |(line, out): (&LineResult, &mut [f64])| {
-        let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
-        interpolate_into(&anchors, params.ends, features.edge_jump, out);
+    // 4. Interpolation along each reference row (every match anchors it),
+    // 5. then the vertical median of the dense map.
+    let disparity = match threads {
+        Threads::One => interpolate_and_median(&lines, w, params),
+        Threads::All => {
+            let mut disparity = vec![0.0; w * h];
+            lines.par_iter().zip(disparity.par_chunks_mut(w)).for_each(|(line, out)| {
+                let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
+                interpolate_into(&anchors, params.ends, features.edge_jump, out);
+            });
+            if features.median_rows > 1 {
+                let src = std::mem::replace(&mut disparity, vec![0.0; w * h]);
+                disparity.par_chunks_mut(w).enumerate().for_each(|(y, out)| vertical_median(&src, w, features.median_rows, out, y));
+            }
+            disparity
+        }
     };
-    match threads {
-        Threads::One => lines.iter().zip(disparity.chunks_mut(w)).for_each(interpolate),
-        Threads::All => lines.par_iter().zip(disparity.par_chunks_mut(w)).for_each(interpolate),
+    FrameResult { width: w, height: h, params: *params, lines, disparity }
+}
+
+/// Steps 4 and 5 of [`finish_frame`] on one thread, row by row: each row is
+/// interpolated into a ring of `median_rows` rows and the median of the
+/// rows around it is written out as soon as they are there, so that the
+/// interpolated map is never stored whole (the same values as
+/// [`interpolate_into`] on every row, then [`vertical_median`]).
+fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Vec<f64> {
+    let features = params.mode.features();
+    let (h, rows) = (lines.len(), features.median_rows);
+    let mut anchors: Vec<Anchor> = Vec::new();
+    let mut interpolate = |line: &LineResult, out: &mut [f64]| {
+        anchors.clear();
+        anchors.extend(line.matches.iter().map(|m| m.anchor()));
+        interpolate_chunked(&anchors, params.ends, features.edge_jump, out);
+    };
+    let mut disparity = Vec::with_capacity(w * h);
+    if rows <= 1 {
+        for line in lines {
+            let start = disparity.len();
+            disparity.resize(start + w, 0.0);
+            interpolate(line, &mut disparity[start..]);
+        }
+        return disparity;
     }
-    // 5. Vertical median of the dense map.
-    if features.median_rows > 1 {
-        let src = std::mem::replace(&mut disparity, vec![0.0; w * h]);
-        let median = |(y, out): (usize, &mut [f64])| vertical_median(&src, w, features.median_rows, out, y);
-        match threads {
-            Threads::One => disparity.chunks_mut(w).enumerate().for_each(median),
-            Threads::All => disparity.par_chunks_mut(w).enumerate().for_each(median),
+    assert!(matches!(rows, 3 | 5), "vertical median over {rows} rows: 1, 3 or 5 are supported");
+    // Interpolated row r lives in slot r % rows; rows y - half ..= y + half
+    // (clamped to the image) are there when row y's median is taken.
+    let half = rows / 2;
+    let mut ring = vec![0.0; rows * w];
+    let mut next = 0;
+    for y in 0..h {
+        while next < h && next <= y + half {
+            interpolate(&lines[next], &mut ring[(next % rows) * w..][..w]);
+            next += 1;
+        }
+        // Rows y - half + k, k < rows, clamped to the image.
+        let around: [&[f64]; 5] = std::array::from_fn(|k| {
+            let r = (y + k).saturating_sub(half).min(h - 1);
+            &ring[(r % rows) * w..][..w]
+        });
+        let start = disparity.len();
+        disparity.resize(start + w, 0.0);
+        median_of_rows(&around[..rows], &mut disparity[start..]);
+    }
+    disparity
+}
+
+/// [`confirmed_matches`] as one flat list of flags, row after row (each
+/// row's flags followed by three unused slots), and the index of each row's
+/// first flag: the same merge of each pair of adjacent
+/// rows, without a branch on the data where it can be avoided (mispredicted
+/// branches were most of its time in a frame). The positions and disparities
+/// are copied out of the matches, each row closed by three `+∞` positions;
+/// a window's first three matches are checked unconditionally and a loop
+/// runs only when it holds more (rare: matches are seldom closer than
+/// [`CONSISTENT_DX`]).
+pub fn confirmed_flags(lines: &[LineResult]) -> (Vec<bool>, Vec<usize>) {
+    const PAD: usize = 3;
+    let total: usize = lines.iter().map(|l| l.matches.len() + PAD).sum();
+    let (mut x, mut d) = (Vec::with_capacity(total), Vec::with_capacity(total));
+    let mut first = Vec::with_capacity(lines.len() + 1);
+    for line in lines {
+        first.push(x.len());
+        x.extend(line.matches.iter().map(|m| m.x_ref));
+        d.extend(line.matches.iter().map(|m| m.disparity));
+        x.extend([f64::INFINITY; PAD]);
+        d.extend([0.0; PAD]);
+    }
+    let mut keep = vec![false; total];
+    for y in 1..lines.len() {
+        // Row y - 1's matches are a0 .. a1, row y's start at b0.
+        let (a0, a1, b0) = (first[y - 1], first[y] - PAD, first[y]);
+        let mut lo = b0;
+        for i in a0..a1 {
+            let (left, right) = (x[i] - CONSISTENT_DX, x[i] + CONSISTENT_DX);
+            // lo: row y's first match not left of the window (a +∞ stops
+            // it). Positions are sorted: up to two steps are one sum of two
+            // independent tests.
+            lo += (x[lo] < left) as usize + (x[lo + 1] < left) as usize;
+            while x[lo] < left {
+                lo += 1;
+            }
+            let mut confirmed = false;
+            let mut check = |j: usize| {
+                let inside = x[j] <= right;
+                let close = inside & ((d[j] - d[i]).abs() <= CONSISTENT_DD);
+                keep[j] |= close;
+                confirmed |= close;
+                inside
+            };
+            // lo + 2 is at most the row's third +∞; past it only when it is inside.
+            check(lo);
+            check(lo + 1);
+            if check(lo + 2) {
+                let mut j = lo + 3;
+                while check(j) {
+                    j += 1;
+                }
+            }
+            keep[i] |= confirmed;
         }
     }
-    FrameResult { width: w, height: h, params: *params, lines, disparity }
+    (keep, first)
 }
 
 #[cfg(test)]
@@ -229,6 +337,34 @@ mod tests {
         assert_eq!(keep, vec![vec![true, false], vec![true, false, true], vec![false, true]]);
         // A single row confirms nothing.
         assert_eq!(confirmed_matches(&lines[..1]), vec![vec![false, false]]);
+    }
+
+    #[test]
+    fn confirmed_flags_are_the_confirmed_matches_row_after_row() {
+        let mut rng = crate::test_rng::TestRng::new(0x0c0f_f1a6_5eed_0001);
+        for case in 0..2000 {
+            // Positions on a grid of quarter pixels (bounds |Δx| = 3 and
+            // |Δd| = 1 hit exactly), often closer than 3 px to each other.
+            let rows = (rng.next() % 7) as usize;
+            let lines: Vec<LineResult> = (0..rows)
+                .map(|_| {
+                    let n = (rng.next() % 12) as usize;
+                    let mut x = (rng.next() % 8) as f64 / 4.0;
+                    let m: Vec<(f64, f64)> = (0..n)
+                        .map(|_| {
+                            x += (1 + rng.next() % 24) as f64 / 4.0;
+                            (x, (rng.next() % 12) as f64 / 4.0 + 1.0)
+                        })
+                        .collect();
+                    line(&m)
+                })
+                .collect();
+            let want: Vec<bool> = confirmed_matches(&lines).concat();
+            let (flags, first) = confirmed_flags(&lines);
+            let got: Vec<bool> =
+                lines.iter().zip(&first).flat_map(|(l, &f)| flags[f..f + l.matches.len()].iter().copied()).collect();
+            assert_eq!(got, want, "case {case}");
+        }
     }
 
     #[test]

@@ -2,11 +2,11 @@
 //! characteristic declivities (eq. 3), nodes and gains (eq. 4–8), the optimal
 //! path (eq. 9), the matches and their disparities.
 
-use crate::declivity::{characteristic_declivities, Declivity};
+use crate::declivity::{characteristic_declivities_with, Declivity};
 use crate::disparity::Anchor;
-use crate::dp::{banded_dp_with, BandedGains, GainTable};
+use crate::dp::{banded_dp_in, BandedGains, DpBuffers, GainTable};
 #[cfg(doc)]
-use crate::dp::banded_dp;
+use crate::dp::{banded_dp, banded_dp_with};
 use crate::gain::{gmax, node_gain, pair_disparity, LineGain, Neighbours};
 use crate::noise::{noise_sigma, threshold};
 use crate::params::{Params, RefView};
@@ -39,9 +39,28 @@ pub fn line_features_with(line: &[u8], limits: Option<crate::hardware::HardwareL
 
 /// Segments one line: σ, `d_t` (eq. 2) and the characteristic declivities.
 pub fn line_features(line: &[u8]) -> LineFeatures {
+    line_features_in(&mut LineBuffers::default(), line)
+}
+
+/// [`line_features`] with the working vectors of `buffers`.
+pub fn line_features_in(buffers: &mut LineBuffers, line: &[u8]) -> LineFeatures {
     let sigma = noise_sigma(line);
     let dt = threshold(sigma);
-    LineFeatures { sigma, dt, declivities: characteristic_declivities(line, dt) }
+    LineFeatures { sigma, dt, declivities: characteristic_declivities_with(line, dt, &mut buffers.spans) }
+}
+
+/// The working vectors of the segmentation and the matching of a line, kept
+/// from one line to the next ([`process_line_in`]; `process_frame` keeps
+/// one per thread) so that a frame does not allocate and free them for
+/// every line. Their contents between calls mean nothing.
+#[derive(Debug, Clone, Default)]
+pub struct LineBuffers {
+    spans: Vec<(usize, usize)>,
+    refs: Vec<f64>,
+    others: Vec<f64>,
+    bands: Vec<(usize, usize)>,
+    neighbours: Vec<Neighbours>,
+    dp: DpBuffers,
 }
 
 /// A matched pair of declivities on the optimal path.
@@ -91,48 +110,54 @@ pub struct LineResult {
 /// `others`, one pair per position of `refs` (sorted too). Both bounds are
 /// non-decreasing, so one sweep finds them all.
 pub fn search_bands(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
-    let mut padded = Vec::with_capacity(others.len() + 1);
+    let mut padded = Vec::with_capacity(others.len() + BAND_PAD);
     padded.extend_from_slice(others);
-    padded.push(f64::INFINITY);
-    search_bands_padded(refs, &padded, params)
+    padded.extend([f64::INFINITY; BAND_PAD]);
+    let mut bands = Vec::with_capacity(refs.len());
+    search_bands_padded(refs, &padded, params, &mut bands);
+    bands
 }
 
-/// [`search_bands`] on `others` followed by a `+∞` sentinel, which no bound
-/// passes in either view (its disparity is `-∞` or `+∞`): each bound takes
-/// two steps without a branch, then loops only when it moves further.
-fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params) -> Vec<(usize, usize)> {
-    debug_assert_eq!(others.last(), Some(&f64::INFINITY));
+/// `+∞` sentinels after the other view's positions in [`search_bands_padded`].
+const BAND_PAD: usize = 4;
+
+/// [`search_bands`] on `others` followed by [`BAND_PAD`] `+∞` sentinels,
+/// which no bound passes in either view (their disparity is `-∞` or `+∞`):
+/// each bound moves up to four steps without a branch, then loops only when
+/// it moves further.
+fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params, bands: &mut Vec<(usize, usize)>) {
+    debug_assert!(others.len() >= BAND_PAD && others[others.len() - BAND_PAD..] == [f64::INFINITY; BAND_PAD]);
     let dispmax = params.dispmax;
-    // Moves a bound past the columns `before` holds for: two steps without a
-    // branch, then a loop only when it moves further.
+    // Moves a bound past the columns `before` holds for. Positions are
+    // sorted, so `before` holds for a run of columns from `k` on (if at all)
+    // and the first steps are one sum of independent tests, not a chain:
+    // the next ones are a loop, seldom taken.
     fn advance(mut k: usize, before: impl Fn(usize) -> bool) -> usize {
-        k += before(k) as usize;
-        k += before(k) as usize;
+        k += (0..BAND_PAD).map(|t| before(k + t) as usize).sum::<usize>();
         while before(k) {
             k += 1;
         }
         k
     }
     let (mut lo, mut hi) = (0usize, 0usize);
-    refs.iter()
-        .map(|&x_ref| {
-            let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
-            // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
-            match params.ref_view {
-                // d falls as x_other grows.
-                RefView::Left => {
-                    lo = advance(lo, |j| d(j) >= dispmax);
-                    hi = advance(hi, |j| d(j) > 0.0);
-                }
-                // d grows with x_other.
-                RefView::Right => {
-                    lo = advance(lo, |j| d(j) <= 0.0);
-                    hi = advance(hi, |j| d(j) < dispmax);
-                }
+    bands.clear();
+    bands.extend(refs.iter().map(|&x_ref| {
+        let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
+        // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
+        match params.ref_view {
+            // d falls as x_other grows.
+            RefView::Left => {
+                lo = advance(lo, |j| d(j) >= dispmax);
+                hi = advance(hi, |j| d(j) > 0.0);
             }
-            (lo, hi.max(lo))
-        })
-        .collect()
+            // d grows with x_other.
+            RefView::Right => {
+                lo = advance(lo, |j| d(j) <= 0.0);
+                hi = advance(hi, |j| d(j) < dispmax);
+            }
+        }
+        (lo, hi.max(lo))
+    }));
 }
 
 /// The graph of two lines as bands of nodes with their gains (eq. 4–8); the
@@ -174,20 +199,27 @@ pub fn gain_table(reference: &LineFeatures, other: &LineFeatures, params: &Param
 /// order and the path's gain. (The same as [`banded_dp`] on
 /// [`banded_gains`], with the gains computed as the DP sweeps them.)
 pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
-    let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
-    let mut others: Vec<f64> = Vec::with_capacity(other.declivities.len() + 1);
+    match_lines_in(&mut LineBuffers::default(), reference, other, params)
+}
+
+/// [`match_lines`] with the working vectors of `buffers`.
+pub fn match_lines_in(buffers: &mut LineBuffers, reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
+    let LineBuffers { refs, others, bands, neighbours, dp, .. } = buffers;
+    refs.clear();
+    refs.extend(reference.declivities.iter().map(|d| d.position));
+    others.clear();
     others.extend(other.declivities.iter().map(|d| d.position));
-    others.push(f64::INFINITY);
-    let bands = search_bands_padded(&refs, &others, params);
-    others.pop();
+    others.extend([f64::INFINITY; BAND_PAD]);
+    search_bands_padded(refs, others, params, bands);
+    others.truncate(others.len() - BAND_PAD);
     let rule = LineGain::new(reference.dt, other.dt, params.mode);
-    let (rn, on): (Vec<Neighbours>, Vec<Neighbours>) = (
-        reference.declivities.iter().map(Neighbours::from).collect(),
-        other.declivities.iter().map(Neighbours::from).collect(),
-    );
+    // The reference declivities' neighbours, then the other view's.
+    neighbours.clear();
+    neighbours.extend(reference.declivities.iter().chain(&other.declivities).map(|d| rule.neighbours(d)));
+    let (rn, on) = neighbours.split_at(refs.len());
     let gain = |i: usize, j: usize| rule.gain(&rn[i], &on[j]);
-    let path = banded_dp_with(others.len(), &bands, gain);
-    let matches = path
+    let path_gain = banded_dp_in(dp, others.len(), bands, gain);
+    let matches = dp
         .nodes
         .iter()
         .map(|&(i, j)| Match {
@@ -196,22 +228,33 @@ pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Para
             x_ref: refs[i],
             x_other: others[j],
             disparity: pair_disparity(refs[i], others[j], params.ref_view),
-            gain: gain(i, j),
+            // Not `gain(i, j)`: with one call site the closure is inlined
+            // into the DP's loop.
+            gain: rule.gain(&rn[i], &on[j]),
             edge: false,
         })
         .collect();
-    (matches, path.gain)
+    (matches, path_gain)
 }
 
 /// One pair of epipolar lines (same row of the left and right image) through
 /// segmentation and matching, with the reference view of `params`.
 pub fn process_line(left: &[u8], right: &[u8], params: &Params) -> LineResult {
-    let (l, r) = (line_features_with(left, params.hardware), line_features_with(right, params.hardware));
+    process_line_in(&mut LineBuffers::default(), left, right, params)
+}
+
+/// [`process_line`] with the working vectors of `buffers`.
+pub fn process_line_in(buffers: &mut LineBuffers, left: &[u8], right: &[u8], params: &Params) -> LineResult {
+    let mut features = |line: &[u8]| match params.hardware {
+        None => line_features_in(buffers, line),
+        Some(_) => line_features_with(line, params.hardware),
+    };
+    let (l, r) = (features(left), features(right));
     let (reference, other) = match params.ref_view {
         RefView::Left => (l, r),
         RefView::Right => (r, l),
     };
-    let (matches, path_gain) = match_lines(&reference, &other, params);
+    let (matches, path_gain) = match_lines_in(buffers, &reference, &other, params);
     LineResult { reference, other, matches, path_gain }
 }
 
