@@ -364,7 +364,9 @@ pub struct Interpolator {
     cur_shape: Signal<Local, Bits<SHAPE_BITS>>,
     cur_recip: Signal<Local, Bits<RECIP_BITS>>,
     q_rp_next: Signal<Local, Bits<QUEUE_PTR_BITS>>,
-    q_last_x_out: Signal<Local, Bits<WIDTH_BITS>>,
+    q_last_x_cur: Signal<Local, Bits<WIDTH_BITS>>,
+    q_last_x_succ: Signal<Local, Bits<WIDTH_BITS>>,
+    at_last_x: Signal<Local, Bit>,
     q_first_d_out: Signal<Local, Bits<POS_BITS>>,
     q_first_c_out: Signal<Local, Bits<WIDTH_BITS>>,
     q_last_d_out: Signal<Local, Bits<POS_BITS>>,
@@ -625,7 +627,9 @@ impl Interpolator {
             cur_shape: Default::default(),
             cur_recip: Default::default(),
             q_rp_next: Default::default(),
-            q_last_x_out: Default::default(),
+            q_last_x_cur: Default::default(),
+            q_last_x_succ: Default::default(),
+            at_last_x: Default::default(),
             q_first_d_out: Default::default(),
             q_first_c_out: Default::default(),
             q_last_d_out: Default::default(),
@@ -878,7 +882,6 @@ impl Logic for Interpolator {
             self.q_word_out.next = self.q_line_n.read_data.val();
         }
         self.q_flags_out.next = bit_cast::<2, LINE_BITS>(self.q_word_out.val());
-        self.q_last_x_out.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_word_out.val() >> self.last_x_at.val());
         self.q_first_c_out.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_word_out.val() >> self.first_c_at.val());
         self.q_last_c_out.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_word_out.val() >> self.last_c_at.val());
         self.q_first_d_out.next = bit_cast::<POS_BITS, LINE_BITS>(self.q_word_out.val() >> self.first_d_at.val());
@@ -920,7 +923,16 @@ impl Logic for Interpolator {
             self.cur_shape.next = self.e3_shape.q.val();
             self.cur_recip.next = self.e3_recip.q.val();
         }
-        self.line_done.next = self.line_ready.val() & (self.x.q.val() == self.q_last_x_out.val());
+        // (The pixel compared with both reads' last pixel, the shown one
+        // picked after: no multiplexer of the queue's words before the
+        // comparison.)
+        self.q_last_x_cur.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line.read_data.val() >> self.last_x_at.val());
+        self.q_last_x_succ.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line_n.read_data.val() >> self.last_x_at.val());
+        self.at_last_x.next = self.x.q.val() == self.q_last_x_cur.val();
+        if self.q_next_q.q.val() {
+            self.at_last_x.next = self.x.q.val() == self.q_last_x_succ.val();
+        }
+        self.line_done.next = self.line_ready.val() & self.at_last_x.val();
         self.seg_done.next = self.line_ready.val() & self.in_seg.val() & (self.x.q.val() == self.cur_last.val());
         if self.line_ready.val() {
             self.x.d.next = self.x.q.val() + 1;
@@ -935,7 +947,11 @@ impl Logic for Interpolator {
             self.q_rp_next.next = self.q_rp1.q.val();
         }
         self.q_rp.d.next = self.q_rp_next.val();
-        self.q_rp1.d.next = self.q_rp_next.val() + 1;
+        // (Both successors from registers, one picked after the line's end.)
+        self.q_rp1.d.next = self.q_rp.q.val() + 1;
+        if self.line_done.val() {
+            self.q_rp1.d.next = self.q_rp1.q.val() + 1;
+        }
         self.q_line.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp.q.val());
         self.q_line_n.read_address.next = bit_cast::<LINE_QUEUE_BITS, QUEUE_PTR_BITS>(self.q_rp1.q.val());
         self.q_next_q.d.next = self.line_done.val();
@@ -979,14 +995,20 @@ impl Logic for Interpolator {
         // The ring: data pushed at `wi`, the engine's segment at `ri`
         // (registers with enables: no multiplexer on the write side).
         self.pop.next = self.seg_done.val();
+        // (fill ± 1 from the register, picked by the pop and the push: no
+        // adder after the segment's end.)
         self.kept.next = self.fill.q.val();
-        if self.pop.val() {
+        if self.pop.val() & !self.rd2.q.val() {
             self.kept.next = self.fill.q.val() - 1;
+        }
+        if !self.pop.val() & self.rd2.q.val() {
+            self.kept.next = self.fill.q.val() + 1;
+        }
+        if self.pop.val() {
             self.ri.d.next = self.ri.q.val() + 1;
         }
         self.fill.d.next = self.kept.val();
         if self.rd2.q.val() {
-            self.fill.d.next = self.kept.val() + 1;
             self.wi.d.next = self.wi.q.val() + 1;
             if !self.wi.q.val().any() {
                 self.e0_last.d.next = self.seg_last.read_data.val();
