@@ -387,10 +387,11 @@ pub struct Interpolator {
     // ---- Constants.
     frac_round: Constant<Bits<{ POS_BITS + 1 }>>,
     frac_bits: Constant<Bits<8>>,
-    below8: Constant<Bits<POS_BITS>>,
-    below4: Constant<Bits<POS_BITS>>,
-    below2: Constant<Bits<POS_BITS>>,
-    below1: Constant<Bits<POS_BITS>>,
+    // The top 8, 4, 2, 1 bits of a distance, as shifts.
+    top8: Constant<Bits<8>>,
+    top4: Constant<Bits<8>>,
+    top2: Constant<Bits<8>>,
+    top1: Constant<Bits<8>>,
     sh8: Constant<Bits<8>>,
     sh4: Constant<Bits<8>>,
     sh2: Constant<Bits<8>>,
@@ -647,10 +648,10 @@ impl Interpolator {
             rounded: Default::default(),
             frac_round: Constant::new(((1u64 << POS_FRAC_BITS) - 1).into()),
             frac_bits: c8(POS_FRAC_BITS as u64),
-            below8: cp(1 << (POS_BITS - 8)),
-            below4: cp(1 << (POS_BITS - 4)),
-            below2: cp(1 << (POS_BITS - 2)),
-            below1: cp(1 << (POS_BITS - 1)),
+            top8: c8((POS_BITS - 8) as u64),
+            top4: c8((POS_BITS - 4) as u64),
+            top2: c8((POS_BITS - 2) as u64),
+            top1: c8((POS_BITS - 1) as u64),
             sh8: c8(8),
             sh4: c8(4),
             sh2: c8(2),
@@ -794,30 +795,31 @@ impl Logic for Interpolator {
         self.overflow.next = self.overflow_q.q.val();
 
         // Stage 2: the distance shifted left until its top bit is set, the
-        // shift counted; the jump flag.
+        // shift counted; the jump flag. (Each step tests its top bits for
+        // zero, no comparator, and sets its own bit of the count, no adder.)
         self.n1.next = self.s1_dx.q.val();
         self.l1.next = 0.into();
-        if self.s1_dx.q.val() < self.below8.val() {
+        if !(self.s1_dx.q.val() >> self.top8.val()).any() {
             self.n1.next = self.s1_dx.q.val() << self.sh8.val();
             self.l1.next = self.lz8.val();
         }
         self.n2.next = self.n1.val();
         self.l2.next = self.l1.val();
-        if self.n1.val() < self.below4.val() {
+        if !(self.n1.val() >> self.top4.val()).any() {
             self.n2.next = self.n1.val() << self.sh4.val();
-            self.l2.next = self.l1.val() + self.lz4.val();
+            self.l2.next = self.l1.val() | self.lz4.val();
         }
         self.n3.next = self.n2.val();
         self.l3.next = self.l2.val();
-        if self.n2.val() < self.below2.val() {
+        if !(self.n2.val() >> self.top2.val()).any() {
             self.n3.next = self.n2.val() << self.sh2.val();
-            self.l3.next = self.l2.val() + self.lz2.val();
+            self.l3.next = self.l2.val() | self.lz2.val();
         }
         self.n4.next = self.n3.val();
         self.l4.next = self.l3.val();
-        if self.n3.val() < self.below1.val() {
+        if !(self.n3.val() >> self.top1.val()).any() {
             self.n4.next = self.n3.val() << self.sh1.val();
-            self.l4.next = self.l3.val() + self.lz1.val();
+            self.l4.next = self.l3.val() | self.lz1.val();
         }
         self.jump.next = self.jump_on.val() & (self.s1_dd.q.val() > self.jump_lsb.val());
         self.signed_shape.next = self.l4.val();
