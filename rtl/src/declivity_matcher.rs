@@ -452,6 +452,12 @@ pub struct DeclivityMatcher<const N: usize> {
     col_ok: Signal<Local, Bit>,
     col_j: Signal<Local, Bits<INDEX_BITS>>,
     tw: Signal<Local, Bits<SWEEP_BITS>>,
+    sc_lim: Signal<Local, Bits<SWEEP_BITS>>,
+    lim1: DFF<Bits<SWEEP_BITS>>,
+    lim2: DFF<Bits<SWEEP_BITS>>,
+    lim3: DFF<Bits<SWEEP_BITS>>,
+    cw_diag_q: DFF<Bits<DIAG_BITS>>,
+    cw_phase_q: DFF<Bits<PHASE_BITS>>,
     tw_phase: Signal<Local, Bits<PHASE_BITS>>,
     tw_diag: Signal<Local, Bits<SWEEP_BITS>>,
     ld_levs: Signal<Local, Bits<LEVELS_BITS>>,
@@ -476,6 +482,13 @@ pub struct DeclivityMatcher<const N: usize> {
     before_k3: Constant<Bits<SWEEP_BITS>>,
     own_from: Constant<Bits<INDEX_BITS>>,
     engine_lag: Constant<Bits<SWEEP_BITS>>,
+    engine_lag_m1: Constant<Bits<SWEEP_BITS>>,
+    off1: Constant<Bits<SWEEP_BITS>>,
+    off2: Constant<Bits<SWEEP_BITS>>,
+    off3: Constant<Bits<SWEEP_BITS>>,
+    off1_p4: Constant<Bits<SWEEP_BITS>>,
+    off2_p4: Constant<Bits<SWEEP_BITS>>,
+    off3_p4: Constant<Bits<SWEEP_BITS>>,
     cells_c: Constant<Bits<COUNT_BITS>>,
     cells_2c: Constant<Bits<COUNT_BITS>>,
     cells_log2: Constant<Bits<8>>,
@@ -698,6 +711,12 @@ impl<const N: usize> DeclivityMatcher<N> {
             col_ok: Default::default(),
             col_j: Default::default(),
             tw: Default::default(),
+            sc_lim: Default::default(),
+            lim1: Default::default(),
+            lim2: Default::default(),
+            lim3: Default::default(),
+            cw_diag_q: Default::default(),
+            cw_phase_q: Default::default(),
             tw_phase: Default::default(),
             tw_diag: Default::default(),
             ld_levs: Default::default(),
@@ -721,6 +740,13 @@ impl<const N: usize> DeclivityMatcher<N> {
             before_k3: Constant::new(((4 * (N - 1) + 2 * (2 * N + 1) + ENGINE_LAG - 5) as u64).into()),
             own_from: Constant::new((((2 * N) as u64).saturating_sub(5).div_ceil(4)).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
+            engine_lag_m1: Constant::new(((ENGINE_LAG - 1) as u64).into()),
+            off1: Constant::new((N as u64).into()),
+            off2: Constant::new((2 * N as u64).into()),
+            off3: Constant::new((3 * N as u64).into()),
+            off1_p4: Constant::new((N as u64 / 2).into()),
+            off2_p4: Constant::new((N as u64).into()),
+            off3_p4: Constant::new((3 * N as u64 / 2).into()),
             cells_c: Constant::new((N as u64).into()),
             cells_2c: Constant::new(((2 * N) as u64).into()),
             cells_log2: Constant::new((N.trailing_zeros() as u64).into()),
@@ -759,7 +785,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, lpbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_pbank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, lim1, lim2, lim3, cw_diag_q, cw_phase_q, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -1012,8 +1038,30 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.sc_off.next = (bit_cast::<SWEEP_BITS, PHASE_BITS>(self.sc_phase.val()) << self.cells_log2.val()) >> self.bit1.val();
         }
         self.sc_j.next = self.sc_base.val() - self.sc_off.val();
+        // j < m as ⌊sc/p⌋ < k·2N/p + m, against the taken line's sums, one
+        // per phase, registered (phase k > 0's first column comes at sc ≥
+        // 2N + 1, long after they are; phase 0's bound is m itself): no
+        // subtraction before the comparison.
+        self.lim1.d.next = self.off1.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+        self.lim2.d.next = self.off2.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+        self.lim3.d.next = self.off3.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+        if self.e_p4.q.val() {
+            self.lim1.d.next = self.off1_p4.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+            self.lim2.d.next = self.off2_p4.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+            self.lim3.d.next = self.off3_p4.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+        }
+        self.sc_lim.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+        if self.sc_phase.val().get_bit(self.bit0.val().index()) {
+            self.sc_lim.next = self.lim1.q.val();
+        }
+        if self.sc_phase.val().get_bit(self.bit1.val().index()) {
+            self.sc_lim.next = self.lim2.q.val();
+            if self.sc_phase.val().get_bit(self.bit0.val().index()) {
+                self.sc_lim.next = self.lim3.q.val();
+            }
+        }
         self.col_ok.next = (self.sc_base.val() >= self.sc_off.val())
-            & (self.sc_j.val() < bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val()))
+            & (self.sc_base.val() < self.sc_lim.val())
             & (self.sc_phase.val() <= self.e_klast.q.val());
         self.col_j.next = bit_cast::<INDEX_BITS, SWEEP_BITS>(self.sc_j.val());
         self.rd_bank_base.next = 0.into();
@@ -1031,7 +1079,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // phases, plus the cells' skews): at tw = sc - ENGINE_LAG, with two
         // phases anti-diagonal ⌊tw/2⌋ of phase tw mod 2 (tw = 2s + k), with
         // four ⌊tw/4⌋ + k·N/2 of phase k = tw mod 4 (tw = 4s - (2N - 1)·k).
-        self.tw.next = self.sc.q.val() - self.engine_lag.val();
+        // (Computed a clock ahead, from the sweep clock's next value, and
+        // registered: the choice memory's write address comes from
+        // registers. The first clock of a sweep writes nothing.)
+        self.tw.next = self.sc.q.val() - self.engine_lag_m1.val();
         self.tw_phase.next = bit_cast::<PHASE_BITS, 1>(self.tw.val().get_bits::<1>(self.bit0.val().index()));
         self.tw_diag.next = self.tw.val() >> self.bit1.val();
         if self.e_p4.q.val() {
@@ -1040,8 +1091,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
                 + ((bit_cast::<SWEEP_BITS, PHASE_BITS>(self.tw_phase.val()) << self.cells_log2.val()) >> self.bit1.val());
         }
         self.array.cw_en.next = (self.eng.q.val() == self.eng_sweep.val()) & (self.sc.q.val() >= self.engine_lag.val());
-        self.array.cw_diag.next = bit_cast::<DIAG_BITS, SWEEP_BITS>(self.tw_diag.val());
-        self.array.cw_phase.next = self.tw_phase.val();
+        self.cw_diag_q.d.next = bit_cast::<DIAG_BITS, SWEEP_BITS>(self.tw_diag.val());
+        self.cw_phase_q.d.next = self.tw_phase.val();
+        self.array.cw_diag.next = self.cw_diag_q.q.val();
+        self.array.cw_phase.next = self.cw_phase_q.q.val();
         // The sweep's last clock is known a clock ahead (a register: the
         // traceback's start goes to its walk registers, far from the engine).
         // The swept line's traceback starts then if the traceback is free,

@@ -56,9 +56,10 @@
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
 //!   frame's last rows: the vertical blanking must last two lines),
 //!   `lines_full` (lines with
-//!   more than `2·N` declivities on a side: the first are matched),
+//!   more than `4·N` declivities on a side: the first are matched),
 //!   `lines_wide` (line pairs with a side wider than [`W_MAX`]: the first
-//!   `W_MAX` pixels are processed).
+//!   `W_MAX` pixels are processed). Each counts its event two clocks after
+//!   it (the event is registered beside its source).
 //!
 //! ## Timing
 //! Throughput: one pixel per clock per camera while the matcher keeps up on
@@ -295,6 +296,14 @@ pub struct StereoLineProcessor<const N: usize> {
     n_pixels_dropped: DFF<Bits<STATUS_BITS>>,
     n_lines_full: DFF<Bits<STATUS_BITS>>,
     n_lines_wide: DFF<Bits<STATUS_BITS>>,
+    // The events the status counters count, registered beside their
+    // sources (the counters then count a clock later: the route from a
+    // block's output to its counter gets a clock of its own).
+    ev_records: DFF<Bit>,
+    ev_lines: DFF<Bit>,
+    ev_pixels: DFF<Bit>,
+    ev_full: DFF<Bit>,
+    ev_wide: DFF<Bit>,
     // Lines in flight: reference markers the matcher took, less the lines
     // the interpolator sent (or the row check or the interpolator dropped);
     // the reference queue held (public for the drivers' diagnostics).
@@ -378,6 +387,11 @@ impl<const N: usize> StereoLineProcessor<N> {
             n_pixels_dropped: Default::default(),
             n_lines_full: Default::default(),
             n_lines_wide: Default::default(),
+            ev_records: Default::default(),
+            ev_lines: Default::default(),
+            ev_pixels: Default::default(),
+            ev_full: Default::default(),
+            ev_wide: Default::default(),
             in_flight: Default::default(),
             k_valid: Default::default(),
             k_last: Default::default(),
@@ -411,7 +425,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
+        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, in_flight, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
         self.l_skid.clock.next = self.clock.val();
         self.r_skid.clock.next = self.clock.val();
         self.left.clock.next = self.clock.val();
@@ -648,20 +662,25 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         }
         self.in_flight.d.next = self.flight_now.val();
 
-        // ---- Status.
-        if self.l_queue.dropped.val() | self.r_queue.dropped.val() {
+        // ---- Status: each event registered, then counted.
+        self.ev_records.d.next = self.l_queue.dropped.val() | self.r_queue.dropped.val();
+        self.ev_lines.d.next = self.interpolator.overflow.val() | self.row_check.overflow.val();
+        self.ev_pixels.d.next = self.median.overflow.val();
+        self.ev_full.d.next = self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_full.val();
+        self.ev_wide.d.next = self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_wide.val();
+        if self.ev_records.q.val() {
             self.n_records_dropped.d.next = self.n_records_dropped.q.val() + 1;
         }
-        if self.interpolator.overflow.val() | self.row_check.overflow.val() {
+        if self.ev_lines.q.val() {
             self.n_lines_dropped.d.next = self.n_lines_dropped.q.val() + 1;
         }
-        if self.median.overflow.val() {
+        if self.ev_pixels.q.val() {
             self.n_pixels_dropped.d.next = self.n_pixels_dropped.q.val() + 1;
         }
-        if self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_full.val() {
+        if self.ev_full.q.val() {
             self.n_lines_full.d.next = self.n_lines_full.q.val() + 1;
         }
-        if self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_wide.val() {
+        if self.ev_wide.q.val() {
             self.n_lines_wide.d.next = self.n_lines_wide.q.val() + 1;
         }
         self.records_dropped.next = self.n_records_dropped.q.val();
