@@ -624,8 +624,8 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
                 2,
                 1 << HIST_ADDR_BITS,
                 HIST_COUNT_BITS,
-                None,
-                "AdaptiveThreshold::hist0, hist1, one pair per camera",
+                Some(2 * 2 * dp16kd_of(HIST_COUNT_BITS, 1 << HIST_ADDR_BITS)),
+                "AdaptiveThreshold::hist0, hist1 (BlockRam: the DP16KD's output register), one pair per camera",
             ),
         ])
 }

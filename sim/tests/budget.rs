@@ -558,7 +558,7 @@ fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
     assert_eq!(2 * detector, r.line_buffer_bits + r.histogram_bits, "two detectors");
     assert_eq!(matcher, of(&["matcher"], bits));
     assert_eq!(interpolator, of(&["interpolator"], bits));
-    assert_eq!(verilog_dp16kd(&det_v), of(&["declivity detector"], rams));
+    assert_eq!(2 * verilog_dp16kd(&det_v), of(&["declivity detector"], rams), "two detectors");
     assert_eq!(verilog_dp16kd(&mat_v), of(&["matcher"], rams));
     assert_eq!(verilog_dp16kd(&int_v), of(&["interpolator"], rams));
     let new_stages = ["record queues", "row check", "vertical median", "depth stage"];
