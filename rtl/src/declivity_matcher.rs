@@ -319,6 +319,17 @@ pub struct DeclivityMatcher<const N: usize> {
     tq: DFF<Bit>,
     tq_n: DFF<Bits<COUNT_BITS>>,
     tq_m: DFF<Bits<COUNT_BITS>>,
+    // The traceback's walk start (`n - 1`, `m - 1`, `n + m - 2`, `n` or
+    // `m` zero) of the swept line and of the waiting one, in registers
+    // (see `Traceback`'s ports).
+    e_wi0: DFF<Bits<INDEX_BITS>>,
+    e_wj0: DFF<Bits<INDEX_BITS>>,
+    e_diag0: DFF<Bits<DIAG_BITS>>,
+    e_empty: DFF<Bit>,
+    tq_wi0: DFF<Bits<INDEX_BITS>>,
+    tq_wj0: DFF<Bits<INDEX_BITS>>,
+    tq_diag0: DFF<Bits<DIAG_BITS>>,
+    tq_empty: DFF<Bit>,
     tq_bank: DFF<Bit>,
     tq_pbank: DFF<Bit>,
     tq_wide: DFF<Bit>,
@@ -483,6 +494,7 @@ pub struct DeclivityMatcher<const N: usize> {
     own_from: Constant<Bits<INDEX_BITS>>,
     engine_lag: Constant<Bits<SWEEP_BITS>>,
     engine_lag_m1: Constant<Bits<SWEEP_BITS>>,
+    diag_two: Constant<Bits<DIAG_BITS>>,
     off1: Constant<Bits<SWEEP_BITS>>,
     off2: Constant<Bits<SWEEP_BITS>>,
     off3: Constant<Bits<SWEEP_BITS>>,
@@ -599,6 +611,14 @@ impl<const N: usize> DeclivityMatcher<N> {
             tq: Default::default(),
             tq_n: Default::default(),
             tq_m: Default::default(),
+            e_wi0: Default::default(),
+            e_wj0: Default::default(),
+            e_diag0: Default::default(),
+            e_empty: Default::default(),
+            tq_wi0: Default::default(),
+            tq_wj0: Default::default(),
+            tq_diag0: Default::default(),
+            tq_empty: Default::default(),
             tq_bank: Default::default(),
             tq_pbank: Default::default(),
             tq_wide: Default::default(),
@@ -741,6 +761,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             own_from: Constant::new((((2 * N) as u64).saturating_sub(5).div_ceil(4)).into()),
             engine_lag: Constant::new((ENGINE_LAG as u64).into()),
             engine_lag_m1: Constant::new(((ENGINE_LAG - 1) as u64).into()),
+            diag_two: Constant::new(2u64.into()),
             off1: Constant::new((N as u64).into()),
             off2: Constant::new((2 * N as u64).into()),
             off3: Constant::new((3 * N as u64).into()),
@@ -785,7 +806,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         dff_setup!(
             self, clock, r_sof_in, lbank, lpbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_pbank, pend_n, pend_m, pend_dt_sum, pend_wide,
-            pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, lim1, lim2, lim3, cw_diag_q, cw_phase_q, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
+            pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, e_wi0, e_wj0, e_diag0, e_empty, tq_wi0, tq_wj0, tq_diag0, tq_empty, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, lim1, lim2, lim3, cw_diag_q, cw_phase_q, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
@@ -1102,11 +1123,24 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.tb_from_q.next = self.tq.q.val() & !self.tb_busy.val();
         self.tb_start.next = self.tb_from_q.val() | (self.sweep_done.q.val() & !self.tb_busy.val() & !self.tq.q.val());
         self.traceback.start.next = self.tb_start.val();
-        self.traceback.n.next = self.en.q.val();
-        self.traceback.m.next = self.em.q.val();
+        // (`en`, `em` hold from the clock after a take until the next take,
+        // and `sweep_done` is high two clocks after the take at the
+        // earliest: the `e_*` walk start is theirs when the sweep ends.)
+        self.e_wi0.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.en.q.val() - 1);
+        self.e_wj0.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.em.q.val() - 1);
+        self.e_diag0.d.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.en.q.val())
+            + bit_cast::<DIAG_BITS, COUNT_BITS>(self.em.q.val())
+            - self.diag_two.val();
+        self.e_empty.d.next = !self.en.q.val().any() | !self.em.q.val().any();
+        self.traceback.wi0.next = self.e_wi0.q.val();
+        self.traceback.wj0.next = self.e_wj0.q.val();
+        self.traceback.diag0.next = self.e_diag0.q.val();
+        self.traceback.empty.next = self.e_empty.q.val();
         if self.tb_from_q.val() {
-            self.traceback.n.next = self.tq_n.q.val();
-            self.traceback.m.next = self.tq_m.q.val();
+            self.traceback.wi0.next = self.tq_wi0.q.val();
+            self.traceback.wj0.next = self.tq_wj0.q.val();
+            self.traceback.diag0.next = self.tq_diag0.q.val();
+            self.traceback.empty.next = self.tq_empty.q.val();
         }
         if self.tb_start.val() {
             self.tb_begun.d.next = !self.tb_begun.q.val();
@@ -1135,6 +1169,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.tq.d.next = true;
             self.tq_n.d.next = self.en.q.val();
             self.tq_m.d.next = self.em.q.val();
+            self.tq_wi0.d.next = self.e_wi0.q.val();
+            self.tq_wj0.d.next = self.e_wj0.q.val();
+            self.tq_diag0.d.next = self.e_diag0.q.val();
+            self.tq_empty.d.next = self.e_empty.q.val();
             self.tq_bank.d.next = self.ebank.q.val();
             self.tq_pbank.d.next = self.epbank.q.val();
             self.tq_wide.d.next = self.e_wide.q.val();

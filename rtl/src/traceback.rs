@@ -24,8 +24,13 @@
 //! then on. The pairs come out last first; a small stack turns them round.
 //!
 //! ## Ports
-//! - `start` (a pulse), `n`, `m`: the line's declivity counts; `start` is
-//!   taken in the idle state only.
+//! - `start` (a pulse) with the line's walk start, from the caller's
+//!   registers: `wi0` = `n - 1`, `wj0` = `m - 1` (the last cell, `n`, `m`
+//!   the line's declivity counts), `diag0` = `n + m - 2` (its
+//!   anti-diagonal) and `empty` (`n` or `m` is 0: no walk; the others are
+//!   then unused). (Made from `n`, `m` on the clock of `start`, after the
+//!   caller's choice of line, the sum and the zero tests were 8.4 ns on a
+//!   placed ECP5-85K.) `start` is taken in the idle state only.
 //! - To the array: `tb_diag`, `tb_group`; from it, `tb_word` and
 //!   `tb_word_prev` (see `crate::systolic_matcher`).
 //! - Out: `out_valid`, `out_i`, `out_j` (a matched pair, reference order),
@@ -75,8 +80,10 @@ pub const fn traceback_cycles(n: usize, m: usize, stop_diag: usize, k: usize) ->
 pub struct Traceback {
     pub clock: Signal<In, Clock>,
     pub start: Signal<In, Bit>,
-    pub n: Signal<In, Bits<COUNT_BITS>>,
-    pub m: Signal<In, Bits<COUNT_BITS>>,
+    pub wi0: Signal<In, Bits<INDEX_BITS>>,
+    pub wj0: Signal<In, Bits<INDEX_BITS>>,
+    pub diag0: Signal<In, Bits<DIAG_BITS>>,
+    pub empty: Signal<In, Bit>,
     pub tb_diag: Signal<Out, Bits<DIAG_BITS>>,
     pub tb_group: Signal<Out, Bits<ROW_GROUP_BITS>>,
     pub tb_word: Signal<In, Bits<CHOICE_WORD_BITS>>,
@@ -142,8 +149,10 @@ impl Default for Traceback {
         Traceback {
             clock: Default::default(),
             start: Default::default(),
-            n: Default::default(),
-            m: Default::default(),
+            wi0: Default::default(),
+            wj0: Default::default(),
+            diag0: Default::default(),
+            empty: Default::default(),
             tb_diag: Default::default(),
             tb_group: Default::default(),
             tb_word: Default::default(),
@@ -267,12 +276,11 @@ impl Logic for Traceback {
                 self.count.d.next = 0.into();
                 self.lead.d.next = self.walk_lead.val();
                 self.skip.d.next = false;
-                self.wi.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.n.val() - 1);
-                self.wj.d.next = bit_cast::<INDEX_BITS, COUNT_BITS>(self.m.val() - 1);
-                self.diag.d.next = bit_cast::<DIAG_BITS, COUNT_BITS>(self.n.val() - 1)
-                    + bit_cast::<DIAG_BITS, COUNT_BITS>(self.m.val() - 1);
+                self.wi.d.next = self.wi0.val();
+                self.wj.d.next = self.wj0.val();
+                self.diag.d.next = self.diag0.val();
                 self.state.d.next = self.st_walk.val();
-                if !self.n.val().any() | !self.m.val().any() {
+                if self.empty.val() {
                     self.left.d.next = 0.into();
                     self.state.d.next = self.st_emit.val();
                 }
