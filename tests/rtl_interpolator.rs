@@ -177,6 +177,54 @@ fn the_first_pixel_follows_the_marker_by_the_documented_lag_and_queued_lines_lea
     }
 }
 
+/// Lines of one to three pixels queued behind a long one leave back to
+/// back as golden's, a line of one pixel ending on the clock it starts:
+/// the pixel engine takes a line's first pixel's place (in the head, in a
+/// segment, the line's last) from flags written with the line, every later
+/// one from comparisons made a clock ahead, so these lines are the ones
+/// where the two meet on consecutive clocks.
+#[test]
+fn lines_of_one_to_three_pixels_queued_back_to_back_are_golden_interpolation() {
+    let a = |x: u32, d: u32| FixedAnchor { x, d };
+    let l = |anchors: Vec<FixedAnchor>, width: usize, sof: bool| AnchorLine { anchors, width, sof };
+    let long = || l(vec![a(3 * PX, 10 * PX), a(200 * PX, 30 * PX)], 500, true);
+    let runs = [
+        vec![
+            long(),
+            l(vec![], 1, false),
+            l(vec![a(0, 7 * PX)], 1, false),
+            l(vec![a(0, 7 * PX), a(PX, 9 * PX)], 2, false),
+            l(vec![a(PX / 2, 4 * PX)], 1, true),
+            l(vec![a(0, 3 * PX), a(PX + 3, 8 * PX), a(2 * PX, 2 * PX)], 3, false),
+            l(vec![a(2 * PX + 1, 5 * PX)], 3, false),
+            l(vec![], 2, false),
+        ],
+        vec![
+            long(),
+            l(vec![a(0, 6 * PX), a(PX, 40 * PX)], 2, false),
+            l(vec![a(0, 6 * PX), a(1, 9 * PX)], 1, false),
+            l(vec![a(PX, 6 * PX), a(2 * PX, 2 * PX)], 3, false),
+            l(vec![a(PX - 1, 12 * PX)], 1, false),
+            l(vec![], 3, true),
+            l(vec![a(0, PX), a(PX, 2 * PX), a(2 * PX, 4 * PX)], 3, false),
+            l(vec![a(5, 9 * PX)], 1, false),
+        ],
+    ];
+    for lines in runs {
+        let mut sim = InterpolatorSim::robust();
+        let (got, markers) = sim.run(&lines, 0);
+        assert_eq!(sim.overflows, 0);
+        assert_eq!(got.len(), lines.len());
+        check_timing(&got, &markers).expect("the documented timing");
+        for w in got.windows(2) {
+            assert_eq!(w[1].first_cycle, w[0].last_cycle + 1, "back to back");
+        }
+        for (l, g) in lines.iter().zip(&got) {
+            check_line(l, Some(EDGE_JUMP_LSB), g).expect("as golden");
+        }
+    }
+}
+
 /// More lines than the queue holds arriving at once: the first ones come
 /// out, the one without room is dropped whole with `overflow`, and the
 /// next line, offered once there is room again, is intact.

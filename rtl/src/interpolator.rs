@@ -24,11 +24,19 @@
 //!   held values and where their pixels start, start of frame) goes into
 //!   the line queue, and is shown to the pixel engine once the line's last
 //!   segment can be in the prefetch registers. The queue (LUT RAM) keeps
-//!   each field twice, read at the read pointer and at its successor from
-//!   registers: no queue address waits for the pixel engine's end-of-line
-//!   comparison, which picks between the two reads a clock later. The segments of a line cover the pixels from
-//!   the first match's `⌈X⌉` to the last one's without gaps, so the pixel
-//!   engine needs no count of them.
+//!   each description twice, read at the read pointer and at its successor
+//!   from registers: no queue address waits for the pixel engine's end of
+//!   line, which picks between the two reads a clock later. The segments
+//!   of a line cover the pixels from the first match's `⌈X⌉` to the last
+//!   one's without gaps, so the pixel engine needs no count of them.
+//! - **Where the pixel is** (in the head, in a segment, at its segment's
+//!   last pixel, at the line's last) comes from registers: a line's first
+//!   pixel from flags its description brings (computed when it is
+//!   written), every later one from comparisons made a clock ahead with
+//!   `x + 1` (a register), and the segment's end from one comparison per
+//!   prefetch register, picked by the ring's read index. No carry chain
+//!   lies between the pixel count and the engine's control (the end of a
+//!   segment, of a line; the ring's and the queue's pointers).
 //! - **Prefetch**: the segment memory (block RAMs with their output
 //!   registers, [`BlockRam`]: two clocks a read) is read in order into four
 //!   registers whenever they will have room; the pixel engine works on the
@@ -137,12 +145,22 @@ const SEG_PTR_BITS: usize = SEG_ADDR_BITS + 1;
 /// Bits of a segment in the segment memory: its last pixel, `X_a`, its
 /// base, `|Δd|`, its shape and its reciprocal.
 pub const SEGMENT_BITS: usize = WIDTH_BITS + 3 * POS_BITS + SHAPE_BITS + RECIP_BITS;
+/// Flags of a line's description: start of frame ([`SOF_AT`]), empty line
+/// ([`EMPTY_AT`]), and where its first pixel is (in the head, [`HEAD0_AT`];
+/// in a segment, [`SEG0_AT`]; the line's last, [`LAST0_AT`]), so that the
+/// pixel engine compares no column on a line's first clock.
+const FLAG_BITS: usize = 5;
+const SOF_AT: usize = 0;
+const EMPTY_AT: usize = 1;
+const HEAD0_AT: usize = 2;
+const SEG0_AT: usize = 3;
+const LAST0_AT: usize = 4;
 /// Bits of a line's description in the line queue: its last pixel, the
-/// held values and their pixels, the start-of-frame and empty flags.
-pub const LINE_BITS: usize = 3 * WIDTH_BITS + 2 * POS_BITS + 2;
-/// Where the fields of a line's description start in its word (the two
-/// flags, start of frame and empty line, in bits 0 and 1).
-const LAST_X_AT: usize = 2;
+/// held values and their pixels, the flags.
+pub const LINE_BITS: usize = 3 * WIDTH_BITS + 2 * POS_BITS + FLAG_BITS;
+/// Where the fields of a line's description start in its word (the flags
+/// in the bits below).
+const LAST_X_AT: usize = FLAG_BITS;
 const FIRST_C_AT: usize = LAST_X_AT + WIDTH_BITS;
 const LAST_C_AT: usize = FIRST_C_AT + WIDTH_BITS;
 const FIRST_D_AT: usize = LAST_C_AT + WIDTH_BITS;
@@ -272,6 +290,18 @@ pub struct Interpolator {
     overflow_q: DFF<Bit>,
     // ---- Pixels: the line being sent, then the pixel pipeline.
     x: DFF<Bits<WIDTH_BITS>>,
+    // `x + 1`, `x == 0`; the pixel's place on the next clock of the same
+    // line (in the head, in a segment, the line's last: compared a clock
+    // ahead against `x + 1`); `x` against each ring slot's last pixel.
+    x1: DFFWithInit<Bits<WIDTH_BITS>>,
+    x_zero: DFFWithInit<Bit>,
+    head_next: DFF<Bit>,
+    seg_next: DFF<Bit>,
+    last_next: DFF<Bit>,
+    at_e0: DFFWithInit<Bit>,
+    at_e1: DFFWithInit<Bit>,
+    at_e2: DFFWithInit<Bit>,
+    at_e3: DFFWithInit<Bit>,
     p0_valid: DFF<Bit>,
     p0_last: DFF<Bit>,
     p0_sof: DFF<Bit>,
@@ -331,8 +361,10 @@ pub struct Interpolator {
     // ---- Locals.
     b_c: Signal<Local, Bits<WIDTH_BITS>>,
     x_up: Signal<Local, Bits<{ POS_BITS + 1 }>>,
+    ax_wide: Signal<Local, Bits<{ POS_BITS + 1 }>>,
+    prev_c_fix: Signal<Local, Bits<{ POS_BITS + 1 }>>,
     first_event: Signal<Local, Bit>,
-    sof_flag: Signal<Local, Bits<2>>,
+    sof_flag: Signal<Local, Bits<FLAG_BITS>>,
     line_write: Signal<Local, Bit>,
     fits: Signal<Local, Bit>,
     drop_now: Signal<Local, Bit>,
@@ -350,13 +382,29 @@ pub struct Interpolator {
     empty_line: Signal<Local, Bit>,
     in_head: Signal<Local, Bit>,
     in_seg: Signal<Local, Bit>,
+    in_head_now: Signal<Local, Bit>,
+    in_seg_now: Signal<Local, Bit>,
     empty_cur: Signal<Local, Bit>,
     empty_succ: Signal<Local, Bit>,
-    in_head_cur: Signal<Local, Bit>,
-    in_head_succ: Signal<Local, Bit>,
-    in_seg_cur: Signal<Local, Bit>,
-    in_seg_succ: Signal<Local, Bit>,
+    head_cur: Signal<Local, Bit>,
+    head_succ: Signal<Local, Bit>,
+    seg_cur: Signal<Local, Bit>,
+    seg_succ: Signal<Local, Bit>,
     at_cur_last: Signal<Local, Bit>,
+    step: Signal<Local, Bit>,
+    at_read: Signal<Local, Bit>,
+    at_read_x1: Signal<Local, Bit>,
+    at_e0_next: Signal<Local, Bit>,
+    at_e1_next: Signal<Local, Bit>,
+    at_e2_next: Signal<Local, Bit>,
+    at_e3_next: Signal<Local, Bit>,
+    at_e0_x1: Signal<Local, Bit>,
+    at_e1_x1: Signal<Local, Bit>,
+    at_e2_x1: Signal<Local, Bit>,
+    at_e3_x1: Signal<Local, Bit>,
+    head0: Signal<Local, Bit>,
+    seg0: Signal<Local, Bit>,
+    last0_flag: Signal<Local, Bits<FLAG_BITS>>,
     first_c_cur: Signal<Local, Bits<WIDTH_BITS>>,
     first_c_succ: Signal<Local, Bits<WIDTH_BITS>>,
     last_c_cur: Signal<Local, Bits<WIDTH_BITS>>,
@@ -380,7 +428,7 @@ pub struct Interpolator {
     q_first_d_out: Signal<Local, Bits<POS_BITS>>,
     q_last_d_out: Signal<Local, Bits<POS_BITS>>,
     q_sof_out: Signal<Local, Bit>,
-    q_flags_in: Signal<Local, Bits<2>>,
+    q_flags_in: Signal<Local, Bits<FLAG_BITS>>,
     q_last_x_in: Signal<Local, Bits<WIDTH_BITS>>,
     q_word_in: Signal<Local, Bits<LINE_BITS>>,
     q_word_out: Signal<Local, Bits<LINE_BITS>>,
@@ -422,8 +470,15 @@ pub struct Interpolator {
     slot2: Constant<Bits<SLOT_BITS>>,
     slot3: Constant<Bits<SLOT_BITS>>,
     queue_size: Constant<Bits<QUEUE_PTR_BITS>>,
-    flag_sof: Constant<Bits<2>>,
-    flag_empty: Constant<Bits<2>>,
+    flag_sof: Constant<Bits<FLAG_BITS>>,
+    flag_empty: Constant<Bits<FLAG_BITS>>,
+    flag_head0: Constant<Bits<FLAG_BITS>>,
+    flag_seg0: Constant<Bits<FLAG_BITS>>,
+    flag_last0: Constant<Bits<FLAG_BITS>>,
+    empty_at: Constant<Bits<8>>,
+    head0_at: Constant<Bits<8>>,
+    seg0_at: Constant<Bits<8>>,
+    last0_at: Constant<Bits<8>>,
     t_shift: Constant<Bits<8>>,
     t_over: Constant<Bits<8>>,
     t_max: Constant<Bits<16>>,
@@ -545,6 +600,15 @@ impl Interpolator {
             q_next_q: Default::default(),
             overflow_q: Default::default(),
             x: Default::default(),
+            x1: DFFWithInit::new(1u64.into()),
+            x_zero: DFFWithInit::new(true),
+            head_next: Default::default(),
+            seg_next: Default::default(),
+            last_next: Default::default(),
+            at_e0: DFFWithInit::new(true),
+            at_e1: DFFWithInit::new(true),
+            at_e2: DFFWithInit::new(true),
+            at_e3: DFFWithInit::new(true),
             p0_valid: Default::default(),
             p0_last: Default::default(),
             p0_sof: Default::default(),
@@ -603,6 +667,8 @@ impl Interpolator {
             o_d: Default::default(),
             b_c: Default::default(),
             x_up: Default::default(),
+            ax_wide: Default::default(),
+            prev_c_fix: Default::default(),
             first_event: Default::default(),
             sof_flag: Default::default(),
             line_write: Default::default(),
@@ -622,13 +688,29 @@ impl Interpolator {
             empty_line: Default::default(),
             in_head: Default::default(),
             in_seg: Default::default(),
+            in_head_now: Default::default(),
+            in_seg_now: Default::default(),
             empty_cur: Default::default(),
             empty_succ: Default::default(),
-            in_head_cur: Default::default(),
-            in_head_succ: Default::default(),
-            in_seg_cur: Default::default(),
-            in_seg_succ: Default::default(),
+            head_cur: Default::default(),
+            head_succ: Default::default(),
+            seg_cur: Default::default(),
+            seg_succ: Default::default(),
             at_cur_last: Default::default(),
+            step: Default::default(),
+            at_read: Default::default(),
+            at_read_x1: Default::default(),
+            at_e0_next: Default::default(),
+            at_e1_next: Default::default(),
+            at_e2_next: Default::default(),
+            at_e3_next: Default::default(),
+            at_e0_x1: Default::default(),
+            at_e1_x1: Default::default(),
+            at_e2_x1: Default::default(),
+            at_e3_x1: Default::default(),
+            head0: Default::default(),
+            seg0: Default::default(),
+            last0_flag: Default::default(),
             first_c_cur: Default::default(),
             first_c_succ: Default::default(),
             last_c_cur: Default::default(),
@@ -690,8 +772,15 @@ impl Interpolator {
             slot3: Constant::new(3u64.into()),
             seg_limit: Constant::new((((1usize << SEG_ADDR_BITS) - SEG_RESERVE) as u64).into()),
             queue_size: Constant::new((LINE_QUEUE as u64).into()),
-            flag_sof: Constant::new(1u64.into()),
-            flag_empty: Constant::new(2u64.into()),
+            flag_sof: Constant::new((1u64 << SOF_AT).into()),
+            flag_empty: Constant::new((1u64 << EMPTY_AT).into()),
+            flag_head0: Constant::new((1u64 << HEAD0_AT).into()),
+            flag_seg0: Constant::new((1u64 << SEG0_AT).into()),
+            flag_last0: Constant::new((1u64 << LAST0_AT).into()),
+            empty_at: c8(EMPTY_AT as u64),
+            head0_at: c8(HEAD0_AT as u64),
+            seg0_at: c8(SEG0_AT as u64),
+            last0_at: c8(LAST0_AT as u64),
             t_shift: c8((POS_BITS - 1) as u64),
             t_over: c8((POS_BITS - 1 + WEIGHT_FRAC_BITS) as u64),
             t_max: Constant::new(((1u64 << WEIGHT_FRAC_BITS) - 1).into()),
@@ -716,7 +805,7 @@ impl Default for Interpolator {
 impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, q_next_q, overflow_q, x, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
         self.recip.clock.next = self.clock.val();
         self.seg_last.clock.next = self.clock.val();
         self.seg_ax.clock.next = self.clock.val();
@@ -733,6 +822,8 @@ impl Logic for Interpolator {
         // The first pixel centre at or after the match: ⌈X⌉.
         self.x_up.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.a_x.val()) + self.frac_round.val();
         self.b_c.next = bit_cast::<WIDTH_BITS, { POS_BITS + 1 }>(self.x_up.val() >> self.frac_bits.val());
+        self.ax_wide.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.a_x.val());
+        self.prev_c_fix.next = bit_cast::<{ POS_BITS + 1 }, WIDTH_BITS>(self.prev_c.q.val()) << self.frac_bits.val();
         // Admission, on a line's first match or its marker: a free place in
         // the queue and room in the memory for a whole line.
         self.first_event.next = self.a_valid.val() & !self.in_line.q.val();
@@ -746,7 +837,9 @@ impl Logic for Interpolator {
         // Stage 1: a match that starts a new pixel closes the segment from
         // the previous match.
         self.s1_seg.d.next = false;
-        self.s1_last.d.next = self.b_c.val() - 1;
+        // (⌈X⌉ - 1 = ⌊(X - 1 LSB) / 2^POS_FRAC_BITS⌋ for X > 0, as every
+        // segment's X_b is: one adder, not two.)
+        self.s1_last.d.next = bit_cast::<WIDTH_BITS, POS_BITS>((self.a_x.val() - 1) >> self.frac_bits.val());
         self.s1_ax.d.next = self.prev_x.q.val();
         self.s1_ad.d.next = self.prev_d.q.val();
         self.s1_dx.d.next = self.a_x.val() - self.prev_x.q.val();
@@ -759,7 +852,9 @@ impl Logic for Interpolator {
         }
         if self.a_valid.val() & !self.a_last.val() {
             self.in_line.d.next = true;
-            self.s1_seg.d.next = self.has_prev.q.val() & (self.b_c.val() > self.prev_c.q.val()) & !self.drop_now.val();
+            // (⌈X_b⌉ > c ⇔ X_b > c for a whole c: the match compared with
+            // the previous one's pixel, not through ⌈X_b⌉'s adder.)
+            self.s1_seg.d.next = self.has_prev.q.val() & (self.ax_wide.val() > self.prev_c_fix.val()) & !self.drop_now.val();
             if !self.has_prev.q.val() {
                 self.first_d.d.next = self.a_d.val();
                 self.first_c.d.next = self.b_c.val();
@@ -778,11 +873,25 @@ impl Logic for Interpolator {
             self.sof_flag.next = self.flag_sof.val();
         }
         self.q_last_x_in.next = self.a_width.val() - 1;
+        // Where the line's first pixel is: in the head (before the first
+        // match's ⌈X⌉), in a segment, or the line's last (a line of one pixel).
+        self.head0.next = self.first_c.q.val().any();
+        self.seg0.next = !self.first_c.q.val().any() & self.prev_c.q.val().any();
         self.q_flags_in.next = self.sof_flag.val();
         if !self.has_prev.q.val() {
             self.q_flags_in.next = self.sof_flag.val() | self.flag_empty.val();
         }
-        self.q_word_in.next = bit_cast::<LINE_BITS, 2>(self.q_flags_in.val())
+        if self.has_prev.q.val() & self.head0.val() {
+            self.q_flags_in.next = self.sof_flag.val() | self.flag_head0.val();
+        }
+        if self.has_prev.q.val() & self.seg0.val() {
+            self.q_flags_in.next = self.sof_flag.val() | self.flag_seg0.val();
+        }
+        self.last0_flag.next = 0.into();
+        if !self.q_last_x_in.val().any() {
+            self.last0_flag.next = self.flag_last0.val();
+        }
+        self.q_word_in.next = bit_cast::<LINE_BITS, FLAG_BITS>(self.q_flags_in.val() | self.last0_flag.val())
             | (bit_cast::<LINE_BITS, WIDTH_BITS>(self.q_last_x_in.val()) << self.last_x_at.val())
             | (bit_cast::<LINE_BITS, WIDTH_BITS>(self.first_c.q.val()) << self.first_c_at.val())
             | (bit_cast::<LINE_BITS, WIDTH_BITS>(self.prev_c.q.val()) << self.last_c_at.val())
@@ -899,43 +1008,38 @@ impl Logic for Interpolator {
         if self.q_next_q.q.val() {
             self.q_word_out.next = self.q_line_n.read_data.val();
         }
-        self.q_sof_out.next = self.q_word_out.val().get_bit(0);
+        self.q_sof_out.next = self.q_word_out.val().get_bit(self.bit0.val().index());
         self.q_first_d_out.next = bit_cast::<POS_BITS, LINE_BITS>(self.q_word_out.val() >> self.first_d_at.val());
         self.q_last_d_out.next = bit_cast::<POS_BITS, LINE_BITS>(self.q_word_out.val() >> self.last_d_at.val());
         self.line_ready.next = self.q_shown.q.val() != self.q_rp.q.val();
         // (No line: as an empty one. The memories' output registers start
-        // undefined in Verilog; nothing reads them before a line is shown.
-        // Each read's fields are compared with the pixel and the shown
-        // read's results picked after, as for the line's last pixel below:
-        // the comparisons' carry chains start at the memories' outputs, not
-        // behind the multiplexer: 8.75 ns on a placed ECP5-85K at a064e17.)
-        self.first_c_cur.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line.read_data.val() >> self.first_c_at.val());
-        self.first_c_succ.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line_n.read_data.val() >> self.first_c_at.val());
-        self.last_c_cur.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line.read_data.val() >> self.last_c_at.val());
-        self.last_c_succ.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line_n.read_data.val() >> self.last_c_at.val());
-        self.empty_cur.next = !self.line_ready.val() | self.q_line.read_data.val().get_bit(1);
-        self.empty_succ.next = !self.line_ready.val() | self.q_line_n.read_data.val().get_bit(1);
-        self.in_head_cur.next = !self.empty_cur.val() & (self.x.q.val() < self.first_c_cur.val());
-        self.in_head_succ.next = !self.empty_succ.val() & (self.x.q.val() < self.first_c_succ.val());
-        self.in_seg_cur.next = !self.empty_cur.val() & !self.in_head_cur.val() & (self.x.q.val() < self.last_c_cur.val());
-        self.in_seg_succ.next = !self.empty_succ.val() & !self.in_head_succ.val() & (self.x.q.val() < self.last_c_succ.val());
-        self.empty_line.next = self.empty_cur.val();
-        self.in_head.next = self.in_head_cur.val();
-        self.in_seg.next = self.in_seg_cur.val();
-        if self.q_next_q.q.val() {
-            self.empty_line.next = self.empty_succ.val();
-            self.in_head.next = self.in_head_succ.val();
-            self.in_seg.next = self.in_seg_succ.val();
+        // undefined in Verilog; nothing reads them before a line is shown.)
+        self.empty_line.next = !self.line_ready.val() | self.q_word_out.val().get_bit(self.empty_at.val().index());
+        // Where the pixel is, from registers only: on a line's first clock
+        // (`x == 0`) the flags its description brought, after it the
+        // comparisons made a clock ago against `x + 1` (no carry chain
+        // between the pixel count and the engine's control: 8.6 ns on a
+        // placed ECP5-85K at e09cf0e, the pixel's comparisons with the
+        // queue's columns into `seg_done` and the ring's `fill`).
+        self.in_head_now.next = self.head_next.q.val();
+        self.in_seg_now.next = self.seg_next.q.val();
+        self.at_last_x.next = self.last_next.q.val();
+        if self.x_zero.q.val() {
+            self.in_head_now.next = self.q_word_out.val().get_bit(self.head0_at.val().index());
+            self.in_seg_now.next = self.q_word_out.val().get_bit(self.seg0_at.val().index());
+            self.at_last_x.next = self.q_word_out.val().get_bit(self.last0_at.val().index());
         }
+        self.in_head.next = self.line_ready.val() & self.in_head_now.val();
+        self.in_seg.next = self.line_ready.val() & self.in_seg_now.val();
         // The engine's segment, out of the ring.
-        self.at_cur_last.next = self.x.q.val() == self.e0_last.q.val();
+        self.at_cur_last.next = self.at_e0.q.val();
         self.cur_ax.next = self.e0_ax.q.val();
         self.cur_ad.next = self.e0_ad.q.val();
         self.cur_dd.next = self.e0_dd.q.val();
         self.cur_shape.next = self.e0_shape.q.val();
         self.cur_recip.next = self.e0_recip.q.val();
         if self.ri.q.val() == self.slot1.val() {
-            self.at_cur_last.next = self.x.q.val() == self.e1_last.q.val();
+            self.at_cur_last.next = self.at_e1.q.val();
             self.cur_ax.next = self.e1_ax.q.val();
             self.cur_ad.next = self.e1_ad.q.val();
             self.cur_dd.next = self.e1_dd.q.val();
@@ -943,7 +1047,7 @@ impl Logic for Interpolator {
             self.cur_recip.next = self.e1_recip.q.val();
         }
         if self.ri.q.val() == self.slot2.val() {
-            self.at_cur_last.next = self.x.q.val() == self.e2_last.q.val();
+            self.at_cur_last.next = self.at_e2.q.val();
             self.cur_ax.next = self.e2_ax.q.val();
             self.cur_ad.next = self.e2_ad.q.val();
             self.cur_dd.next = self.e2_dd.q.val();
@@ -951,29 +1055,100 @@ impl Logic for Interpolator {
             self.cur_recip.next = self.e2_recip.q.val();
         }
         if self.ri.q.val() == self.slot3.val() {
-            self.at_cur_last.next = self.x.q.val() == self.e3_last.q.val();
+            self.at_cur_last.next = self.at_e3.q.val();
             self.cur_ax.next = self.e3_ax.q.val();
             self.cur_ad.next = self.e3_ad.q.val();
             self.cur_dd.next = self.e3_dd.q.val();
             self.cur_shape.next = self.e3_shape.q.val();
             self.cur_recip.next = self.e3_recip.q.val();
         }
-        // (The pixel compared with both reads' last pixel, the shown one
-        // picked after: no multiplexer of the queue's words before the
-        // comparison.)
+        self.line_done.next = self.line_ready.val() & self.at_last_x.val();
+        self.seg_done.next = self.in_seg.val() & self.at_cur_last.val();
+        // The pixel steps on inside a line; after its last, and while no
+        // line is shown (then `x` is 0), it is 0 on the next clock.
+        self.step.next = self.line_ready.val() & !self.line_done.val();
+        self.x.d.next = 0.into();
+        self.x1.d.next = 1.into();
+        if self.step.val() {
+            self.x.d.next = self.x1.q.val();
+            self.x1.d.next = self.x1.q.val() + 1;
+        }
+        self.x_zero.d.next = self.line_done.val() | (self.x_zero.q.val() & !self.line_ready.val());
+        // The next clock's place in the same line: `x + 1` compared with
+        // both queue reads' columns, the shown read's results picked after
+        // (used only if the line goes on, so that its description is the
+        // one shown now).
+        self.first_c_cur.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line.read_data.val() >> self.first_c_at.val());
+        self.first_c_succ.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line_n.read_data.val() >> self.first_c_at.val());
+        self.last_c_cur.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line.read_data.val() >> self.last_c_at.val());
+        self.last_c_succ.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line_n.read_data.val() >> self.last_c_at.val());
         self.q_last_x_cur.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line.read_data.val() >> self.last_x_at.val());
         self.q_last_x_succ.next = bit_cast::<WIDTH_BITS, LINE_BITS>(self.q_line_n.read_data.val() >> self.last_x_at.val());
-        self.at_last_x.next = self.x.q.val() == self.q_last_x_cur.val();
+        self.empty_cur.next = self.q_line.read_data.val().get_bit(self.empty_at.val().index());
+        self.empty_succ.next = self.q_line_n.read_data.val().get_bit(self.empty_at.val().index());
+        self.head_cur.next = !self.empty_cur.val() & (self.x1.q.val() < self.first_c_cur.val());
+        self.head_succ.next = !self.empty_succ.val() & (self.x1.q.val() < self.first_c_succ.val());
+        self.seg_cur.next = !self.empty_cur.val() & !(self.x1.q.val() < self.first_c_cur.val()) & (self.x1.q.val() < self.last_c_cur.val());
+        self.seg_succ.next = !self.empty_succ.val() & !(self.x1.q.val() < self.first_c_succ.val()) & (self.x1.q.val() < self.last_c_succ.val());
+        self.head_next.d.next = self.head_cur.val();
+        self.seg_next.d.next = self.seg_cur.val();
+        self.last_next.d.next = self.x1.q.val() == self.q_last_x_cur.val();
         if self.q_next_q.q.val() {
-            self.at_last_x.next = self.x.q.val() == self.q_last_x_succ.val();
+            self.head_next.d.next = self.head_succ.val();
+            self.seg_next.d.next = self.seg_succ.val();
+            self.last_next.d.next = self.x1.q.val() == self.q_last_x_succ.val();
         }
-        self.line_done.next = self.line_ready.val() & self.at_last_x.val();
-        self.seg_done.next = self.line_ready.val() & self.in_seg.val() & self.at_cur_last.val();
-        if self.line_ready.val() {
-            self.x.d.next = self.x.q.val() + 1;
+        // The next clock's pixel (`x + 1` or 0) against each ring slot's
+        // next last pixel (the prefetch's data where it writes the slot):
+        // both candidates compared, the step picks last; the engine's slot
+        // is picked by `ri` after the registers.
+        self.at_read.next = !self.seg_last.read_data.val().any();
+        self.at_e0_next.next = !self.e0_last.q.val().any();
+        self.at_e1_next.next = !self.e1_last.q.val().any();
+        self.at_e2_next.next = !self.e2_last.q.val().any();
+        self.at_e3_next.next = !self.e3_last.q.val().any();
+        if self.rd2.q.val() {
+            if !self.wi.q.val().any() {
+                self.at_e0_next.next = self.at_read.val();
+            }
+            if self.wi.q.val() == self.slot1.val() {
+                self.at_e1_next.next = self.at_read.val();
+            }
+            if self.wi.q.val() == self.slot2.val() {
+                self.at_e2_next.next = self.at_read.val();
+            }
+            if self.wi.q.val() == self.slot3.val() {
+                self.at_e3_next.next = self.at_read.val();
+            }
         }
-        if self.line_done.val() {
-            self.x.d.next = 0.into();
+        self.at_read_x1.next = self.x1.q.val() == self.seg_last.read_data.val();
+        self.at_e0_x1.next = self.x1.q.val() == self.e0_last.q.val();
+        self.at_e1_x1.next = self.x1.q.val() == self.e1_last.q.val();
+        self.at_e2_x1.next = self.x1.q.val() == self.e2_last.q.val();
+        self.at_e3_x1.next = self.x1.q.val() == self.e3_last.q.val();
+        if self.rd2.q.val() {
+            if !self.wi.q.val().any() {
+                self.at_e0_x1.next = self.at_read_x1.val();
+            }
+            if self.wi.q.val() == self.slot1.val() {
+                self.at_e1_x1.next = self.at_read_x1.val();
+            }
+            if self.wi.q.val() == self.slot2.val() {
+                self.at_e2_x1.next = self.at_read_x1.val();
+            }
+            if self.wi.q.val() == self.slot3.val() {
+                self.at_e3_x1.next = self.at_read_x1.val();
+            }
+        }
+        self.at_e0.d.next = self.at_e0_next.val();
+        self.at_e1.d.next = self.at_e1_next.val();
+        self.at_e2.d.next = self.at_e2_next.val();
+        self.at_e3.d.next = self.at_e3_next.val();
+        if self.step.val() {
+            self.at_e0.d.next = self.at_e0_x1.val();
+            self.at_e1.d.next = self.at_e1_x1.val();
+            self.at_e2.d.next = self.at_e2_x1.val();
+            self.at_e3.d.next = self.at_e3_x1.val();
         }
         // (The pointers' successors are registers of their own: no adder
         // between the pixel's comparisons and the memories' addresses.)
@@ -1080,7 +1255,7 @@ impl Logic for Interpolator {
         }
         self.p0_valid.d.next = self.line_ready.val();
         self.p0_last.d.next = self.line_done.val();
-        self.p0_sof.d.next = self.line_ready.val() & self.q_sof_out.val() & !self.x.q.val().any();
+        self.p0_sof.d.next = self.line_ready.val() & self.q_sof_out.val() & self.x_zero.q.val();
         self.p0_empty.d.next = self.line_ready.val() & self.empty_line.val();
         self.p0_base.d.next = 0.into();
         if !self.empty_line.val() {
