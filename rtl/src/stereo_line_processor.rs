@@ -74,8 +74,8 @@
 //! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`,
 //! [`INTERP_REGISTER_LAG`] between the interpolator and the median, two
 //! line periods in the median (it waits for the row two below),
-//! [`MEDIAN_REGISTER_LAG`] between the median and the depth stage, and the
-//! depth stage's `DEPTH_LAG`. The simulation measures it (`declivity rtl
+//! [`MEDIAN_REGISTER_LAG`] between the median and the depth stage, the
+//! depth stage's `DEPTH_LAG`, and [`OUTPUT_REGISTER_LAG`] to the output. The simulation measures it (`declivity rtl
 //! depth`: `latency_cycles`, the frame's first line). A later line's
 //! latency is more by the largest backlog of the matcher so far in the
 //! frame (see "Lines in flight"). After the frame's last line the row check
@@ -163,6 +163,12 @@ pub const CHECK_REGISTER_LAG: usize = 1;
 /// median's output register and the depth stage's first stage did not fit
 /// one clock, 10.23 ns on a placed ECP5-85K).
 pub const MEDIAN_REGISTER_LAG: usize = 1;
+/// Clocks of the register between the depth stage's output and the output
+/// port (`m_*`): no logic drives the flip-flops that feed the port, which
+/// nextpnr may place by its pins far from the depth stage (the depth
+/// stage's valid bit across the die into the clear of its output register,
+/// 8.85 ns on a placed ECP5-85K at 3c60346).
+pub const OUTPUT_REGISTER_LAG: usize = 1;
 /// Clocks of the register between the interpolator's output and the
 /// vertical median's input (placed apart on the die: the route from the
 /// interpolator's output register, the row count's comparison for the
@@ -270,6 +276,12 @@ pub struct StereoLineProcessor<const N: usize> {
     v_last: DFF<Bit>,
     v_d: DFF<Bits<POS_BITS>>,
     v_sof: DFF<Bit>,
+    // The depth stage's output registered on its way to the port
+    // (OUTPUT_REGISTER_LAG).
+    out_valid: DFF<Bit>,
+    out_data: DFF<Bits<OUT_BITS>>,
+    out_user: DFF<Bit>,
+    out_last: DFF<Bit>,
     // The queues' lanes 0-2, built here and then given to each queue in
     // one assignment: a port assigned twice in one evaluation changes twice,
     // and under Icarus the queue's logic and this block then wake each
@@ -412,6 +424,10 @@ impl<const N: usize> StereoLineProcessor<N> {
             v_last: Default::default(),
             v_d: Default::default(),
             v_sof: Default::default(),
+            out_valid: Default::default(),
+            out_data: Default::default(),
+            out_user: Default::default(),
+            out_last: Default::default(),
             flight_now: Default::default(),
             flight_left: Default::default(),
             flight_base: Default::default(),
@@ -438,7 +454,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, in_flight, flight_left, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof);
+        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, in_flight, flight_left, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
         self.l_skid.clock.next = self.clock.val();
         self.r_skid.clock.next = self.clock.val();
         self.left.clock.next = self.clock.val();
@@ -652,10 +668,14 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.depth.p_sof.next = self.v_sof.q.val();
 
         // ---- Out.
-        self.m_tvalid.next = self.depth.z_valid.val();
-        self.m_tdata.next = (bit_cast::<OUT_BITS, DEPTH_BITS>(self.depth.z_mm.val()) << self.sh_depth.val()) | bit_cast::<OUT_BITS, POS_BITS>(self.depth.z_d.val());
-        self.m_tuser.next = self.depth.z_sof.val();
-        self.m_tlast.next = self.depth.z_last.val();
+        self.out_valid.d.next = self.depth.z_valid.val();
+        self.out_data.d.next = (bit_cast::<OUT_BITS, DEPTH_BITS>(self.depth.z_mm.val()) << self.sh_depth.val()) | bit_cast::<OUT_BITS, POS_BITS>(self.depth.z_d.val());
+        self.out_user.d.next = self.depth.z_sof.val();
+        self.out_last.d.next = self.depth.z_last.val();
+        self.m_tvalid.next = self.out_valid.q.val();
+        self.m_tdata.next = self.out_data.q.val();
+        self.m_tuser.next = self.out_user.q.val();
+        self.m_tlast.next = self.out_last.q.val();
 
         // ---- Lines in flight: one more on a reference marker taken, one
         // less, a clock later, on a line's last pixel out of the

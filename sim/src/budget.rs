@@ -42,7 +42,8 @@
 //!   `ROW_FIRST_LAG` is in no path);
 //! - vertical median: `INTERP_REGISTER_LAG` (the register from the
 //!   interpolator) `+ 2·P` (it waits for row `y + 2`) `+ MEDIAN_LAG`;
-//! - depth stage: `MEDIAN_REGISTER_LAG` (the register from the median) + `DEPTH_LAG`.
+//! - depth stage: `MEDIAN_REGISTER_LAG` (the register from the median) + `DEPTH_LAG` +
+//!   `OUTPUT_REGISTER_LAG` (the register to the output port).
 //!
 //! The sum is the latency from a row's first pixel in to its first
 //! disparity out; its last disparity leaves `W' − 1` clocks later. Measured
@@ -143,7 +144,7 @@ use rtl::params::{
 use rtl::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
 use rtl::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
 use rtl::skid_buffer::SKID_LAG;
-use rtl::stereo_line_processor::{CHECK_REGISTER_LAG, INTERP_REGISTER_LAG, MEDIAN_REGISTER_LAG};
+use rtl::stereo_line_processor::{CHECK_REGISTER_LAG, INTERP_REGISTER_LAG, MEDIAN_REGISTER_LAG, OUTPUT_REGISTER_LAG};
 use rtl::record_memory::COPY_ADDR_BITS;
 use rtl::systolic_matcher::CHOICE_ADDR_BITS;
 use rtl::traceback::{traceback_cycles, WALK_LEAD};
@@ -795,7 +796,11 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
 /// clock.
 pub fn depth_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "depth stage";
-    let latency_terms = vec![Term::new("MEDIAN_REGISTER_LAG", MEDIAN_REGISTER_LAG), Term::new("DEPTH_LAG", DEPTH_LAG)];
+    let latency_terms = vec![
+        Term::new("MEDIAN_REGISTER_LAG", MEDIAN_REGISTER_LAG),
+        Term::new("DEPTH_LAG", DEPTH_LAG),
+        Term::new("OUTPUT_REGISTER_LAG", OUTPUT_REGISTER_LAG),
+    ];
     StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "a median out → its depth on the output")
         .dsp_blocks(1)
         .memories(vec![Memory::new(
