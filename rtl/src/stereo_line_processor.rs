@@ -75,8 +75,9 @@
 //! [`INTERP_REGISTER_LAG`] between the interpolator and the median, two
 //! line periods in the median (it waits for the row two below),
 //! [`MEDIAN_REGISTER_LAG`] between the median and the depth stage, the
-//! depth stage's `DEPTH_LAG`, and [`OUTPUT_REGISTER_LAG`] to the output. The simulation measures it (`declivity rtl
-//! depth`: `latency_cycles`, the frame's first line). A later line's
+//! depth stage's `DEPTH_LAG`, and [`OUTPUT_REGISTER_LAG`] to the output
+//! port. The simulation measures it (`declivity rtl depth`:
+//! `latency_cycles`, the frame's first line). A later line's
 //! latency is more by the largest backlog of the matcher so far in the
 //! frame (see "Lines in flight"). After the frame's last line the row check
 //! and the median flush their last rows by themselves; the next frame may
