@@ -393,15 +393,6 @@ pub struct Interpolator {
     at_cur_last: Signal<Local, Bit>,
     step: Signal<Local, Bit>,
     at_read: Signal<Local, Bit>,
-    at_read_x1: Signal<Local, Bit>,
-    at_e0_next: Signal<Local, Bit>,
-    at_e1_next: Signal<Local, Bit>,
-    at_e2_next: Signal<Local, Bit>,
-    at_e3_next: Signal<Local, Bit>,
-    at_e0_x1: Signal<Local, Bit>,
-    at_e1_x1: Signal<Local, Bit>,
-    at_e2_x1: Signal<Local, Bit>,
-    at_e3_x1: Signal<Local, Bit>,
     head0: Signal<Local, Bit>,
     seg0: Signal<Local, Bit>,
     last0_flag: Signal<Local, Bits<FLAG_BITS>>,
@@ -699,15 +690,6 @@ impl Interpolator {
             at_cur_last: Default::default(),
             step: Default::default(),
             at_read: Default::default(),
-            at_read_x1: Default::default(),
-            at_e0_next: Default::default(),
-            at_e1_next: Default::default(),
-            at_e2_next: Default::default(),
-            at_e3_next: Default::default(),
-            at_e0_x1: Default::default(),
-            at_e1_x1: Default::default(),
-            at_e2_x1: Default::default(),
-            at_e3_x1: Default::default(),
             head0: Default::default(),
             seg0: Default::default(),
             last0_flag: Default::default(),
@@ -1073,7 +1055,7 @@ impl Logic for Interpolator {
             self.x.d.next = self.x1.q.val();
             self.x1.d.next = self.x1.q.val() + 1;
         }
-        self.x_zero.d.next = self.line_done.val() | (self.x_zero.q.val() & !self.line_ready.val());
+        self.x_zero.d.next = !self.step.val();
         // The next clock's place in the same line: `x + 1` compared with
         // both queue reads' columns, the shown read's results picked after
         // (used only if the line goes on, so that its description is the
@@ -1099,56 +1081,20 @@ impl Logic for Interpolator {
             self.last_next.d.next = self.x1.q.val() == self.q_last_x_succ.val();
         }
         // The next clock's pixel (`x + 1` or 0) against each ring slot's
-        // next last pixel (the prefetch's data where it writes the slot):
-        // both candidates compared, the step picks last; the engine's slot
-        // is picked by `ri` after the registers.
+        // last pixel, and against the prefetch's data for the slot it writes
+        // (below, with the slot's fields); the engine's slot is picked by
+        // `ri` after the registers.
         self.at_read.next = !self.seg_last.read_data.val().any();
-        self.at_e0_next.next = !self.e0_last.q.val().any();
-        self.at_e1_next.next = !self.e1_last.q.val().any();
-        self.at_e2_next.next = !self.e2_last.q.val().any();
-        self.at_e3_next.next = !self.e3_last.q.val().any();
-        if self.rd2.q.val() {
-            if !self.wi.q.val().any() {
-                self.at_e0_next.next = self.at_read.val();
-            }
-            if self.wi.q.val() == self.slot1.val() {
-                self.at_e1_next.next = self.at_read.val();
-            }
-            if self.wi.q.val() == self.slot2.val() {
-                self.at_e2_next.next = self.at_read.val();
-            }
-            if self.wi.q.val() == self.slot3.val() {
-                self.at_e3_next.next = self.at_read.val();
-            }
-        }
-        self.at_read_x1.next = self.x1.q.val() == self.seg_last.read_data.val();
-        self.at_e0_x1.next = self.x1.q.val() == self.e0_last.q.val();
-        self.at_e1_x1.next = self.x1.q.val() == self.e1_last.q.val();
-        self.at_e2_x1.next = self.x1.q.val() == self.e2_last.q.val();
-        self.at_e3_x1.next = self.x1.q.val() == self.e3_last.q.val();
-        if self.rd2.q.val() {
-            if !self.wi.q.val().any() {
-                self.at_e0_x1.next = self.at_read_x1.val();
-            }
-            if self.wi.q.val() == self.slot1.val() {
-                self.at_e1_x1.next = self.at_read_x1.val();
-            }
-            if self.wi.q.val() == self.slot2.val() {
-                self.at_e2_x1.next = self.at_read_x1.val();
-            }
-            if self.wi.q.val() == self.slot3.val() {
-                self.at_e3_x1.next = self.at_read_x1.val();
-            }
-        }
-        self.at_e0.d.next = self.at_e0_next.val();
-        self.at_e1.d.next = self.at_e1_next.val();
-        self.at_e2.d.next = self.at_e2_next.val();
-        self.at_e3.d.next = self.at_e3_next.val();
+        self.at_e0.d.next = !self.e0_last.q.val().any();
+        self.at_e1.d.next = !self.e1_last.q.val().any();
+        self.at_e2.d.next = !self.e2_last.q.val().any();
+        self.at_e3.d.next = !self.e3_last.q.val().any();
         if self.step.val() {
-            self.at_e0.d.next = self.at_e0_x1.val();
-            self.at_e1.d.next = self.at_e1_x1.val();
-            self.at_e2.d.next = self.at_e2_x1.val();
-            self.at_e3.d.next = self.at_e3_x1.val();
+            self.at_read.next = self.x1.q.val() == self.seg_last.read_data.val();
+            self.at_e0.d.next = self.x1.q.val() == self.e0_last.q.val();
+            self.at_e1.d.next = self.x1.q.val() == self.e1_last.q.val();
+            self.at_e2.d.next = self.x1.q.val() == self.e2_last.q.val();
+            self.at_e3.d.next = self.x1.q.val() == self.e3_last.q.val();
         }
         // (The pointers' successors are registers of their own: no adder
         // between the pixel's comparisons and the memories' addresses.)
@@ -1227,6 +1173,7 @@ impl Logic for Interpolator {
                 self.e0_dd.d.next = self.seg_dd.read_data.val();
                 self.e0_shape.d.next = self.seg_shape.read_data.val();
                 self.e0_recip.d.next = self.seg_recip.read_data.val();
+                self.at_e0.d.next = self.at_read.val();
             }
             if self.wi.q.val() == self.slot1.val() {
                 self.e1_last.d.next = self.seg_last.read_data.val();
@@ -1235,6 +1182,7 @@ impl Logic for Interpolator {
                 self.e1_dd.d.next = self.seg_dd.read_data.val();
                 self.e1_shape.d.next = self.seg_shape.read_data.val();
                 self.e1_recip.d.next = self.seg_recip.read_data.val();
+                self.at_e1.d.next = self.at_read.val();
             }
             if self.wi.q.val() == self.slot2.val() {
                 self.e2_last.d.next = self.seg_last.read_data.val();
@@ -1243,6 +1191,7 @@ impl Logic for Interpolator {
                 self.e2_dd.d.next = self.seg_dd.read_data.val();
                 self.e2_shape.d.next = self.seg_shape.read_data.val();
                 self.e2_recip.d.next = self.seg_recip.read_data.val();
+                self.at_e2.d.next = self.at_read.val();
             }
             if self.wi.q.val() == self.slot3.val() {
                 self.e3_last.d.next = self.seg_last.read_data.val();
@@ -1251,6 +1200,7 @@ impl Logic for Interpolator {
                 self.e3_dd.d.next = self.seg_dd.read_data.val();
                 self.e3_shape.d.next = self.seg_shape.read_data.val();
                 self.e3_recip.d.next = self.seg_recip.read_data.val();
+                self.at_e3.d.next = self.at_read.val();
             }
         }
         self.p0_valid.d.next = self.line_ready.val();
