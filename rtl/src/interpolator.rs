@@ -241,6 +241,10 @@ pub struct Interpolator {
     // the drivers' diagnostics).
     pub seg_used: DFF<Bits<SEG_PTR_BITS>>,
     pub q_used: DFF<Bits<QUEUE_PTR_BITS>>,
+    // `seg_used > seg_limit` and `q_used ≥ LINE_QUEUE` as registers (0 at
+    // power-up, as the counts): the admission reads no comparison.
+    seg_full: DFF<Bit>,
+    q_full: DFF<Bit>,
     rd1: DFF<Bit>,
     rd2: DFF<Bit>,
     fill: DFF<Bits<FILL_BITS>>,
@@ -456,11 +460,13 @@ pub struct Interpolator {
     jump_on: Constant<Bit>,
     jump_lsb: Constant<Bits<POS_BITS>>,
     seg_limit: Constant<Bits<SEG_PTR_BITS>>,
+    seg_limit_up: Constant<Bits<SEG_PTR_BITS>>,
     prefetch: Constant<Bits<FILL_BITS>>,
     slot1: Constant<Bits<SLOT_BITS>>,
     slot2: Constant<Bits<SLOT_BITS>>,
     slot3: Constant<Bits<SLOT_BITS>>,
     queue_size: Constant<Bits<QUEUE_PTR_BITS>>,
+    queue_last: Constant<Bits<QUEUE_PTR_BITS>>,
     flag_sof: Constant<Bits<FLAG_BITS>>,
     flag_empty: Constant<Bits<FLAG_BITS>>,
     flag_head0: Constant<Bits<FLAG_BITS>>,
@@ -549,6 +555,8 @@ impl Interpolator {
             rd_ptr: Default::default(),
             seg_used: Default::default(),
             q_used: Default::default(),
+            seg_full: Default::default(),
+            q_full: Default::default(),
             rd1: Default::default(),
             rd2: Default::default(),
             fill: Default::default(),
@@ -753,7 +761,9 @@ impl Interpolator {
             slot2: Constant::new(2u64.into()),
             slot3: Constant::new(3u64.into()),
             seg_limit: Constant::new((((1usize << SEG_ADDR_BITS) - SEG_RESERVE) as u64).into()),
+            seg_limit_up: Constant::new((((1usize << SEG_ADDR_BITS) - SEG_RESERVE + 1) as u64).into()),
             queue_size: Constant::new((LINE_QUEUE as u64).into()),
+            queue_last: Constant::new(((LINE_QUEUE - 1) as u64).into()),
             flag_sof: Constant::new((1u64 << SOF_AT).into()),
             flag_empty: Constant::new((1u64 << EMPTY_AT).into()),
             flag_head0: Constant::new((1u64 << HEAD0_AT).into()),
@@ -787,7 +797,7 @@ impl Default for Interpolator {
 impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, seg_full, q_full, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
         self.recip.clock.next = self.clock.val();
         self.seg_last.clock.next = self.clock.val();
         self.seg_ax.clock.next = self.clock.val();
@@ -809,8 +819,10 @@ impl Logic for Interpolator {
         // Admission, on a line's first match or its marker: a free place in
         // the queue and room in the memory for a whole line.
         self.first_event.next = self.a_valid.val() & !self.in_line.q.val();
-        // (Counts kept as registers, so that no subtraction is in the path.)
-        self.fits.next = (self.seg_used.q.val() <= self.seg_limit.val()) & (self.q_used.q.val() < self.queue_size.val());
+        // (Whether the counts are at their limits is kept as registers,
+        // `seg_full` and `q_full`, written beside the counts: no comparison
+        // is in the path to the drop, the queue's write and its count.)
+        self.fits.next = !self.seg_full.q.val() & !self.q_full.q.val();
         self.drop_now.next = self.dropping.q.val();
         if self.first_event.val() {
             self.drop_now.next = !self.fits.val();
@@ -1136,17 +1148,27 @@ impl Logic for Interpolator {
         self.seg_dd.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
         self.seg_shape.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
         self.seg_recip.read_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.rd_ptr.q.val());
+        // The full flags of the counts' next values, from comparisons of
+        // the counts now with the limit and its neighbours, picked by the
+        // change (`c ± 1 > L` ⇔ `c > L ∓ 1`): the same decision as the
+        // next count's comparison, with no adder before it.
+        self.seg_full.d.next = self.seg_used.q.val() > self.seg_limit.val();
         if self.s3_seg.q.val() & !self.issue.val() {
             self.seg_used.d.next = self.seg_used.q.val() + 1;
+            self.seg_full.d.next = self.seg_used.q.val() >= self.seg_limit.val();
         }
         if !self.s3_seg.q.val() & self.issue.val() {
             self.seg_used.d.next = self.seg_used.q.val() - 1;
+            self.seg_full.d.next = self.seg_used.q.val() > self.seg_limit_up.val();
         }
+        self.q_full.d.next = self.q_used.q.val() >= self.queue_size.val();
         if self.line_write.val() & !self.line_done.val() {
             self.q_used.d.next = self.q_used.q.val() + 1;
+            self.q_full.d.next = self.q_used.q.val() >= self.queue_last.val();
         }
         if !self.line_write.val() & self.line_done.val() {
             self.q_used.d.next = self.q_used.q.val() - 1;
+            self.q_full.d.next = self.q_used.q.val() > self.queue_size.val();
         }
         // The ring: data pushed at `wi`, the engine's segment at `ri`
         // (registers with enables: no multiplexer on the write side).
