@@ -56,7 +56,7 @@
 //! then (two phases) or `2·index` clocks later (`p4`): stage A
 //! (`X_i - X_j`, level differences), B (distances, search area), C (tests
 //! of eq. 7), S (the distances kept), D
-//! (their sum and the gain), E (`G = g + P(i-1, j-1)`), F (start or node), G (up), H (left).
+//! (their sum and the gain), E (`G = g + P(i-1, j-1)` and, beside it, whether `G > 0`), F (start or node), G (up), H (left).
 //! The node below, `(i+1, j)`, is two clocks behind in the next cell, so its
 //! stage G reads this `P` on `up_p` as soon as it is out; the node to the
 //! right, `(i, j+1)`, is two (four with `p4`) clocks behind in this cell,

