@@ -145,6 +145,8 @@ pub struct DeclivityTracker {
     odd_x: Signal<Local, Bits<MUL_OPERAND_BITS>>,
     seen_eff: Signal<Local, Bit>,
     count_eff: Signal<Local, Bits<COUNT_BITS>>,
+    count_eff1: Signal<Local, Bits<COUNT_BITS>>,
+    count_next: Signal<Local, Bits<COUNT_BITS>>,
     full_eff: Signal<Local, Bit>,
     x_next: Signal<Local, Bits<X_BITS>>,
     lvl_a: Signal<Local, Bits<CMP_BITS>>,
@@ -241,6 +243,8 @@ impl Default for DeclivityTracker {
             odd_x: Default::default(),
             seen_eff: Default::default(),
             count_eff: Default::default(),
+            count_eff1: Default::default(),
+            count_next: Default::default(),
             full_eff: Default::default(),
             x_next: Default::default(),
             lvl_a: Default::default(),
@@ -329,8 +333,12 @@ impl Logic for DeclivityTracker {
         self.seen_eff.next = self.seen.q.val() & !self.window.first4.val();
         self.count_eff.next = self.count.q.val();
         self.full_eff.next = self.full.q.val();
+        // (`count_eff + 1` from the register, picked by `keep` last: no
+        // adder after the decision.)
+        self.count_eff1.next = self.count.q.val() + 1;
         if self.window.first4.val() {
             self.count_eff.next = 0.into();
+            self.count_eff1.next = 1.into();
             self.full_eff.next = false;
         }
         self.x_next.next = self.window.x4.val() + 1;
@@ -401,8 +409,12 @@ impl Logic for DeclivityTracker {
         }
 
         // ---- State.
+        self.count_next.next = self.count_eff.val();
+        if self.keep.val() {
+            self.count_next.next = self.count_eff1.val();
+        }
         if self.window.valid4.val() {
-            self.count.d.next = self.count_eff.val() + bit_cast::<COUNT_BITS, 1>(self.keep.val().into());
+            self.count.d.next = self.count_next.val();
             self.full.d.next = self.full_eff.val() | self.drop.val();
             self.seen.d.next = self.seen_eff.val();
         }
@@ -428,36 +440,33 @@ impl Logic for DeclivityTracker {
         }
         self.mk_pending.d.next = self.window.valid4.val() & self.window.last4.val();
         if self.window.valid4.val() & self.window.last4.val() {
-            self.mk_count.d.next = self.count_eff.val() + bit_cast::<COUNT_BITS, 1>(self.keep.val().into());
+            self.mk_count.d.next = self.count_next.val();
             self.mk_full.d.next = self.full_eff.val() | self.drop.val();
             self.mk_wide.d.next = self.window.wide4.val();
             self.mk_sof.d.next = self.window.sof4.val();
             self.mk_dt.d.next = self.window.dt4.val();
         }
 
-        // ---- The item: a kept record, else a pending marker.
+        // ---- The item: a kept record, else a pending marker. The fields
+        // are the record's or the marker's whatever `keep` says (they mean
+        // nothing without `o_valid`): `keep` drives one register, not the
+        // clear of every field (7.5 ns on a placed ECP5-85K).
         self.o_valid.d.next = self.keep.val() | self.mk_pending.q.val();
-        self.o_dividend.d.next = 0.into();
-        self.o_divisor.d.next = 1.into();
-        self.o_tag0.d.next = 0.into();
-        self.o_tag1.d.next = 0.into();
-        self.o_tag2.d.next = 0.into();
-        self.o_tag3.d.next = 0.into();
-        if self.keep.val() {
-            self.o_dividend.d.next = bit_cast::<DIVIDEND_BITS, S1_BITS>(self.s1.q.val()) << self.dividend_shift.val();
-            self.o_divisor.d.next = self.s0.q.val();
-            self.o_tag0.d.next = bit_cast::<32, X_BITS>(self.start.q.val())
-                | (bit_cast::<32, X_BITS>(self.end_reg.q.val()) << self.end_shift.val())
-                | (bit_cast::<32, AMP_BITS>(self.amp.val()) << self.amp_shift.val());
-            self.o_tag1.d.next = bit_cast::<32, PIXEL_BITS>(self.left0.q.val())
-                | (bit_cast::<32, PIXEL_BITS>(self.left1.q.val()) << self.level_shift.val())
-                | (bit_cast::<32, PIXEL_BITS>(self.left2.q.val()) << (self.level_shift.val() << 1));
-            self.o_tag2.d.next = bit_cast::<32, PIXEL_BITS>(self.window.pix4.val())
-                | (bit_cast::<32, PIXEL_BITS>(self.right1.val()) << self.level_shift.val())
-                | (bit_cast::<32, PIXEL_BITS>(self.right2.val()) << (self.level_shift.val() << 1));
-            self.o_tag3.d.next = bit_cast::<32, DT_BITS>(self.window.dt4.val());
-        }
+        self.o_dividend.d.next = bit_cast::<DIVIDEND_BITS, S1_BITS>(self.s1.q.val()) << self.dividend_shift.val();
+        self.o_divisor.d.next = self.s0.q.val();
+        self.o_tag0.d.next = bit_cast::<32, X_BITS>(self.start.q.val())
+            | (bit_cast::<32, X_BITS>(self.end_reg.q.val()) << self.end_shift.val())
+            | (bit_cast::<32, AMP_BITS>(self.amp.val()) << self.amp_shift.val());
+        self.o_tag1.d.next = bit_cast::<32, PIXEL_BITS>(self.left0.q.val())
+            | (bit_cast::<32, PIXEL_BITS>(self.left1.q.val()) << self.level_shift.val())
+            | (bit_cast::<32, PIXEL_BITS>(self.left2.q.val()) << (self.level_shift.val() << 1));
+        self.o_tag2.d.next = bit_cast::<32, PIXEL_BITS>(self.window.pix4.val())
+            | (bit_cast::<32, PIXEL_BITS>(self.right1.val()) << self.level_shift.val())
+            | (bit_cast::<32, PIXEL_BITS>(self.right2.val()) << (self.level_shift.val() << 1));
+        self.o_tag3.d.next = bit_cast::<32, DT_BITS>(self.window.dt4.val());
         if self.mk_pending.q.val() {
+            self.o_dividend.d.next = 0.into();
+            self.o_divisor.d.next = 1.into();
             self.o_tag0.d.next = bit_cast::<32, 1>(true.into()) << self.marker_shift.val();
             self.o_tag1.d.next = bit_cast::<32, COUNT_BITS>(self.mk_count.q.val());
             self.o_tag2.d.next = bit_cast::<32, 1>(self.mk_wide.q.val().into())

@@ -45,6 +45,7 @@
 //! clock, any pattern of `p_valid`. A clock with `p_valid` low gives, after
 //! the same lag, `z_valid` low and all other outputs 0.
 
+use crate::dsp_multiplier::DspMultiplier;
 use crate::params::*;
 use rust_hdl::prelude::*;
 use std::fmt;
@@ -261,8 +262,10 @@ pub struct DepthStage {
     s3_sat: DFF<Bit>,
     s3_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
     s4_t: DFF<Bits<DEPTH_TABLE_BITS>>,
-    s4_slope: DFF<Bits<16>>,
-    s4_w: DFF<Bits<16>>,
+    // S4's slope and weight in the DSP block's own input registers (a
+    // `*` of fabric registers routes into the DSP column, multiplies and
+    // routes out in one clock: 7.5 ns on a placed ECP5-85K).
+    slope_w: DspMultiplier,
     s4_sat: DFF<Bit>,
     s4_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
     s5_t: DFF<Bits<DEPTH_TABLE_BITS>>,
@@ -386,8 +389,7 @@ impl DepthStage {
             s3_sat: Default::default(),
             s3_shift: Default::default(),
             s4_t: Default::default(),
-            s4_slope: Default::default(),
-            s4_w: Default::default(),
+            slope_w: Default::default(),
             s4_sat: Default::default(),
             s4_shift: Default::default(),
             s5_t: Default::default(),
@@ -454,7 +456,7 @@ impl Default for DepthStage {
 impl Logic for DepthStage {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, s1_valid, s1_last, s1_sof, s1_zero, s1_d, s2_valid, s2_last, s2_sof, s2_zero, s2_d, s3_valid, s3_last, s3_sof, s3_zero, s3_d, s4_valid, s4_last, s4_sof, s4_zero, s4_d, s5_valid, s5_last, s5_sof, s5_zero, s5_d, s6_valid, s6_last, s6_sof, s6_zero, s6_d, s7_valid, s7_last, s7_sof, s7_zero, s7_d, s1_n, s1_lz, s2_m, s2_lz, s3_w, s3_sat, s3_shift, s4_t, s4_slope, s4_w, s4_sat, s4_shift, s5_t, s5_prod, s5_sat, s5_shift, s6_t, s6_sat, s6_shift, s7_half, s7_sat, o_valid, o_last, o_sof, o_z, o_d);
+        dff_setup!(self, clock, s1_valid, s1_last, s1_sof, s1_zero, s1_d, s2_valid, s2_last, s2_sof, s2_zero, s2_d, s3_valid, s3_last, s3_sof, s3_zero, s3_d, s4_valid, s4_last, s4_sof, s4_zero, s4_d, s5_valid, s5_last, s5_sof, s5_zero, s5_d, s6_valid, s6_last, s6_sof, s6_zero, s6_d, s7_valid, s7_last, s7_sof, s7_zero, s7_d, s1_n, s1_lz, s2_m, s2_lz, s3_w, s3_sat, s3_shift, s4_t, s4_sat, s4_shift, s5_t, s5_prod, s5_sat, s5_shift, s6_t, s6_sat, s6_shift, s7_half, s7_sat, o_valid, o_last, o_sof, o_z, o_d);
         self.depth_rom.clock.next = self.clock.val();
         // The pixel's flags and disparity travel beside the arithmetic.
         self.s1_valid.d.next = self.p_valid.val();
@@ -543,12 +545,14 @@ impl Logic for DepthStage {
         // S4: the table's word registered (nothing between the RAM and its
         // register).
         self.s4_t.d.next = bit_cast::<DEPTH_TABLE_BITS, DEPTH_WORD_BITS>(self.depth_rom.data.val() >> self.slope_bits.val());
-        self.s4_slope.d.next = bit_cast::<16, DEPTH_WORD_BITS>(self.depth_rom.data.val() & self.slope_mask.val());
-        self.s4_w.d.next = self.s3_w.q.val();
+        self.slope_w.clock.next = self.clock.val();
+        self.slope_w.a.next = bit_cast::<16, DEPTH_WORD_BITS>(self.depth_rom.data.val() & self.slope_mask.val());
+        self.slope_w.b.next = self.s3_w.q.val();
         self.s4_sat.d.next = self.s3_sat.q.val();
         self.s4_shift.d.next = self.s3_shift.q.val();
-        // S5: slope · w (a DSP block; the product registered).
-        self.prod.next = self.s4_slope.q.val() * self.s4_w.q.val();
+        // S5: slope · w (the DSP block, after its input registers; the
+        // product registered in the fabric).
+        self.prod.next = self.slope_w.p.val();
         self.s5_prod.d.next = self.prod.val();
         self.s5_t.d.next = self.s4_t.q.val();
         self.s5_sat.d.next = self.s4_sat.q.val();

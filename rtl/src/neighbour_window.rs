@@ -60,6 +60,7 @@ pub struct NeighbourWindow {
     rd1: DFF<Bit>,
     rd2: DFF<Bit>,
     wi: DFF<Bits<ROW_WINDOW_BITS>>,
+    wpos: DFF<Bits<ROW_WINDOW_BITS>>,
     // Each slot: held, and its entry's bounds `X + DX`, `X - DX`, `d + DD`,
     // `d - DD` (the last two modulo `2^WIDE`: see the comparisons); the
     // newest entry's `X - DX` (0 at a row's start).
@@ -96,7 +97,8 @@ pub struct NeighbourWindow {
     nxm: Signal<Local, Bits<WIDE>>,
     ndp: Signal<Local, Bits<WIDE>>,
     ndm: Signal<Local, Bits<WIDE>>,
-    wpos: Signal<Local, Bits<ROW_WINDOW_BITS>>,
+    w_held: Signal<Local, Bit>,
+    w_lt: Signal<Local, Bit>,
     slot_free: Signal<Local, Bit>,
     issue: Signal<Local, Bit>,
     anylt: Signal<Local, Bit>,
@@ -136,6 +138,7 @@ impl Default for NeighbourWindow {
             rd1: Default::default(),
             rd2: Default::default(),
             wi: Default::default(),
+            wpos: Default::default(),
             held: Default::default(),
             xp: Default::default(),
             xm: Default::default(),
@@ -162,7 +165,8 @@ impl Default for NeighbourWindow {
             nxm: Default::default(),
             ndp: Default::default(),
             ndm: Default::default(),
-            wpos: Default::default(),
+            w_held: Default::default(),
+            w_lt: Default::default(),
             slot_free: Default::default(),
             issue: Default::default(),
             anylt: Default::default(),
@@ -183,7 +187,7 @@ impl Default for NeighbourWindow {
 impl Logic for NeighbourWindow {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, base, rd, rleft, rend, rd1, rd2, wi, lxm, full, beyond, loaded);
+        dff_setup!(self, clock, base, rd, rleft, rend, rd1, rd2, wi, wpos, lxm, full, beyond, loaded);
         // The memory copy takes the loader's writes.
         self.mem.clock.next = self.clock.val();
         self.mem.write_enable.next = self.w_enable.val();
@@ -235,25 +239,29 @@ impl Logic for NeighbourWindow {
             self.wi.d.next = self.wi.q.val() + 1;
             self.lxm.d.next = self.nxm.val();
         }
-        // A read is issued while its slot (after the reads in flight) is
-        // free: the held slots are one run ending before `wi`.
-        self.wpos.next = self.wi.q.val();
-        if self.rd1.q.val() | self.rd2.q.val() {
-            self.wpos.next = self.wi.q.val() + 1;
-        }
-        if self.rd1.q.val() & self.rd2.q.val() {
-            self.wpos.next = self.wi.q.val() + 2;
-        }
-        self.slot_free.next = false;
+        // A read is issued while its slot (after the reads in flight, `wi +
+        // rd1 + rd2`) is free, not held or leaving now: the held slots are
+        // one run ending before `wi`. That slot is a register of its own,
+        // `wpos`, which moves on with each read issued (`wi + rd2` is the
+        // next `wi`, the read issued the next `rd1`, `rd1` the next `rd2`);
+        // its flags are picked by it and the decision stage's `dvalid` comes
+        // last, one LUT before the read's enables. (`dvalid` through the
+        // slots' `stay` and a pick by `wi + rd1 + rd2` took 8.87 ns on a
+        // placed ECP5-85K.)
+        self.w_held.next = false;
+        self.w_lt.next = false;
         for i in 0..ROW_WINDOW {
-            if self.wpos.val() == self.wslot[i].val() {
-                self.slot_free.next = !self.stay[i].val();
+            if self.wpos.q.val() == self.wslot[i].val() {
+                self.w_held.next = self.held[i].q.val();
+                self.w_lt.next = self.lt[i].q.val();
             }
         }
+        self.slot_free.next = !self.w_held.val() | (self.dvalid.val() & self.w_lt.val());
         self.issue.next = !self.rend.q.val() & self.slot_free.val();
         self.rd1.d.next = self.issue.val();
         self.rd2.d.next = self.rd1.q.val();
         if self.issue.val() {
+            self.wpos.d.next = self.wpos.q.val() + 1;
             self.rd.d.next = self.rd.q.val() + 1;
             self.rleft.d.next = self.rleft.q.val() - 1;
             self.rend.d.next = self.rleft.q.val() == self.count_one.val();
@@ -297,6 +305,7 @@ impl Logic for NeighbourWindow {
             self.rd1.d.next = false;
             self.rd2.d.next = false;
             self.wi.d.next = 0.into();
+            self.wpos.d.next = 0.into();
             self.lxm.d.next = 0.into();
             for i in 0..ROW_WINDOW {
                 self.held[i].d.next = false;
