@@ -4,7 +4,8 @@
 //!
 //! Three engines work on consecutive lines at once:
 //! - **A, input**: writes the line into one bank of a ping-pong line buffer
-//!   (block RAM, `2 × W_MAX` grey levels) and counts its `|ΔI|` into the
+//!   (`2 × W_MAX` grey levels, a [`BlockRam`] per bank read through its
+//!   output register, the address a clock ahead) and counts its `|ΔI|` into the
 //!   matching bank of the [`AdaptiveThreshold`] (eq. 2);
 //! - **B, threshold**: scans the histogram for the median and `d_t`
 //!   ([`THRESHOLD_LATENCY`] clocks, whatever the line);
@@ -49,6 +50,7 @@
 //!
 //! golden's hardware-parity mode (`golden::hardware`) does the same.
 
+use crate::block_ram::BlockRam;
 use crate::adaptive_threshold::{AdaptiveThreshold, THRESHOLD_LATENCY};
 use crate::declivity_tracker::{DeclivityTracker, TRACKER_CENTER};
 use crate::params::*;
@@ -134,7 +136,10 @@ pub struct DeclivityDetector {
     pub m_wide: Signal<Out, Bit>,
     pub m_full: Signal<Out, Bit>,
     pub m_sof: Signal<Out, Bit>,
-    line_buf: RAM<Bits<PIXEL_BITS>, LINE_BUF_ADDR_BITS>,
+    // The ping-pong line buffer, one block RAM per bank with its output
+    // register (two clocks a read: the reader's address is its next `rx`).
+    line_buf0: BlockRam<PIXEL_BITS, X_BITS>,
+    line_buf1: BlockRam<PIXEL_BITS, X_BITS>,
     threshold: AdaptiveThreshold,
     tracker: DeclivityTracker,
     divider: PositionDivider,
@@ -170,7 +175,11 @@ pub struct DeclivityDetector {
     r_sof: DFF<Bit>,
     free_pending: DFF<Bit>,
     free_bank: DFF<Bit>,
+    // `rx == r_last_x` while reading, computed a clock ahead: the reader's
+    // decision starts at registers.
+    r_at_end: DFF<Bit>,
     d_valid: DFF<Bit>,
+    d_bank: DFF<Bit>,
     d_first: DFF<Bit>,
     d_last: DFF<Bit>,
     d_x: DFF<Bits<X_BITS>>,
@@ -190,6 +199,9 @@ pub struct DeclivityDetector {
     read_state: Signal<Local, Bits<2>>,
     read_width: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
     start_read: Signal<Local, Bit>,
+    read_last_x: Signal<Local, Bits<X_BITS>>,
+    rx_next: Signal<Local, Bits<X_BITS>>,
+    rx_inc: Signal<Local, Bits<X_BITS>>,
     // Constants.
     w_max: Constant<Bits<LINE_BUF_ADDR_BITS>>,
     bank_free: Constant<Bits<2>>,
@@ -225,7 +237,8 @@ impl Default for DeclivityDetector {
             m_wide: Default::default(),
             m_full: Default::default(),
             m_sof: Default::default(),
-            line_buf: Default::default(),
+            line_buf0: Default::default(),
+            line_buf1: Default::default(),
             threshold: Default::default(),
             tracker: Default::default(),
             divider: Default::default(),
@@ -257,6 +270,8 @@ impl Default for DeclivityDetector {
             r_sof: Default::default(),
             free_pending: Default::default(),
             free_bank: Default::default(),
+            r_at_end: Default::default(),
+            d_bank: Default::default(),
             d_valid: Default::default(),
             d_first: Default::default(),
             d_last: Default::default(),
@@ -276,6 +291,9 @@ impl Default for DeclivityDetector {
             read_state: Default::default(),
             read_width: Default::default(),
             start_read: Default::default(),
+            read_last_x: Default::default(),
+            rx_next: Default::default(),
+            rx_inc: Default::default(),
             w_max: Constant::new((W_MAX as u64).into()),
             bank_free: Constant::new(BANK_FREE.into()),
             bank_full: Constant::new(BANK_FULL.into()),
@@ -288,15 +306,15 @@ impl Default for DeclivityDetector {
 impl Logic for DeclivityDetector {
     #[hdl_gen]
     fn update(&mut self) {
-        self.line_buf.read_clock.next = self.clock.val();
-        self.line_buf.write_clock.next = self.clock.val();
+        self.line_buf0.clock.next = self.clock.val();
+        self.line_buf1.clock.next = self.clock.val();
         self.threshold.clock.next = self.clock.val();
         self.tracker.clock.next = self.clock.val();
         self.divider.clock.next = self.clock.val();
         dff_setup!(
             self, clock, state0, state1, width0, width1, wide0, wide1, sof0, sof1, dt0, dt1, wb, wx, in_line,
             prev_pix, line_sof, line_wide, mb, rb, reading, r_bank, rx, r_last_x, r_dt, r_thr, r_wide, r_sof,
-            free_pending, free_bank, d_valid, d_first, d_last, d_x, d_dt, d_thr, d_wide, d_sof
+            free_pending, free_bank, r_at_end, d_valid, d_bank, d_first, d_last, d_x, d_dt, d_thr, d_wide, d_sof
         );
 
         // ---- A: input into bank wb, accepted while that bank is free.
@@ -315,14 +333,13 @@ impl Logic for DeclivityDetector {
         if self.prev_pix.q.val() > self.s_tdata.val() {
             self.diff.next = self.prev_pix.q.val() - self.s_tdata.val();
         }
-        // Bank bit on top of x (an addition, not a shift: rust-hdl simulates
-        // shifts slowly; x < W_MAX so they are the same).
-        self.line_buf.write_address.next = self.x_now.val();
-        if self.wb.q.val() {
-            self.line_buf.write_address.next = self.x_now.val() + self.w_max.val();
-        }
-        self.line_buf.write_data.next = self.s_tdata.val();
-        self.line_buf.write_enable.next = self.accept.val() & self.stored.val();
+        // (x < W_MAX where it is stored.)
+        self.line_buf0.write_address.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val());
+        self.line_buf1.write_address.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val());
+        self.line_buf0.write_data.next = self.s_tdata.val();
+        self.line_buf1.write_data.next = self.s_tdata.val();
+        self.line_buf0.write_enable.next = self.accept.val() & self.stored.val() & !self.wb.q.val();
+        self.line_buf1.write_enable.next = self.accept.val() & self.stored.val() & self.wb.q.val();
         self.threshold.inc_valid.next = self.accept.val() & self.stored.val() & self.in_line.q.val();
         self.threshold.inc_bank.next = self.wb.q.val();
         self.threshold.inc_bin.next = self.diff.val();
@@ -350,13 +367,26 @@ impl Logic for DeclivityDetector {
             self.read_state.next = self.state1.q.val();
             self.read_width.next = self.width1.q.val();
         }
-        self.start_read.next = (self.read_state.val() == self.bank_ready.val())
-            & (!self.reading.q.val() | (self.rx.q.val() == self.r_last_x.q.val()));
-        self.line_buf.read_address.next = bit_cast::<LINE_BUF_ADDR_BITS, X_BITS>(self.rx.q.val());
-        if self.r_bank.q.val() {
-            self.line_buf.read_address.next = bit_cast::<LINE_BUF_ADDR_BITS, X_BITS>(self.rx.q.val()) + self.w_max.val();
+        self.start_read.next =
+            (self.read_state.val() == self.bank_ready.val()) & (!self.reading.q.val() | self.r_at_end.q.val());
+        self.read_last_x.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.read_width.val() - 1);
+        // The line buffer reads `rx`'s next value (both banks: the data are
+        // picked by `d_bank` after the RAMs' output registers), so that its
+        // word is out on the same clock as the pixel's other fields.
+        // (`rx + 1` through a signal of its width: it wraps in the
+        // comparison below as in the model.)
+        self.rx_inc.next = self.rx.q.val() + 1;
+        self.rx_next.next = self.rx.q.val();
+        if self.reading.q.val() {
+            self.rx_next.next = self.rx_inc.val();
         }
+        if self.start_read.val() {
+            self.rx_next.next = 0.into();
+        }
+        self.line_buf0.read_address.next = self.rx_next.val();
+        self.line_buf1.read_address.next = self.rx_next.val();
         self.d_valid.d.next = self.reading.q.val();
+        self.d_bank.d.next = self.r_bank.q.val();
         self.d_first.d.next = self.rx.q.val() == 0;
         self.d_last.d.next = self.rx.q.val() == self.r_last_x.q.val();
         self.d_x.d.next = self.rx.q.val();
@@ -364,9 +394,10 @@ impl Logic for DeclivityDetector {
         self.d_thr.d.next = self.r_thr.q.val();
         self.d_wide.d.next = self.r_wide.q.val();
         self.d_sof.d.next = self.r_sof.q.val();
+        self.rx.d.next = self.rx_next.val();
         if self.reading.q.val() {
-            self.rx.d.next = self.rx.q.val() + 1;
-            if self.rx.q.val() == self.r_last_x.q.val() {
+            self.r_at_end.d.next = self.rx_inc.val() == self.r_last_x.q.val();
+            if self.r_at_end.q.val() {
                 self.reading.d.next = false;
             }
         }
@@ -374,8 +405,8 @@ impl Logic for DeclivityDetector {
         if self.start_read.val() {
             self.reading.d.next = true;
             self.r_bank.d.next = self.rb.q.val();
-            self.rx.d.next = 0.into();
-            self.r_last_x.d.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.read_width.val() - 1);
+            self.r_last_x.d.next = self.read_last_x.val();
+            self.r_at_end.d.next = !self.read_last_x.val().any();
             self.r_dt.d.next = self.dt0.q.val();
             self.r_wide.d.next = self.wide0.q.val();
             self.r_sof.d.next = self.sof0.q.val();
@@ -458,7 +489,10 @@ impl Logic for DeclivityDetector {
         self.tracker.in_valid.next = self.d_valid.q.val();
         self.tracker.in_first.next = self.d_first.q.val();
         self.tracker.in_last.next = self.d_last.q.val();
-        self.tracker.in_pix.next = self.line_buf.read_data.val();
+        self.tracker.in_pix.next = self.line_buf0.read_data.val();
+        if self.d_bank.q.val() {
+            self.tracker.in_pix.next = self.line_buf1.read_data.val();
+        }
         self.tracker.in_x.next = self.d_x.q.val();
         self.tracker.in_dt.next = self.d_dt.q.val();
         self.tracker.in_thr.next = self.d_thr.q.val();

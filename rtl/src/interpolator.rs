@@ -16,8 +16,10 @@
 //!   (`⌈X_b⌉ > ⌈X_a⌉`) closes the segment from the previous match. Its
 //!   `1 / (X_b - X_a)` comes from a table: the distance is shifted left until
 //!   its top bit is set (`lz` places), and the next [`RECIP_INDEX_BITS`]
-//!   bits address a block-RAM table of `2^RECIP_SHIFT / m` at the middle of
-//!   the bucket. The segment (its last pixel, `X_a`, its base `d_a` (across
+//!   bits address a table of `2^RECIP_SHIFT / m` at the middle of the
+//!   bucket (in LUTs behind its address register, [`LogicRom`]: a block
+//!   RAM's clock-to-out left too little of the clock for the segment
+//!   memory's write). The segment (its last pixel, `X_a`, its base `d_a` (across
 //!   a jump the smaller disparity), `|d_b - d_a|` and its sign, the jump
 //!   flag, `lz` and the reciprocal) goes into the segment
 //!   memory; at the line's end marker the line's description (its last pixel, the
@@ -92,16 +94,18 @@
 
 use crate::block_ram::BlockRam;
 use crate::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS};
+use crate::logic_rom::LogicRom;
 use crate::params::*;
 use rust_hdl::prelude::*;
 
 /// Clocks from a line's marker on `a_*` to its description in the line
-/// queue being shown to the pixel engine: the marker's write, then five
+/// queue being shown to the pixel engine: the marker's write, then six
 /// clocks, as long as a line's last segment takes from its match through
 /// the segment memory into the prefetch registers (the segment register,
-/// the normalisation, the table's address register and the table, the
-/// memory's write, its two-clock read).
-pub const SEGMENT_LAG: usize = 6;
+/// the normalisation's first half, its second half into the table's
+/// address register, the table into its output register beside the
+/// segment, the memory's write, its two-clock read).
+pub const SEGMENT_LAG: usize = 7;
 /// Clocks from the pixel engine's clock of a pixel to the pixel on `p_*`:
 /// the selection, the shift, the first product, the weight, the second
 /// product, the rounding, the sum (each product registered straight out of
@@ -110,9 +114,9 @@ pub const PIXEL_LAG: usize = 7;
 /// Lines the line queue holds.
 pub const LINE_QUEUE: usize = 1 << LINE_QUEUE_BITS;
 /// Free segment places a line needs to be admitted: its at most
-/// `N_MAX - 1` segments and the three of the previous line still on
-/// their way to the memory.
-pub const SEG_RESERVE: usize = N_MAX - 1 + 3;
+/// `N_MAX - 1` segments and the four of the previous line still on
+/// their way to the memory (stages 1 to 4).
+pub const SEG_RESERVE: usize = N_MAX - 1 + 4;
 // A full queue's other lines leave a line room in the segment memory (see
 // Timing).
 const _: () = assert!((LINE_QUEUE - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << SEG_ADDR_BITS);
@@ -199,8 +203,9 @@ pub struct Interpolator {
     prev_c: DFF<Bits<WIDTH_BITS>>,
     first_d: DFF<Bits<POS_BITS>>,
     first_c: DFF<Bits<WIDTH_BITS>>,
-    // Stage 1: a segment; stage 2: its distance normalised; stage 3: the
-    // table's address; then the table's output beside stage 3.
+    // Stage 1: a segment; stage 2: its distance half normalised (`s2_m`);
+    // stage 3: the table's address register (in `recip`), the shape with
+    // the whole shift; then the table's output beside stage 3.
     s1_seg: DFF<Bit>,
     s1_last: DFF<Bits<WIDTH_BITS>>,
     s1_ax: DFF<Bits<POS_BITS>>,
@@ -222,7 +227,15 @@ pub struct Interpolator {
     s3_ad: DFF<Bits<POS_BITS>>,
     s3_dd: DFF<Bits<POS_BITS>>,
     s3_shape: DFF<Bits<SHAPE_BITS>>,
-    recip: SyncROM<Bits<RECIP_BITS>, RECIP_INDEX_BITS>,
+    // Stage 4: the segment with its reciprocal, into the memory.
+    s4_seg: DFF<Bit>,
+    s4_last: DFF<Bits<WIDTH_BITS>>,
+    s4_ax: DFF<Bits<POS_BITS>>,
+    s4_ad: DFF<Bits<POS_BITS>>,
+    s4_dd: DFF<Bits<POS_BITS>>,
+    s4_shape: DFF<Bits<SHAPE_BITS>>,
+    s4_recip: DFF<Bits<RECIP_BITS>>,
+    recip: LogicRom<RECIP_BITS, RECIP_INDEX_BITS>,
     // ---- The segment memory, one RAM per field, and its pointers (one bit
     // above the address, so that full and empty differ).
     seg_last: BlockRam<WIDTH_BITS, SEG_ADDR_BITS>,
@@ -245,6 +258,9 @@ pub struct Interpolator {
     // power-up, as the counts): the admission reads no comparison.
     seg_full: DFF<Bit>,
     q_full: DFF<Bit>,
+    // `seg_used != 0` (the memory holds an unread segment: `seg_used` is
+    // `seg_wp - rd_ptr`) as a register, written beside the count.
+    seg_any: DFF<Bit>,
     rd1: DFF<Bit>,
     rd2: DFF<Bit>,
     fill: DFF<Bits<FILL_BITS>>,
@@ -287,7 +303,11 @@ pub struct Interpolator {
     q_wp2: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp3: DFF<Bits<QUEUE_PTR_BITS>>,
     q_wp4: DFF<Bits<QUEUE_PTR_BITS>>,
-    q_shown: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_wp5: DFF<Bits<QUEUE_PTR_BITS>>,
+    // A line is shown (`q_wp5` a clock ago against the read pointer),
+    // computed a clock ahead from registers: the engine's control starts
+    // at a register.
+    line_ready: DFF<Bit>,
     q_rp: DFF<Bits<QUEUE_PTR_BITS>>,
     q_rp1: DFFWithInit<Bits<QUEUE_PTR_BITS>>,
     q_next_q: DFF<Bit>,
@@ -382,7 +402,6 @@ pub struct Interpolator {
     l4: Signal<Local, Bits<SHAPE_BITS>>,
     jump: Signal<Local, Bit>,
     signed_shape: Signal<Local, Bits<SHAPE_BITS>>,
-    line_ready: Signal<Local, Bit>,
     empty_line: Signal<Local, Bit>,
     in_head: Signal<Local, Bit>,
     in_seg: Signal<Local, Bit>,
@@ -460,6 +479,7 @@ pub struct Interpolator {
     jump_lsb: Constant<Bits<POS_BITS>>,
     seg_limit: Constant<Bits<SEG_PTR_BITS>>,
     seg_limit_up: Constant<Bits<SEG_PTR_BITS>>,
+    seg_one: Constant<Bits<SEG_PTR_BITS>>,
     prefetch: Constant<Bits<FILL_BITS>>,
     prefetch_m1: Constant<Bits<FILL_BITS>>,
     prefetch_m2: Constant<Bits<FILL_BITS>>,
@@ -545,7 +565,14 @@ impl Interpolator {
             s3_ad: Default::default(),
             s3_dd: Default::default(),
             s3_shape: Default::default(),
-            recip: recip_table().into_iter().map(Bits::<RECIP_BITS>::from).into(),
+            s4_seg: Default::default(),
+            s4_last: Default::default(),
+            s4_ax: Default::default(),
+            s4_ad: Default::default(),
+            s4_dd: Default::default(),
+            s4_shape: Default::default(),
+            s4_recip: Default::default(),
+            recip: LogicRom::new(recip_table()),
             seg_last: Default::default(),
             seg_ax: Default::default(),
             seg_ad: Default::default(),
@@ -557,6 +584,7 @@ impl Interpolator {
             seg_used: Default::default(),
             q_used: Default::default(),
             seg_full: Default::default(),
+            seg_any: Default::default(),
             q_full: Default::default(),
             rd1: Default::default(),
             rd2: Default::default(),
@@ -594,7 +622,8 @@ impl Interpolator {
             q_wp2: Default::default(),
             q_wp3: Default::default(),
             q_wp4: Default::default(),
-            q_shown: Default::default(),
+            q_wp5: Default::default(),
+            line_ready: Default::default(),
             q_rp: Default::default(),
             q_rp1: DFFWithInit::new(1u64.into()),
             q_next_q: Default::default(),
@@ -684,7 +713,6 @@ impl Interpolator {
             l4: Default::default(),
             jump: Default::default(),
             signed_shape: Default::default(),
-            line_ready: Default::default(),
             empty_line: Default::default(),
             in_head: Default::default(),
             in_seg: Default::default(),
@@ -764,6 +792,7 @@ impl Interpolator {
             slot3: Constant::new(3u64.into()),
             seg_limit: Constant::new((((1usize << SEG_ADDR_BITS) - SEG_RESERVE) as u64).into()),
             seg_limit_up: Constant::new((((1usize << SEG_ADDR_BITS) - SEG_RESERVE + 1) as u64).into()),
+            seg_one: Constant::new(1u64.into()),
             queue_size: Constant::new((LINE_QUEUE as u64).into()),
             queue_last: Constant::new(((LINE_QUEUE - 1) as u64).into()),
             flag_sof: Constant::new((1u64 << SOF_AT).into()),
@@ -799,7 +828,7 @@ impl Default for Interpolator {
 impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, seg_wp, rd_ptr, seg_used, q_used, seg_full, q_full, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_shown, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, s4_seg, s4_last, s4_ax, s4_ad, s4_dd, s4_shape, s4_recip, seg_wp, rd_ptr, seg_used, q_used, seg_full, seg_any, q_full, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_wp5, line_ready, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
         self.recip.clock.next = self.clock.val();
         self.seg_last.clock.next = self.clock.val();
         self.seg_ax.clock.next = self.clock.val();
@@ -912,12 +941,14 @@ impl Logic for Interpolator {
         self.q_wp2.d.next = self.q_wp1.q.val();
         self.q_wp3.d.next = self.q_wp2.q.val();
         self.q_wp4.d.next = self.q_wp3.q.val();
-        self.q_shown.d.next = self.q_wp4.q.val();
+        self.q_wp5.d.next = self.q_wp4.q.val();
         self.overflow.next = self.overflow_q.q.val();
 
-        // Stage 2: the distance shifted left until its top bit is set, the
-        // shift counted; the jump flag. (Each step tests its top bits for
-        // zero, no comparator, and sets its own bit of the count, no adder.)
+        // Stages 2 and 3: the distance shifted left until its top bit is
+        // set, the shift counted, in four steps (by 8, 4, 2, 1), two a
+        // stage; the jump flag. (Each step tests its top bits for zero, no
+        // comparator, and sets its own bit of the count, no adder. Four in
+        // one stage were 7.9 ns on a placed ECP5-85K at 3752c6f.)
         self.n1.next = self.s1_dx.q.val();
         self.l1.next = 0.into();
         if !(self.s1_dx.q.val() >> self.top8.val()).any() {
@@ -930,29 +961,17 @@ impl Logic for Interpolator {
             self.n2.next = self.n1.val() << self.sh4.val();
             self.l2.next = self.l1.val() | self.lz4.val();
         }
-        self.n3.next = self.n2.val();
-        self.l3.next = self.l2.val();
-        if !(self.n2.val() >> self.top2.val()).any() {
-            self.n3.next = self.n2.val() << self.sh2.val();
-            self.l3.next = self.l2.val() | self.lz2.val();
-        }
-        self.n4.next = self.n3.val();
-        self.l4.next = self.l3.val();
-        if !(self.n3.val() >> self.top1.val()).any() {
-            self.n4.next = self.n3.val() << self.sh1.val();
-            self.l4.next = self.l3.val() | self.lz1.val();
-        }
         self.jump.next = self.jump_on.val() & (self.s1_dd.q.val() > self.jump_lsb.val());
-        self.signed_shape.next = self.l4.val();
+        self.signed_shape.next = self.l2.val();
         if self.s1_neg.q.val() {
-            self.signed_shape.next = self.l4.val() | self.neg_flag.val();
+            self.signed_shape.next = self.l2.val() | self.neg_flag.val();
         }
         self.s2_shape.d.next = self.signed_shape.val();
         if self.jump.val() {
             self.s2_shape.d.next = self.signed_shape.val() | self.jump_flag.val();
         }
         self.s2_seg.d.next = self.s1_seg.q.val();
-        self.s2_m.d.next = self.n4.val();
+        self.s2_m.d.next = self.n2.val();
         self.s2_last.d.next = self.s1_last.q.val();
         self.s2_ax.d.next = self.s1_ax.q.val();
         // A jump's pixels take the smaller disparity: it is stored as the
@@ -962,15 +981,39 @@ impl Logic for Interpolator {
             self.s2_ad.d.next = self.s1_min.q.val();
         }
         self.s2_dd.d.next = self.s1_dd.q.val();
-        // Stage 3: the table's address (the bits after the leading one); the
-        // reciprocal is out a clock later, beside stage 3's registers.
-        self.recip.address.next = self.s2_m.q.val().get_bits::<RECIP_INDEX_BITS>(self.index_low.val().index());
+        // Stage 3: the last two steps, then the table's address (the bits
+        // after the leading one); the reciprocal is out a clock later,
+        // beside stage 3's registers.
+        self.n3.next = self.s2_m.q.val();
+        self.l3.next = 0.into();
+        if !(self.s2_m.q.val() >> self.top2.val()).any() {
+            self.n3.next = self.s2_m.q.val() << self.sh2.val();
+            self.l3.next = self.lz2.val();
+        }
+        self.n4.next = self.n3.val();
+        self.l4.next = self.l3.val();
+        if !(self.n3.val() >> self.top1.val()).any() {
+            self.n4.next = self.n3.val() << self.sh1.val();
+            self.l4.next = self.l3.val() | self.lz1.val();
+        }
+        // (Through a shift and a cast, not `get_bits`: the Verilog then
+        // reads all of `n4`, which Verilator's lint wants of a signal.)
+        self.recip.address.next = bit_cast::<RECIP_INDEX_BITS, POS_BITS>(self.n4.val() >> self.index_low.val());
         self.s3_seg.d.next = self.s2_seg.q.val();
         self.s3_last.d.next = self.s2_last.q.val();
         self.s3_ax.d.next = self.s2_ax.q.val();
         self.s3_ad.d.next = self.s2_ad.q.val();
         self.s3_dd.d.next = self.s2_dd.q.val();
-        self.s3_shape.d.next = self.s2_shape.q.val();
+        self.s3_shape.d.next = self.s2_shape.q.val() | self.l4.val();
+        // Stage 4: the reciprocal registered beside the segment (the table
+        // is logic, and the memory can sit far from it).
+        self.s4_seg.d.next = self.s3_seg.q.val();
+        self.s4_last.d.next = self.s3_last.q.val();
+        self.s4_ax.d.next = self.s3_ax.q.val();
+        self.s4_ad.d.next = self.s3_ad.q.val();
+        self.s4_dd.d.next = self.s3_dd.q.val();
+        self.s4_shape.d.next = self.s3_shape.q.val();
+        self.s4_recip.d.next = self.recip.data.val();
         // The segment into the memory.
         self.seg_last.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
         self.seg_ax.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
@@ -978,19 +1021,19 @@ impl Logic for Interpolator {
         self.seg_dd.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
         self.seg_shape.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
         self.seg_recip.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
-        self.seg_last.write_data.next = self.s3_last.q.val();
-        self.seg_ax.write_data.next = self.s3_ax.q.val();
-        self.seg_ad.write_data.next = self.s3_ad.q.val();
-        self.seg_dd.write_data.next = self.s3_dd.q.val();
-        self.seg_shape.write_data.next = self.s3_shape.q.val();
-        self.seg_recip.write_data.next = self.recip.data.val();
-        self.seg_last.write_enable.next = self.s3_seg.q.val();
-        self.seg_ax.write_enable.next = self.s3_seg.q.val();
-        self.seg_ad.write_enable.next = self.s3_seg.q.val();
-        self.seg_dd.write_enable.next = self.s3_seg.q.val();
-        self.seg_shape.write_enable.next = self.s3_seg.q.val();
-        self.seg_recip.write_enable.next = self.s3_seg.q.val();
-        if self.s3_seg.q.val() {
+        self.seg_last.write_data.next = self.s4_last.q.val();
+        self.seg_ax.write_data.next = self.s4_ax.q.val();
+        self.seg_ad.write_data.next = self.s4_ad.q.val();
+        self.seg_dd.write_data.next = self.s4_dd.q.val();
+        self.seg_shape.write_data.next = self.s4_shape.q.val();
+        self.seg_recip.write_data.next = self.s4_recip.q.val();
+        self.seg_last.write_enable.next = self.s4_seg.q.val();
+        self.seg_ax.write_enable.next = self.s4_seg.q.val();
+        self.seg_ad.write_enable.next = self.s4_seg.q.val();
+        self.seg_dd.write_enable.next = self.s4_seg.q.val();
+        self.seg_shape.write_enable.next = self.s4_seg.q.val();
+        self.seg_recip.write_enable.next = self.s4_seg.q.val();
+        if self.s4_seg.q.val() {
             self.seg_wp.d.next = self.seg_wp.q.val() + 1;
         }
 
@@ -1007,10 +1050,9 @@ impl Logic for Interpolator {
         self.q_sof_out.next = self.q_word_out.val().get_bit(self.bit0.val().index());
         self.q_first_d_out.next = bit_cast::<POS_BITS, LINE_BITS>(self.q_word_out.val() >> self.first_d_at.val());
         self.q_last_d_out.next = bit_cast::<POS_BITS, LINE_BITS>(self.q_word_out.val() >> self.last_d_at.val());
-        self.line_ready.next = self.q_shown.q.val() != self.q_rp.q.val();
         // (No line: as an empty one. The memories' output registers start
         // undefined in Verilog; nothing reads them before a line is shown.)
-        self.empty_line.next = !self.line_ready.val() | self.q_word_out.val().get_bit(self.empty_at.val().index());
+        self.empty_line.next = !self.line_ready.q.val() | self.q_word_out.val().get_bit(self.empty_at.val().index());
         // Where the pixel is, from registers only: on a line's first clock
         // (`x == 0`) the flags its description brought, after it the
         // comparisons made a clock ago against `x + 1` (no carry chain
@@ -1025,8 +1067,8 @@ impl Logic for Interpolator {
             self.in_seg_now.next = self.q_word_out.val().get_bit(self.seg0_at.val().index());
             self.at_last_x.next = self.q_word_out.val().get_bit(self.last0_at.val().index());
         }
-        self.in_head.next = self.line_ready.val() & self.in_head_now.val();
-        self.in_seg.next = self.line_ready.val() & self.in_seg_now.val();
+        self.in_head.next = self.line_ready.q.val() & self.in_head_now.val();
+        self.in_seg.next = self.line_ready.q.val() & self.in_seg_now.val();
         // The engine's segment, out of the ring.
         self.at_cur_last.next = self.at_e0.q.val();
         self.cur_ax.next = self.e0_ax.q.val();
@@ -1058,11 +1100,11 @@ impl Logic for Interpolator {
             self.cur_shape.next = self.e3_shape.q.val();
             self.cur_recip.next = self.e3_recip.q.val();
         }
-        self.line_done.next = self.line_ready.val() & self.at_last_x.val();
+        self.line_done.next = self.line_ready.q.val() & self.at_last_x.val();
         self.seg_done.next = self.in_seg.val() & self.at_cur_last.val();
         // The pixel steps on inside a line; after its last, and while no
         // line is shown (then `x` is 0), it is 0 on the next clock.
-        self.step.next = self.line_ready.val() & !self.line_done.val();
+        self.step.next = self.line_ready.q.val() & !self.line_done.val();
         self.x.d.next = 0.into();
         self.x1.d.next = 1.into();
         if self.step.val() {
@@ -1117,6 +1159,13 @@ impl Logic for Interpolator {
             self.q_rp_next.next = self.q_rp1.q.val();
         }
         self.q_rp.d.next = self.q_rp_next.val();
+        // (A line is shown on the next clock if the queue's write pointer
+        // five clocks ago differs from the read pointer's next value: both
+        // comparisons from registers, picked by the line's end.)
+        self.line_ready.d.next = self.q_wp5.q.val() != self.q_rp.q.val();
+        if self.line_done.val() {
+            self.line_ready.d.next = self.q_wp5.q.val() != self.q_rp1.q.val();
+        }
         // (Both successors from registers, one picked after the line's end.)
         self.q_rp1.d.next = self.q_rp.q.val() + 1;
         if self.line_done.val() {
@@ -1141,7 +1190,7 @@ impl Logic for Interpolator {
         if self.rd1.q.val() & self.rd2.q.val() {
             self.room.next = self.fill.q.val() < self.prefetch_m2.val();
         }
-        self.issue.next = (self.rd_ptr.q.val() != self.seg_wp.q.val()) & self.room.val();
+        self.issue.next = self.seg_any.q.val() & self.room.val();
         if self.issue.val() {
             self.rd_ptr.d.next = self.rd_ptr.q.val() + 1;
         }
@@ -1158,13 +1207,15 @@ impl Logic for Interpolator {
         // change (`c ± 1 > L` ⇔ `c > L ∓ 1`): the same decision as the
         // next count's comparison, with no adder before it.
         self.seg_full.d.next = self.seg_used.q.val() > self.seg_limit.val();
-        if self.s3_seg.q.val() & !self.issue.val() {
+        if self.s4_seg.q.val() & !self.issue.val() {
             self.seg_used.d.next = self.seg_used.q.val() + 1;
             self.seg_full.d.next = self.seg_used.q.val() >= self.seg_limit.val();
+            self.seg_any.d.next = true;
         }
-        if !self.s3_seg.q.val() & self.issue.val() {
+        if !self.s4_seg.q.val() & self.issue.val() {
             self.seg_used.d.next = self.seg_used.q.val() - 1;
             self.seg_full.d.next = self.seg_used.q.val() > self.seg_limit_up.val();
+            self.seg_any.d.next = self.seg_used.q.val() != self.seg_one.val();
         }
         self.q_full.d.next = self.q_used.q.val() >= self.queue_size.val();
         if self.line_write.val() & !self.line_done.val() {
@@ -1230,10 +1281,10 @@ impl Logic for Interpolator {
                 self.at_e3.d.next = self.at_read.val();
             }
         }
-        self.p0_valid.d.next = self.line_ready.val();
+        self.p0_valid.d.next = self.line_ready.q.val();
         self.p0_last.d.next = self.line_done.val();
-        self.p0_sof.d.next = self.line_ready.val() & self.q_sof_out.val() & self.x_zero.q.val();
-        self.p0_empty.d.next = self.line_ready.val() & self.empty_line.val();
+        self.p0_sof.d.next = self.line_ready.q.val() & self.q_sof_out.val() & self.x_zero.q.val();
+        self.p0_empty.d.next = self.line_ready.q.val() & self.empty_line.val();
         self.p0_base.d.next = 0.into();
         if !self.empty_line.val() {
             self.p0_base.d.next = self.q_last_d_out.val();

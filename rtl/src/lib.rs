@@ -26,6 +26,7 @@ pub mod choice_word;
 pub mod traceback;
 pub mod block_ram;
 pub mod lut_ram;
+pub mod logic_rom;
 pub mod dsp_multiplier;
 pub mod record_input;
 pub mod record_memory;

@@ -114,7 +114,7 @@
 //! overflow is `records_dropped`). The interpolator then never drops a
 //! line: when one starts, the other lines in its queue are in flight, at
 //! most `LINE_QUEUE - 1`, and their segments, at most `N_MAX - 1` each
-//! (889), leave its reserve free (`SEG_RESERVE` = 130 of 1024). Nothing
+//! (889), leave its reserve free (`SEG_RESERVE` = 131 of 1024). Nothing
 //! waits on itself: the row check holds back only the last row it got (for
 //! the next marker), the matcher and the interpolator finish their lines
 //! by themselves, so with two or more lines allowed one always leaves. The

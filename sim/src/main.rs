@@ -106,7 +106,7 @@ median's flush of the last two rows needs; the frame time, (H + vertical blankin
 frames per second; the resources as the rtl blocks declare them (line buffers, |dI| histogram banks, \
 record queues, gain cells (PEs) and rows per cell, the record memories and their position copies, \
 the choice memory (two banks) and the traceback stack, the row \
-check's memories, the interpolator's segment memory, reciprocal table and line queue, the median's \
+check's memories, the interpolator's segment memory and line queue, the median's \
 line buffers, the depth table, in bits, with the DP16KD block RAMs the blocks instantiate, and the \
 DSP blocks; generation-time sizes for W_MAX = 1024, N_MAX = 128). --json prints the same as one \
 JSON object (line_period_cycles, stall_cycles_per_line, min_hblank_cycles, latency_cycles, \

@@ -140,9 +140,10 @@ fn detector_synthesizes_in_yosys_without_latches() {
 fn detector_places_and_routes_on_ecp5_85k_with_its_memories_in_block_ram() {
     let r = sim::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("{}", sim::synth::report_table(&r));
-    // One DP16KD (18 kbit) holds the 2 × 1024 × 8-bit line buffer, one each
-    // of the two 256 × 12-bit histogram banks.
-    assert_eq!(r.brams, 3, "block RAMs");
+    // One DP16KD (its 1024 × 18-bit mode, `BlockRam`) per bank of the
+    // 2 × 1024 × 8-bit line buffer, one each of the two 256 × 12-bit
+    // histogram banks.
+    assert_eq!(r.brams, 4, "block RAMs");
     // Three products: g², g²·(2x + 1) and the median fraction × K.
     assert_eq!(r.dsps, 3, "DSPs");
     // A small block: well under a tenth of the device.
