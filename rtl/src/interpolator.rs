@@ -205,7 +205,8 @@ pub struct Interpolator {
     first_c: DFF<Bits<WIDTH_BITS>>,
     // Stage 1: a segment; stage 2: its distance half normalised (`s2_m`);
     // stage 3: the table's address register (in `recip`), the shape with
-    // the whole shift; then the table's output beside stage 3.
+    // the whole shift, the table's word out beside it; stage 4: that word
+    // registered (`s4_recip`) beside the segment, into the memory.
     s1_seg: DFF<Bit>,
     s1_last: DFF<Bits<WIDTH_BITS>>,
     s1_ax: DFF<Bits<POS_BITS>>,

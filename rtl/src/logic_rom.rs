@@ -6,8 +6,10 @@
 //! 8 ns clock: on a placed ECP5-85K the path from the interpolator's
 //! reciprocal table into the segment memory was the whole top's critical
 //! path (8.28 ns at 3752c6f). Here the address is the register and the table
-//! is logic after it (LUT4s and the slices' `PFUMX`/`L6MUX21`, a few levels
-//! for a 9-bit address), which the reader takes on the same clock. No
+//! is logic after it (LUT4s and the slices' `PFUMX`/`L6MUX21`, five levels
+//! for a 9-bit address), which the reader takes on the same clock, best
+//! into a register beside it (the interpolator's `s4_recip`: written
+//! straight into the segment memory, placed far off, it was 8.0–9.3 ns). No
 //! memory is declared in the Verilog, so Yosys cannot turn it back into a
 //! block RAM: each bit is a constant vector indexed by the address.
 //!
