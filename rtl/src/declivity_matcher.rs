@@ -1069,11 +1069,15 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // feeds it to the array.
         self.sc_idx.next = bit_cast::<INDEX_BITS, SWEEP_BITS>(self.sc.q.val());
         self.sc_phase.next = bit_cast::<PHASE_BITS, 1>(self.sc.q.val().get_bits::<1>(self.bit0.val().index()));
-        self.sc_base.next = self.sc.q.val() >> self.bit1.val();
+        // ⌊sc/p⌋ for either p; the line's m at the sweep's width.
+        self.base2.next = self.sc.q.val() >> self.bit1.val();
+        self.base4.next = self.sc.q.val() >> self.bit2.val();
+        self.em_w.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+        self.sc_base.next = self.base2.val();
         self.sc_off.next = bit_cast::<SWEEP_BITS, PHASE_BITS>(self.sc_phase.val()) << self.cells_log2.val();
         if self.e_p4.q.val() {
             self.sc_phase.next = self.sc.q.val().get_bits::<PHASE_BITS>(self.bit0.val().index());
-            self.sc_base.next = self.sc.q.val() >> self.bit2.val();
+            self.sc_base.next = self.base4.val();
             self.sc_off.next = (bit_cast::<SWEEP_BITS, PHASE_BITS>(self.sc_phase.val()) << self.cells_log2.val()) >> self.bit1.val();
         }
         self.sc_j.next = self.sc_base.val() - self.sc_off.val();
@@ -1081,13 +1085,13 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // per phase, registered (phase k > 0's first column comes at sc ≥
         // 2N + 1, long after they are; phase 0's bound is m itself): no
         // subtraction before the comparison.
-        self.lim1.d.next = self.off1.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
-        self.lim2.d.next = self.off2.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
-        self.lim3.d.next = self.off3.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+        self.lim1.d.next = self.off1.val() + self.em_w.val();
+        self.lim2.d.next = self.off2.val() + self.em_w.val();
+        self.lim3.d.next = self.off3.val() + self.em_w.val();
         if self.e_p4.q.val() {
-            self.lim1.d.next = self.off1_p4.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
-            self.lim2.d.next = self.off2_p4.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
-            self.lim3.d.next = self.off3_p4.val() + bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
+            self.lim1.d.next = self.off1_p4.val() + self.em_w.val();
+            self.lim2.d.next = self.off2_p4.val() + self.em_w.val();
+            self.lim3.d.next = self.off3_p4.val() + self.em_w.val();
         }
         // `sc_off ≤ ⌊sc/p⌋ < lim_k` tested for each phase k and each p on
         // its own, from registers and constants (`sc_off` is k·N with two
@@ -1095,9 +1099,6 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         // by the mode and the phase after the comparisons: no multiplexer
         // before their carry chains (7.96 ns into `c_valid_d` on a placed
         // ECP5-85K at 3752c6f).
-        self.base2.next = self.sc.q.val() >> self.bit1.val();
-        self.base4.next = self.sc.q.val() >> self.bit2.val();
-        self.em_w.next = bit_cast::<SWEEP_BITS, COUNT_BITS>(self.em.q.val());
         self.in2_0.next = self.base2.val() < self.em_w.val();
         self.in2_1.next = (self.base2.val() >= self.off1.val()) & (self.base2.val() < self.lim1.q.val());
         self.in4_0.next = self.base4.val() < self.em_w.val();
