@@ -14,7 +14,7 @@
 use golden::disparity::{interpolate_into, vertical_median, Anchor};
 use golden::params::{EndRule, EDGE_JUMP, MEDIAN_ROWS};
 use proptest::prelude::*;
-use rtl::params::{MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, POS_BITS, W_MAX};
+use rtl::params::{MEDIAN_HALF, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, POS_BITS, W_MAX};
 use rtl::vertical_median::MEDIAN_LAG;
 use sim::cosim::{self, Options, Simulator};
 use sim::vertical_median::{
@@ -25,16 +25,17 @@ use sim::vertical_median::{
 const TOP: u64 = (1 << POS_BITS) - 1;
 
 /// The documented output clocks of a frame whose pixels came in at
-/// `input` (clock of each pixel, by row): pixel `(x, y)` with `y + 2 < h`
-/// leaves `MEDIAN_LAG` clocks after pixel `(x, y + 2)`; the flush starts
-/// on the clock after the last row's last pixel, row `h - 2` (if any) then
-/// row `h - 1` at one pixel per clock, each `MEDIAN_LAG` after its clock.
+/// `input` (clock of each pixel, by row): pixel `(x, y)` with `y + 4 < h`
+/// leaves `MEDIAN_LAG` clocks after pixel `(x, y + 4)`; the flush starts
+/// on the clock after the last row's last pixel, rows `h - 4 ..= h - 1`
+/// (those `>= 0`) at one pixel per clock, each `MEDIAN_LAG` after its
+/// clock.
 fn expected_clocks(input: &[Vec<u64>]) -> Vec<Vec<u64>> {
     let (h, w) = (input.len(), input[0].len());
     let lag = MEDIAN_LAG as u64;
-    let mut out: Vec<Vec<u64>> = (2..h).map(|y| input[y].iter().map(|&t| t + lag).collect()).collect();
+    let mut out: Vec<Vec<u64>> = (MEDIAN_HALF..h).map(|y| input[y].iter().map(|&t| t + lag).collect()).collect();
     let flush = input[h - 1][w - 1] + 1;
-    let flushed = h.min(2);
+    let flushed = h.min(MEDIAN_HALF);
     for r in 0..flushed {
         out.push((0..w).map(|x| flush + (r * w + x) as u64 + lag).collect());
     }
@@ -73,13 +74,13 @@ fn check_frame(frame: &[Vec<u64>], rows: &[Vec<u64>], t: &MedianTiming) -> Resul
 // Generated frames
 // ===========================================================================
 
-/// A frame: 1 to 9 rows of 1 to 64 pixels (now and then `W_MAX`), each
+/// A frame: 1 to 13 rows of 1 to 64 pixels (now and then `W_MAX`), each
 /// pixel one of four values of the frame (0 among them, the largest
-/// disparity sometimes), so that the five rows of a median tie often.
+/// disparity sometimes), so that the nine rows of a median tie often.
 fn any_frame() -> impl Strategy<Value = Vec<Vec<u64>>> {
     let width = prop_oneof![8 => 1usize..=64, 1 => Just(W_MAX)];
     let values = (1u64..=TOP, 1u64..=TOP, any::<bool>());
-    (1usize..=9, width, values).prop_flat_map(|(h, w, (v1, v2, top))| {
+    (1usize..=13, width, values).prop_flat_map(|(h, w, (v1, v2, top))| {
         let palette = [0, v1, v2, if top { TOP } else { v1 / 2 }];
         prop::collection::vec(prop::collection::vec(prop::sample::select(palette.to_vec()), w..=w), h..=h)
     })
@@ -103,12 +104,12 @@ proptest! {
     }
 
     /// Idle clocks inside rows and between them only delay: each output
-    /// pixel still leaves `MEDIAN_LAG` clocks after the pixel two rows
+    /// pixel still leaves `MEDIAN_LAG` clocks after the pixel four rows
     /// below it, and equals golden's median.
     #[test]
     fn prop_idle_clocks_inside_rows_only_delay_each_pixel_by_the_same_lag(
         frame in any_frame().prop_filter("narrow", |f| f[0].len() <= 64),
-        gaps in prop::collection::vec(0usize..3, 64 * 9),
+        gaps in prop::collection::vec(0usize..3, 64 * 13),
     ) {
         let (h, w) = (frame.len(), frame[0].len());
         let mut beats = Vec::new();
@@ -122,20 +123,20 @@ proptest! {
             }
         }
         let mut sim = VerticalMedianSim::new();
-        let pixels = sim.run_beats(&beats, 2 * w + MEDIAN_LAG + 2);
+        let pixels = sim.run_beats(&beats, MEDIAN_HALF * w + MEDIAN_LAG + 2);
         let (rows, output, sof) = split_rows(&pixels);
         let t = MedianTiming { input, output, sof, overflows: sim.overflows };
         check_frame(&frame, &rows, &t).map_err(TestCaseError::fail)?;
     }
 }
 
-/// Frames of one to five rows, one to three pixels wide, rows back to
+/// Frames of one to nine rows, one to three pixels wide, rows back to
 /// back (a word is read on the clock it is written when rows are one
 /// pixel wide): every pixel as golden, clamped at both ends.
 #[test]
-fn frames_of_one_to_five_rows_clamp_at_both_ends_even_with_one_pixel_rows_back_to_back() {
+fn frames_of_one_to_nine_rows_clamp_at_both_ends_even_with_one_pixel_rows_back_to_back() {
     let mut n = 0;
-    for h in 1..=5usize {
+    for h in 1..=MEDIAN_TAPS {
         for w in 1..=3usize {
             // Distinct values per row and column: any wrong row shows.
             let frame: Vec<Vec<u64>> = (0..h).map(|y| (0..w).map(|x| (7 * y as u64 + 3 * x as u64 * x as u64 + 1) % 11).collect()).collect();
@@ -145,7 +146,7 @@ fn frames_of_one_to_five_rows_clamp_at_both_ends_even_with_one_pixel_rows_back_t
             n += 1;
         }
     }
-    assert_eq!(n, 15);
+    assert_eq!(n, 3 * MEDIAN_TAPS);
 }
 
 /// The row of a new frame arriving during the flush is dropped whole,
@@ -158,9 +159,9 @@ fn a_row_arriving_during_the_flush_is_dropped_whole_with_overflow_and_the_next_r
     let first: Vec<Vec<u64>> = (0..6).map(|y| (0..w as u64).map(|x| 16 * (y as u64 * 3 + x % 5)).collect()).collect();
     let second: Vec<Vec<u64>> = (0..3).map(|y| (0..w as u64).map(|x| 1000 + 17 * (y as u64 + x)).collect()).collect();
     let mut beats = frame_beats(&first, w).expect("beats");
-    // A row 5 clocks before the end of the flush (its 2·w clocks start on
+    // A row 5 clocks before the end of the flush (its 4·w clocks start on
     // the clock after the last row): 5 pixels in the flush, 15 after.
-    beats.extend(std::iter::repeat_n(MedianBeat::default(), 2 * w - 5));
+    beats.extend(std::iter::repeat_n(MedianBeat::default(), MEDIAN_HALF * w - 5));
     let dropped_at = beats.len();
     beats.extend(frame_beats(&[vec![TOP; w]], w).expect("beats").into_iter().map(|b| MedianBeat { eof: false, ..b }));
     // Then the second frame at once, without p_sof.
@@ -168,7 +169,7 @@ fn a_row_arriving_during_the_flush_is_dropped_whole_with_overflow_and_the_next_r
     let mut sim = VerticalMedianSim::new();
     let mut overflow_at = Vec::new();
     let mut pixels = Vec::new();
-    for b in beats.iter().copied().chain(std::iter::repeat_n(MedianBeat::default(), 2 * w + MEDIAN_LAG + 2)) {
+    for b in beats.iter().copied().chain(std::iter::repeat_n(MedianBeat::default(), MEDIAN_HALF * w + MEDIAN_LAG + 2)) {
         let before = sim.overflows;
         let now = sim.cycle;
         pixels.extend(sim.clock(b));
@@ -186,35 +187,35 @@ fn a_row_arriving_during_the_flush_is_dropped_whole_with_overflow_and_the_next_r
 }
 
 /// Two frames back to back, the second starting right after the first's
-/// flush (the least vertical blanking, two row widths): the second
+/// flush (the least vertical blanking, four row widths): the second
 /// frame's rows are its own median, nothing of the first mixed in; a frame
-/// cut short by a start of frame (no `p_eof`) emits its rows up to `h - 3`
+/// cut short by a start of frame (no `p_eof`) emits its rows up to `h - 5`
 /// and the new frame starts clean.
 #[test]
 fn two_frames_back_to_back_do_not_mix_rows_and_a_start_of_frame_restarts_the_rows() {
     let w = 33usize;
-    let a: Vec<Vec<u64>> = (0..7).map(|y| (0..w as u64).map(|x| (y as u64 * 50 + x) * 3).collect()).collect();
-    let b: Vec<Vec<u64>> = (0..4).map(|y| (0..w as u64).map(|x| TOP - (y as u64 * 40 + x)).collect()).collect();
+    let a: Vec<Vec<u64>> = (0..11).map(|y| (0..w as u64).map(|x| (y as u64 * 50 + x) * 3).collect()).collect();
+    let b: Vec<Vec<u64>> = (0..6).map(|y| (0..w as u64).map(|x| TOP - (y as u64 * 40 + x)).collect()).collect();
     let mut beats = frame_beats(&a, w).expect("beats");
-    beats.extend(std::iter::repeat_n(MedianBeat::default(), 2 * w));
+    beats.extend(std::iter::repeat_n(MedianBeat::default(), MEDIAN_HALF * w));
     beats.extend(frame_beats(&b, w).expect("beats"));
     let mut sim = VerticalMedianSim::new();
-    let pixels = sim.run_beats(&beats, 2 * w + MEDIAN_LAG + 2);
+    let pixels = sim.run_beats(&beats, MEDIAN_HALF * w + MEDIAN_LAG + 2);
     let (rows, _, sof) = split_rows(&pixels);
     assert_eq!(sim.overflows, 0);
     let mut expected = golden_median(&a).expect("golden");
     expected.extend(golden_median(&b).expect("golden"));
     assert_eq!(rows, expected);
-    assert_eq!(sof, [vec![true], vec![false; 6], vec![true], vec![false; 3]].concat());
-    // Back to back as the first frame's rows: five rows of `a` without
+    assert_eq!(sof, [vec![true], vec![false; 10], vec![true], vec![false; 5]].concat());
+    // Back to back as the first frame's rows: nine rows of `a` without
     // eof, then `b`.
-    let cut: Vec<Vec<u64>> = a[..5].to_vec();
+    let cut: Vec<Vec<u64>> = a[..9].to_vec();
     let mut beats: Vec<MedianBeat> = frame_beats(&cut, w).expect("beats").into_iter().map(|x| MedianBeat { eof: false, ..x }).collect();
     beats.extend(frame_beats(&b, w).expect("beats"));
     let mut sim = VerticalMedianSim::new();
-    let (rows, _, _) = split_rows(&sim.run_beats(&beats, 2 * w + MEDIAN_LAG + 2));
+    let (rows, _, _) = split_rows(&sim.run_beats(&beats, MEDIAN_HALF * w + MEDIAN_LAG + 2));
     let full = golden_median(&a).expect("golden");
-    let mut expected: Vec<Vec<u64>> = full[..3].to_vec();
+    let mut expected: Vec<Vec<u64>> = full[..5].to_vec();
     expected.extend(golden_median(&b).expect("golden"));
     assert_eq!(rows, expected);
 }
@@ -287,11 +288,11 @@ fn every_pixel_of_cones_robust_map_medians_as_golden() {
 /// row, two frames: the stimulus of the co-simulation.
 fn cosim_beats() -> Vec<MedianBeat> {
     let mut beats = Vec::new();
-    for h in 1..=6usize {
+    for h in 1..=10usize {
         let w = if h % 2 == 0 { 1 } else { 5 };
         let frame: Vec<Vec<u64>> = (0..h).map(|y| (0..w as u64).map(|x| (y as u64 * 977 + x * 131) % (TOP + 1)).collect()).collect();
         beats.extend(frame_beats(&frame, w).expect("beats"));
-        beats.extend(std::iter::repeat_n(MedianBeat::default(), if h == 3 { 2 } else { 2 * w }));
+        beats.extend(std::iter::repeat_n(MedianBeat::default(), if h == 5 { 2 } else { MEDIAN_HALF * w }));
     }
     beats
 }
@@ -301,11 +302,11 @@ fn vertical_median_verilog_generates_and_matches_rust_under_icarus() {
     let v = median_verilog();
     assert!(v.contains("module top"), "a top module");
     assert_eq!(v.matches("DP16KD #(").count(), MEDIAN_LINE_BUFFERS, "one DP16KD per line buffer");
-    let trace = median_trace(&v, &cosim_beats(), 2 * 5 + MEDIAN_LAG + 2).expect("records");
+    let trace = median_trace(&v, &cosim_beats(), MEDIAN_HALF * 5 + MEDIAN_LAG + 2).expect("records");
     let valid = trace.outputs.iter().position(|p| p.name == "v_valid").expect("v_valid");
     let overflow = trace.outputs.iter().position(|p| p.name == "overflow").expect("overflow");
     let count = |i: usize| trace.cycles.iter().filter(|c| c.outputs[i] == 1).count();
-    // (The 3-row frame's flush is cut into by the next frames: dropped
+    // (The 5-row frame's flush is cut into by the next frames: dropped
     // rows, then a frame taken from a row without p_sof.)
     assert!(count(valid) > 40, "{} pixels out", count(valid));
     assert!(count(overflow) > 0, "a dropped pixel");

@@ -160,19 +160,17 @@ fn pixel_centre(x: usize) -> f64 {
     x as i64 as f64
 }
 
-/// The vertical median of a dense map over `rows` rows (1, 3 or 5) centred
-/// on row `y`, written into `out_row`; rows beyond the image repeat its top
-/// or bottom row. Pixels without disparity take part as `0`.
+/// The vertical median of a dense map over `rows` rows (1, 3, 5 or 9)
+/// centred on row `y`, written into `out_row`; rows beyond the image repeat
+/// its top or bottom row. Pixels without disparity take part as `0`.
 ///
 /// Branch-free min/max networks, so that the loop over a row vectorizes: the
 /// median of three is `max(min(a, b), min(max(a, b), c))`; for five, the two
 /// middle values of four (`max(min(a,b), min(c,d))` and
 /// `min(max(a,b), max(c,d))`, in either order) bracket the median with the
-/// fifth value. (Nine rows lowered the mean bad2 of the robust mode from
-/// 18.9 to 18.1 but cost as much time as the rest of the method on this
-/// machine without SIMD intrinsics; five were kept.)
+/// fifth value; for nine, [`MEDIAN9_NETWORK`].
 pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &mut [f64], y: usize) {
-    assert!(matches!(rows, 1 | 3 | 5), "vertical median over {rows} rows: 1, 3 or 5 are supported");
+    assert!(matches!(rows, 1 | 3 | 5 | 9), "vertical median over {rows} rows: 1, 3, 5 or 9 are supported");
     let height = disparity.len() / width;
     let half = (rows / 2) as isize;
     let row = |dy: isize| {
@@ -183,7 +181,37 @@ pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &m
     median_of_rows(&rows, out_row);
 }
 
-/// The median of 1, 3 or 5 rows, column by column, into `out_row`: the
+/// The compare-exchanges of the median of nine values (Paeth's network, as
+/// in N. Devillard's `opt_med9`): `(a, b)` leaves `min` at `a` and `max` at
+/// `b`; after the 19 of them, in this order, value 4 is the median. Each
+/// line is one step of the hardware's pipeline (`rtl::vertical_median`): its
+/// exchanges touch distinct values.
+pub const MEDIAN9_NETWORK: [&[(usize, usize)]; 9] = [
+    &[(1, 2), (4, 5), (7, 8)],
+    &[(0, 1), (3, 4), (6, 7)],
+    &[(1, 2), (4, 5), (7, 8)],
+    &[(0, 3), (5, 8), (4, 7)],
+    &[(3, 6), (1, 4), (2, 5)],
+    &[(4, 7)],
+    &[(4, 2)],
+    &[(6, 4)],
+    &[(4, 2)],
+];
+
+/// [`MEDIAN9_NETWORK`] on nine values: their median.
+#[inline(always)]
+pub fn median9(mut p: [f64; 9]) -> f64 {
+    let min = |a: f64, b: f64| if a < b { a } else { b };
+    let max = |a: f64, b: f64| if a > b { a } else { b };
+    for step in MEDIAN9_NETWORK {
+        for &(a, b) in step {
+            (p[a], p[b]) = (min(p[a], p[b]), max(p[a], p[b]));
+        }
+    }
+    p[4]
+}
+
+/// The median of 1, 3, 5 or 9 rows, column by column, into `out_row`: the
 /// networks of [`vertical_median`], on the rows top to bottom.
 ///
 /// Disparities are `+0` or positive, never NaN or `-0`: two values that
@@ -211,7 +239,14 @@ pub fn median_of_rows(rows: &[&[f64]], out_row: &mut [f64]) {
                 *v = median3(lo, hi, e);
             }
         }
-        _ => panic!("vertical median over {} rows: 1, 3 or 5 are supported", rows.len()),
+        [r0, r1, r2, r3, centre, r5, r6, r7, r8] => {
+            let n = out_row.len();
+            let rows = [r0, r1, r2, r3, centre, r5, r6, r7, r8].map(|r| &r[..n]);
+            for (x, v) in out_row.iter_mut().enumerate() {
+                *v = median9(rows.map(|r| r[x]));
+            }
+        }
+        _ => panic!("vertical median over {} rows: 1, 3, 5 or 9 are supported", rows.len()),
     }
 }
 
@@ -232,10 +267,10 @@ mod tests {
     fn vertical_median_networks_equal_sorting() {
         let mut rng = crate::test_rng::TestRng::new(0xfeed_beef_0000_0001);
         for _ in 0..300 {
-            let (w, h) = (1 + (rng.next() % 9) as usize, 1 + (rng.next() % 9) as usize);
+            let (w, h) = (1 + (rng.next() % 9) as usize, 1 + (rng.next() % 12) as usize);
             // Few distinct values: ties everywhere; 0 = no disparity.
             let map: Vec<f64> = (0..w * h).map(|_| (rng.next() % 5) as f64 * 1.5).collect();
-            for rows in [1, 3, 5] {
+            for rows in [1, 3, 5, 9] {
                 for y in 0..h {
                     let mut out = vec![-1.0; w];
                     vertical_median(&map, w, rows, &mut out, y);

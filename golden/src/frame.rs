@@ -225,7 +225,7 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
         }
         return disparity;
     }
-    assert!(matches!(rows, 3 | 5), "vertical median over {rows} rows: 1, 3 or 5 are supported");
+    assert!(matches!(rows, 3 | 5 | 9), "vertical median over {rows} rows: 1, 3, 5 or 9 are supported");
     // Interpolated row r lives in slot r % rows; rows y - half ..= y + half
     // (clamped to the image) are there when row y's median is taken.
     let half = rows / 2;
@@ -237,7 +237,7 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
             next += 1;
         }
         // Rows y - half + k, k < rows, clamped to the image.
-        let around: [&[f64]; 5] = std::array::from_fn(|k| {
+        let around: [&[f64]; 9] = std::array::from_fn(|k| {
             let r = (y + k).saturating_sub(half).min(h - 1);
             &ring[(r % rows) * w..][..w]
         });

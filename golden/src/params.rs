@@ -102,7 +102,7 @@ pub const EDGE_JUMP: f64 = 6.0;
 /// mode's on every pair.
 pub const EDGE_FLAG_JUMP: f64 = 2.0;
 /// [`Features::median_rows`] of the modes that use it.
-pub const MEDIAN_ROWS: usize = 5;
+pub const MEDIAN_ROWS: usize = 9;
 
 impl Mode {
     /// Every mode, in the order the CLI lists them.

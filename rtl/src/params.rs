@@ -302,7 +302,11 @@ pub const DEPTH_SCALE_MAX: u32 = 1 << DEPTH_SHIFT_BITS;
 
 /// Rows of the vertical median of the default mode (golden's
 /// `MEDIAN_ROWS`): the taps of `rtl::vertical_median`'s network.
-pub const MEDIAN_TAPS: usize = 5;
+pub const MEDIAN_TAPS: usize = 9;
+/// Rows on each side of the median's centre row, `MEDIAN_TAPS / 2`: output
+/// row `y` waits for row `y + MEDIAN_HALF`, and the flush after a frame's
+/// last row sends its last `MEDIAN_HALF` rows.
+pub const MEDIAN_HALF: usize = MEDIAN_TAPS / 2;
 /// Line buffers of the vertical median: the rows above the incoming one
 /// that its taps reach, `MEDIAN_TAPS - 1`, each of `W_MAX` disparities of
 /// `POS_BITS` (one `DP16KD`).

@@ -1,8 +1,8 @@
 //! The vertical median of the default mode (`DESIGN.md` §3, golden's
 //! `Features::median_rows`, `golden::disparity::vertical_median` with
-//! `rows = MEDIAN_ROWS = 5`, step 5 of `golden::frame::process_frame`): the
+//! `rows = MEDIAN_ROWS = 9`, step 5 of `golden::frame::process_frame`): the
 //! interpolator's pixel stream in, each pixel replaced by the median of its
-//! column over the rows `y - 2 ..= y + 2`, one pixel per clock out.
+//! column over the rows `y - 4 ..= y + 4`, one pixel per clock out.
 //!
 //! Rows beyond the frame repeat its top or bottom row (golden's clamp), and
 //! pixels without disparity (0) take part as 0. The values are unsigned
@@ -11,27 +11,27 @@
 //! median of the same values.
 //!
 //! ## Structure
-//! - Four line buffers of [`W_MAX`] disparities ([`MEDIAN_LINE_BUFFERS`],
+//! - Eight line buffers of [`W_MAX`] disparities ([`MEDIAN_LINE_BUFFERS`],
 //!   [`BlockRam`]s, one `DP16KD` each): row `r` of a frame lives in buffer
-//!   `r mod 4`. While row `k` comes in (its "slot"), each pixel reads its
-//!   column from the four buffers (rows `k-4 ..= k-1`) and is written into
-//!   buffer `k mod 4` one clock later (after its old word, row `k-4`, was
+//!   `r mod 8`. While row `k` comes in (its "slot"), each pixel reads its
+//!   column from the eight buffers (rows `k-8 ..= k-1`) and is written into
+//!   buffer `k mod 8` one clock later (after its old word, row `k-8`, was
 //!   read: a `DP16KD` read and write of one address on one clock is
 //!   undefined). A read of the word being written on the same clock takes
 //!   the written value instead (forwarding: rows of one pixel back to back).
-//! - Slot `k` emits row `y = k - 2`. Each of the five taps (rows
-//!   `k-4 ..= k`) takes the tap of its clamped row: in slots 2 and 3 the
+//! - The eight words are put in row order by a rotation by `k mod 8` (three
+//!   stages of 2-to-1 multiplexers, by 1, 2 and 4) into registers.
+//! - Slot `k` emits row `y = k - 4`. Each of the nine taps (rows
+//!   `k-8 ..= k`) takes the tap of its clamped row: in slots 4 to 7 the
 //!   rows above the frame take row 0; after the frame's last row (`h - 1`,
-//!   marked by `p_eof`) the block runs two slots of its own (the *flush*,
-//!   slots `h` and `h + 1`, pixels from the buffers at one per clock) in
-//!   which the rows below the frame take row `h - 1`. A frame of one row
-//!   runs only the second (slot `h - 1 = -1` emits nothing). Frames of 1 to
-//!   4 rows are clamped at both ends.
-//! - The taps go through golden's network of compare-exchanges, one per
-//!   pipeline stage: `min`/`max` of `(a, b)` and `(c, d)` (rows `y-2, y-1`
-//!   and `y+1, y+2`); `lo = max(min_ab, min_cd)`, `hi = min(max_ab,
-//!   max_cd)`; `min`/`max` of `(lo, hi)`; `min(max(lo, hi), e)`; the median
-//!   `max(min(lo, hi), min(max(lo, hi), e))` (`e` row `y`). Seven units.
+//!   marked by `p_eof`) the block runs four slots of its own (the *flush*,
+//!   slots `h ..= h + 3`, pixels from the buffers at one per clock) in
+//!   which the rows below the frame take row `h - 1`. A frame of fewer
+//!   than four rows runs only the flush slots that emit a row (`k >= 4`).
+//!   Frames of 1 to 8 rows are clamped at both ends.
+//! - The taps go through golden's network of 19 compare-exchanges
+//!   (`golden::disparity::MEDIAN9_NETWORK`, Paeth's), one step per pipeline
+//!   stage, each stage keeping only the values a later step reads.
 //!
 //! ## Ports
 //! - In, the interpolator's stream (`rtl::interpolator`, its `p_*` ports)
@@ -47,25 +47,24 @@
 //!   dropped (see Timing).
 //!
 //! ## Timing
-//! A pixel on `p_*` of slot `k >= 2` (row `k` of its frame) sends pixel
-//! `(x, k - 2)` of the output out on `v_*` exactly [`MEDIAN_LAG`] clocks
-//! later; the pixels of rows 0 and 1 send nothing. `p_valid` low only
+//! A pixel on `p_*` of slot `k >= 4` (row `k` of its frame) sends pixel
+//! `(x, k - 4)` of the output out on `v_*` exactly [`MEDIAN_LAG`] clocks
+//! later; the pixels of rows 0 to 3 send nothing. `p_valid` low only
 //! delays. The flush starts on the clock after the last pixel of the `eof`
-//! row: output row `h - 2` (if `h >= 2`) then row `h - 1`, one pixel per
-//! clock, back to back, each pixel [`MEDIAN_LAG`] clocks after its clock of
-//! the flush; the next frame's rows are taken from the clock after the
-//! flush (the sensor's vertical blanking must be at least two line
-//! widths). A pixel that arrives during the flush is dropped, and with it
-//! the rest of its row (`overflow` for each); the block then takes the
-//! next row as row 0 of a new frame. `p_sof` on a row's first pixel starts
-//! a frame at that row (a frame cut short without an `eof` row never emits
-//! its last two rows). Throughput: one pixel per clock; latency two rows
-//! and [`MEDIAN_LAG`] clocks.
+//! row: output rows `h - 4 ..= h - 1` (those `>= 0`), one pixel per clock,
+//! back to back, each pixel [`MEDIAN_LAG`] clocks after its clock of the
+//! flush; the next frame's rows are taken from the clock after the flush
+//! (the sensor's vertical blanking must be at least four line widths). A
+//! pixel that arrives during the flush is dropped, and with it the rest of
+//! its row (`overflow` for each); the block then takes the next row as row
+//! 0 of a new frame. `p_sof` on a row's first pixel starts a frame at that
+//! row (a frame cut short without an `eof` row never emits its last four
+//! rows). Throughput: one pixel per clock; latency [`MEDIAN_HALF`] rows and
+//! [`MEDIAN_LAG`] clocks.
 //!
 //! ## Cost
 //! Alone on the ECP5-85K (speed 6; Yosys 0.70 `synth_ecp5`, nextpnr 0.11.1,
-//! its pads included): 1 186 LUT4, 388 FF, 4 `DP16KD`, no DSP, 149.7 MHz
-//! (critical: the forwarding flag through the tap selection).
+//! its pads included): COST_TBD.
 
 use crate::block_ram::BlockRam;
 use crate::params::*;
@@ -73,22 +72,25 @@ use rust_hdl::prelude::*;
 
 /// Clocks from a pixel on `p_*` (or a pixel's clock of the flush) to the
 /// output pixel it completes on `v_*`: the buffers' two-clock read (the
-/// write register and the forwarding beside it), the tap selection, four
-/// compare-exchange stages, and the last one into the output register.
-pub const MEDIAN_LAG: usize = 8;
+/// write register and the forwarding beside it), the rotation into row
+/// order, the tap selection, eight compare-exchange stages, and the last
+/// step into the output register.
+pub const MEDIAN_LAG: usize = 13;
 
-/// Bits of a slot count `0 ..= 4` (saturating: only slots 0 to 3 differ).
-const SLOT_BITS: usize = 3;
-/// Bits of a line-buffer index (`k mod 4`).
-const BUF_BITS: usize = 2;
-/// Bits of the phase: 0 taking rows, [`FLUSH_FIRST`], [`FLUSH_SECOND`].
-const PHASE_BITS: usize = 2;
-/// The phase of the first flush slot (`k = h`: the tap of row `h` takes
-/// row `h - 1`).
-const FLUSH_FIRST: u64 = 1;
-/// The phase of the second flush slot (`k = h + 1`: the taps of rows `h`
-/// and `h + 1` take row `h - 1`).
-const FLUSH_SECOND: u64 = 2;
+/// Bits of a slot count `0 ..= 8` (saturating: only slots 0 to 7 differ).
+const SLOT_BITS: usize = 4;
+/// Bits of a line-buffer index (`k mod 8`).
+const BUF_BITS: usize = 3;
+/// Bits of the phase: 0 taking rows, 1 ..= [`MEDIAN_HALF`] the flush slots
+/// `h ..= h + 3` (in phase `f` the taps of rows `h ..= h + f - 1` take row
+/// `h - 1`).
+const PHASE_BITS: usize = 3;
+/// Compare-exchange stages between the taps and the output register.
+const NET_STAGES: usize = 8;
+
+// The rotation is three stages of 2-to-1 multiplexers, by 1, 2 and 4.
+const _: () = assert!(MEDIAN_LINE_BUFFERS == 8 && MEDIAN_TAPS == 9 && MEDIAN_HALF == 4, "the network and rotation are written for nine rows");
+const _: () = assert!(1 << BUF_BITS == MEDIAN_LINE_BUFFERS && (1 << SLOT_BITS) > MEDIAN_LINE_BUFFERS && (1 << PHASE_BITS) > MEDIAN_HALF);
 
 #[derive(LogicBlock)]
 pub struct VerticalMedian {
@@ -103,8 +105,8 @@ pub struct VerticalMedian {
     pub v_last: Signal<Out, Bit>,
     pub v_sof: Signal<Out, Bit>,
     pub overflow: Signal<Out, Bit>,
-    // ---- The row being taken or flushed: its slot (saturated at 4), the
-    // buffer of its row (k mod 4), the phase, the column, the last row's
+    // ---- The row being taken or flushed: its slot (saturated at 8), the
+    // buffer of its row (k mod 8), the phase, the column, the last row's
     // last column, dropping the rest of a row.
     slot: DFF<Bits<SLOT_BITS>>,
     rot: DFF<Bits<BUF_BITS>>,
@@ -113,13 +115,10 @@ pub struct VerticalMedian {
     last_col: DFF<Bits<X_BITS>>,
     dropping: DFF<Bit>,
     overflow_q: DFF<Bit>,
-    // ---- The line buffers.
-    line0: BlockRam<POS_BITS, W_MAX_BITS>,
-    line1: BlockRam<POS_BITS, W_MAX_BITS>,
-    line2: BlockRam<POS_BITS, W_MAX_BITS>,
-    line3: BlockRam<POS_BITS, W_MAX_BITS>,
-    // ---- S0: the pixel a clock later (its write), its output's flags and
-    // tap selection; the forwarding of the write beside the read.
+    // ---- The line buffers: row r in line[r mod 8].
+    line: [BlockRam<POS_BITS, W_MAX_BITS>; MEDIAN_LINE_BUFFERS],
+    // ---- S0: the pixel a clock later (its write), its output's flags,
+    // slot and phase; the forwarding of the write beside the read.
     s0_write: DFF<Bit>,
     s0_col: DFF<Bits<X_BITS>>,
     s0_d: DFF<Bits<POS_BITS>>,
@@ -127,8 +126,8 @@ pub struct VerticalMedian {
     s0_out: DFF<Bit>,
     s0_sof: DFF<Bit>,
     s0_last: DFF<Bit>,
-    s0_lo: DFF<Bits<2>>,
-    s0_hi: DFF<Bits<PHASE_BITS>>,
+    s0_k: DFF<Bits<SLOT_BITS>>,
+    s0_ph: DFF<Bits<PHASE_BITS>>,
     s0_rot: DFF<Bits<BUF_BITS>>,
     s0_hit: DFF<Bit>,
     s0_hit_buf: DFF<Bits<BUF_BITS>>,
@@ -138,47 +137,42 @@ pub struct VerticalMedian {
     s1_out: DFF<Bit>,
     s1_sof: DFF<Bit>,
     s1_last: DFF<Bit>,
-    s1_lo: DFF<Bits<2>>,
-    s1_hi: DFF<Bits<PHASE_BITS>>,
+    s1_k: DFF<Bits<SLOT_BITS>>,
+    s1_ph: DFF<Bits<PHASE_BITS>>,
     s1_rot: DFF<Bits<BUF_BITS>>,
     s1_hit: DFF<Bit>,
     s1_hit_buf: DFF<Bits<BUF_BITS>>,
     s1_hit_d: DFF<Bits<POS_BITS>>,
-    // ---- The taps: rows y-2 (a), y-1 (b), y (e), y+1 (c), y+2 (d).
+    // ---- R: rows k-8+i in r_v[i]; the clamp's flags: r_lo_ge[j] = the
+    // first row of the frame is tap j + 1 or later (slot k <= 7 - j),
+    // r_hi_le[m] = the frame's last row is tap 4 + m or earlier (flush
+    // phase >= 4 - m).
+    r_v: [DFF<Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
+    r_d: DFF<Bits<POS_BITS>>,
+    r_out: DFF<Bit>,
+    r_sof: DFF<Bit>,
+    r_last: DFF<Bit>,
+    r_lo_ge: [DFF<Bit>; MEDIAN_HALF],
+    r_hi_le: [DFF<Bit>; MEDIAN_HALF],
+    // ---- T: the taps, rows y-4 ..= y+4, clamped to the frame.
+    t: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
     t_out: DFF<Bit>,
     t_sof: DFF<Bit>,
     t_last: DFF<Bit>,
-    t_a: DFF<Bits<POS_BITS>>,
-    t_b: DFF<Bits<POS_BITS>>,
-    t_e: DFF<Bits<POS_BITS>>,
-    t_c: DFF<Bits<POS_BITS>>,
-    t_d: DFF<Bits<POS_BITS>>,
-    // ---- The network's stages.
-    n1_out: DFF<Bit>,
-    n1_sof: DFF<Bit>,
-    n1_last: DFF<Bit>,
-    n1_min_ab: DFF<Bits<POS_BITS>>,
-    n1_max_ab: DFF<Bits<POS_BITS>>,
-    n1_min_cd: DFF<Bits<POS_BITS>>,
-    n1_max_cd: DFF<Bits<POS_BITS>>,
-    n1_e: DFF<Bits<POS_BITS>>,
-    n2_out: DFF<Bit>,
-    n2_sof: DFF<Bit>,
-    n2_last: DFF<Bit>,
-    n2_lo: DFF<Bits<POS_BITS>>,
-    n2_hi: DFF<Bits<POS_BITS>>,
-    n2_e: DFF<Bits<POS_BITS>>,
-    n3_out: DFF<Bit>,
-    n3_sof: DFF<Bit>,
-    n3_last: DFF<Bit>,
-    n3_min: DFF<Bits<POS_BITS>>,
-    n3_max: DFF<Bits<POS_BITS>>,
-    n3_e: DFF<Bits<POS_BITS>>,
-    n4_out: DFF<Bit>,
-    n4_sof: DFF<Bit>,
-    n4_last: DFF<Bit>,
-    n4_min: DFF<Bits<POS_BITS>>,
-    n4_upper: DFF<Bits<POS_BITS>>,
+    // ---- The network's stages (golden's MEDIAN9_NETWORK, values p0..p8):
+    // n1..n3 hold p0..p8; n4 p1..p7 (n4[i] = p(i+1)); n5 p2, p4, p6, p7;
+    // n6 and n7 p2, p4, p6; n8 p2, p4. The output step takes min(p4, p2).
+    n1: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
+    n2: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
+    n3: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
+    n4: [DFF<Bits<POS_BITS>>; 7],
+    n5: [DFF<Bits<POS_BITS>>; 4],
+    n6: [DFF<Bits<POS_BITS>>; 3],
+    n7: [DFF<Bits<POS_BITS>>; 3],
+    n8: [DFF<Bits<POS_BITS>>; 2],
+    g_out: [DFF<Bit>; NET_STAGES],
+    g_sof: [DFF<Bit>; NET_STAGES],
+    g_last: [DFF<Bit>; NET_STAGES],
     o_valid: DFF<Bit>,
     o_sof: DFF<Bit>,
     o_last: DFF<Bit>,
@@ -193,36 +187,30 @@ pub struct VerticalMedian {
     flush_next: Signal<Local, Bits<SLOT_BITS>>,
     rot_next: Signal<Local, Bits<BUF_BITS>>,
     row_end: Signal<Local, Bit>,
-    bv0: Signal<Local, Bits<POS_BITS>>,
-    bv1: Signal<Local, Bits<POS_BITS>>,
-    bv2: Signal<Local, Bits<POS_BITS>>,
-    bv3: Signal<Local, Bits<POS_BITS>>,
-    v0: Signal<Local, Bits<POS_BITS>>,
-    v1: Signal<Local, Bits<POS_BITS>>,
-    v2: Signal<Local, Bits<POS_BITS>>,
-    v3: Signal<Local, Bits<POS_BITS>>,
+    bv: [Signal<Local, Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
+    rot1: [Signal<Local, Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
+    rot2: [Signal<Local, Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
     // ---- Constants.
     k0: Constant<Bits<SLOT_BITS>>,
     k1: Constant<Bits<SLOT_BITS>>,
     k2: Constant<Bits<SLOT_BITS>>,
-    k3: Constant<Bits<SLOT_BITS>>,
     k4: Constant<Bits<SLOT_BITS>>,
-    b0: Constant<Bits<BUF_BITS>>,
-    b1: Constant<Bits<BUF_BITS>>,
-    b2: Constant<Bits<BUF_BITS>>,
-    b3: Constant<Bits<BUF_BITS>>,
-    lo1: Constant<Bits<2>>,
-    lo2: Constant<Bits<2>>,
-    flush_first: Constant<Bits<PHASE_BITS>>,
-    flush_second: Constant<Bits<PHASE_BITS>>,
+    k8: Constant<Bits<SLOT_BITS>>,
+    kbuf: [Constant<Bits<BUF_BITS>>; MEDIAN_LINE_BUFFERS],
+    c_lo: [Constant<Bits<SLOT_BITS>>; MEDIAN_HALF],
+    c_hi: [Constant<Bits<PHASE_BITS>>; MEDIAN_HALF],
+    ph1: Constant<Bits<PHASE_BITS>>,
+    ph2: Constant<Bits<PHASE_BITS>>,
+    ph3: Constant<Bits<PHASE_BITS>>,
+    ph4: Constant<Bits<PHASE_BITS>>,
 }
 
 impl VerticalMedian {
-    /// The vertical median (no generation-time parameters: five rows,
+    /// The vertical median (no generation-time parameters: nine rows,
     /// [`W_MAX`]-pixel rows).
     pub fn new() -> Self {
         let ck = |v: u64| Constant::<Bits<SLOT_BITS>>::new(v.into());
-        let cb = |v: u64| Constant::<Bits<BUF_BITS>>::new(v.into());
+        let cp = |v: u64| Constant::<Bits<PHASE_BITS>>::new(v.into());
         VerticalMedian {
             clock: Default::default(),
             p_valid: Default::default(),
@@ -242,10 +230,7 @@ impl VerticalMedian {
             last_col: Default::default(),
             dropping: Default::default(),
             overflow_q: Default::default(),
-            line0: Default::default(),
-            line1: Default::default(),
-            line2: Default::default(),
-            line3: Default::default(),
+            line: Default::default(),
             s0_write: Default::default(),
             s0_col: Default::default(),
             s0_d: Default::default(),
@@ -253,8 +238,8 @@ impl VerticalMedian {
             s0_out: Default::default(),
             s0_sof: Default::default(),
             s0_last: Default::default(),
-            s0_lo: Default::default(),
-            s0_hi: Default::default(),
+            s0_k: Default::default(),
+            s0_ph: Default::default(),
             s0_rot: Default::default(),
             s0_hit: Default::default(),
             s0_hit_buf: Default::default(),
@@ -263,45 +248,34 @@ impl VerticalMedian {
             s1_out: Default::default(),
             s1_sof: Default::default(),
             s1_last: Default::default(),
-            s1_lo: Default::default(),
-            s1_hi: Default::default(),
+            s1_k: Default::default(),
+            s1_ph: Default::default(),
             s1_rot: Default::default(),
             s1_hit: Default::default(),
             s1_hit_buf: Default::default(),
             s1_hit_d: Default::default(),
+            r_v: Default::default(),
+            r_d: Default::default(),
+            r_out: Default::default(),
+            r_sof: Default::default(),
+            r_last: Default::default(),
+            r_lo_ge: Default::default(),
+            r_hi_le: Default::default(),
+            t: Default::default(),
             t_out: Default::default(),
             t_sof: Default::default(),
             t_last: Default::default(),
-            t_a: Default::default(),
-            t_b: Default::default(),
-            t_e: Default::default(),
-            t_c: Default::default(),
-            t_d: Default::default(),
-            n1_out: Default::default(),
-            n1_sof: Default::default(),
-            n1_last: Default::default(),
-            n1_min_ab: Default::default(),
-            n1_max_ab: Default::default(),
-            n1_min_cd: Default::default(),
-            n1_max_cd: Default::default(),
-            n1_e: Default::default(),
-            n2_out: Default::default(),
-            n2_sof: Default::default(),
-            n2_last: Default::default(),
-            n2_lo: Default::default(),
-            n2_hi: Default::default(),
-            n2_e: Default::default(),
-            n3_out: Default::default(),
-            n3_sof: Default::default(),
-            n3_last: Default::default(),
-            n3_min: Default::default(),
-            n3_max: Default::default(),
-            n3_e: Default::default(),
-            n4_out: Default::default(),
-            n4_sof: Default::default(),
-            n4_last: Default::default(),
-            n4_min: Default::default(),
-            n4_upper: Default::default(),
+            n1: Default::default(),
+            n2: Default::default(),
+            n3: Default::default(),
+            n4: Default::default(),
+            n5: Default::default(),
+            n6: Default::default(),
+            n7: Default::default(),
+            n8: Default::default(),
+            g_out: Default::default(),
+            g_sof: Default::default(),
+            g_last: Default::default(),
             o_valid: Default::default(),
             o_sof: Default::default(),
             o_last: Default::default(),
@@ -315,27 +289,23 @@ impl VerticalMedian {
             flush_next: Default::default(),
             rot_next: Default::default(),
             row_end: Default::default(),
-            bv0: Default::default(),
-            bv1: Default::default(),
-            bv2: Default::default(),
-            bv3: Default::default(),
-            v0: Default::default(),
-            v1: Default::default(),
-            v2: Default::default(),
-            v3: Default::default(),
+            bv: Default::default(),
+            rot1: Default::default(),
+            rot2: Default::default(),
             k0: ck(0),
             k1: ck(1),
             k2: ck(2),
-            k3: ck(3),
             k4: ck(4),
-            b0: cb(0),
-            b1: cb(1),
-            b2: cb(2),
-            b3: cb(3),
-            lo1: Constant::new(1u64.into()),
-            lo2: Constant::new(2u64.into()),
-            flush_first: Constant::new(FLUSH_FIRST.into()),
-            flush_second: Constant::new(FLUSH_SECOND.into()),
+            k8: ck(8),
+            kbuf: std::array::from_fn(|b| Constant::new((b as u64).into())),
+            // Slot k <= 7 - j: rows above the frame reach tap j.
+            c_lo: std::array::from_fn(|j| ck((MEDIAN_LINE_BUFFERS - 1 - j) as u64)),
+            // Phase >= 4 - m: rows below the frame start at tap 5 + m.
+            c_hi: std::array::from_fn(|m| cp((MEDIAN_HALF - m) as u64)),
+            ph1: cp(1),
+            ph2: cp(2),
+            ph3: cp(3),
+            ph4: cp(4),
         }
     }
 }
@@ -349,11 +319,43 @@ impl Default for VerticalMedian {
 impl Logic for VerticalMedian {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, slot, rot, phase, col, last_col, dropping, overflow_q, s0_write, s0_col, s0_d, s0_buf, s0_out, s0_sof, s0_last, s0_lo, s0_hi, s0_rot, s0_hit, s0_hit_buf, s0_hit_d, s1_d, s1_out, s1_sof, s1_last, s1_lo, s1_hi, s1_rot, s1_hit, s1_hit_buf, s1_hit_d, t_out, t_sof, t_last, t_a, t_b, t_e, t_c, t_d, n1_out, n1_sof, n1_last, n1_min_ab, n1_max_ab, n1_min_cd, n1_max_cd, n1_e, n2_out, n2_sof, n2_last, n2_lo, n2_hi, n2_e, n3_out, n3_sof, n3_last, n3_min, n3_max, n3_e, n4_out, n4_sof, n4_last, n4_min, n4_upper, o_valid, o_sof, o_last, o_d);
-        self.line0.clock.next = self.clock.val();
-        self.line1.clock.next = self.clock.val();
-        self.line2.clock.next = self.clock.val();
-        self.line3.clock.next = self.clock.val();
+        dff_setup!(self, clock, slot, rot, phase, col, last_col, dropping, overflow_q, s0_write, s0_col, s0_d, s0_buf, s0_out, s0_sof, s0_last, s0_k, s0_ph, s0_rot, s0_hit, s0_hit_buf, s0_hit_d, s1_d, s1_out, s1_sof, s1_last, s1_k, s1_ph, s1_rot, s1_hit, s1_hit_buf, s1_hit_d, r_d, r_out, r_sof, r_last, t_out, t_sof, t_last, o_valid, o_sof, o_last, o_d);
+        for b in 0..MEDIAN_LINE_BUFFERS {
+            self.line[b].clock.next = self.clock.val();
+            self.r_v[b].clock.next = self.clock.val();
+            self.r_v[b].d.next = self.r_v[b].q.val();
+        }
+        for j in 0..MEDIAN_HALF {
+            self.r_lo_ge[j].clock.next = self.clock.val();
+            self.r_lo_ge[j].d.next = self.r_lo_ge[j].q.val();
+            self.r_hi_le[j].clock.next = self.clock.val();
+            self.r_hi_le[j].d.next = self.r_hi_le[j].q.val();
+        }
+        for i in 0..MEDIAN_TAPS {
+            self.t[i].clock.next = self.clock.val();
+            self.t[i].d.next = self.t[i].q.val();
+            self.n1[i].clock.next = self.clock.val();
+            self.n2[i].clock.next = self.clock.val();
+            self.n3[i].clock.next = self.clock.val();
+        }
+        for i in 0..7 {
+            self.n4[i].clock.next = self.clock.val();
+        }
+        for i in 0..4 {
+            self.n5[i].clock.next = self.clock.val();
+        }
+        for i in 0..3 {
+            self.n6[i].clock.next = self.clock.val();
+            self.n7[i].clock.next = self.clock.val();
+        }
+        for i in 0..2 {
+            self.n8[i].clock.next = self.clock.val();
+        }
+        for s in 0..NET_STAGES {
+            self.g_out[s].clock.next = self.clock.val();
+            self.g_sof[s].clock.next = self.clock.val();
+            self.g_last[s].clock.next = self.clock.val();
+        }
 
         // ================= The row: taken, dropped or flushed =================
         self.flushing.next = self.phase.q.val().any();
@@ -364,8 +366,8 @@ impl Logic for VerticalMedian {
         // frame picked last (the slot's increment behind the taken pixel's
         // start of frame was 7.6 ns on a placed ECP5-85K).
         self.flush_next.next = self.slot.q.val() + 1;
-        if self.slot.q.val() == self.k4.val() {
-            self.flush_next.next = self.k4.val();
+        if self.slot.q.val() == self.k8.val() {
+            self.flush_next.next = self.k8.val();
         }
         self.k_eff.next = self.slot.q.val();
         self.rot_eff.next = self.rot.q.val();
@@ -373,9 +375,9 @@ impl Logic for VerticalMedian {
         self.rot_next.next = self.rot.q.val() + 1;
         if self.take.val() & self.p_sof.val() {
             self.k_eff.next = self.k0.val();
-            self.rot_eff.next = self.b0.val();
+            self.rot_eff.next = self.kbuf[0].val();
             self.k_next.next = self.k1.val();
-            self.rot_next.next = self.b1.val();
+            self.rot_next.next = self.kbuf[1].val();
         }
         self.row_end.next = self.col.q.val() == self.last_col.q.val();
         if self.take.val() {
@@ -388,12 +390,22 @@ impl Logic for VerticalMedian {
                 self.slot.d.next = self.k_next.val();
                 self.rot.d.next = self.rot_next.val();
                 if self.p_eof.val() {
-                    self.phase.d.next = self.flush_first.val();
-                    // One row: slot h = 1 would emit row -1; go to h + 1.
+                    self.phase.d.next = self.ph1.val();
+                    // Fewer than four rows: the flush slots h ..= 3 would
+                    // emit rows below 0; start at slot 4 (buffer 4), in the
+                    // phase of that slot.
                     if self.k_eff.val() == self.k0.val() {
-                        self.phase.d.next = self.flush_second.val();
-                        self.slot.d.next = self.k2.val();
-                        self.rot.d.next = self.b2.val();
+                        self.phase.d.next = self.ph4.val();
+                    }
+                    if self.k_eff.val() == self.k1.val() {
+                        self.phase.d.next = self.ph3.val();
+                    }
+                    if self.k_eff.val() == self.k2.val() {
+                        self.phase.d.next = self.ph2.val();
+                    }
+                    if self.k_eff.val() <= self.k2.val() {
+                        self.slot.d.next = self.k4.val();
+                        self.rot.d.next = self.kbuf[4].val();
                     }
                 }
             }
@@ -404,11 +416,11 @@ impl Logic for VerticalMedian {
                 self.col.d.next = 0.into();
                 self.slot.d.next = self.flush_next.val();
                 self.rot.d.next = self.rot.q.val() + 1;
-                self.phase.d.next = self.flush_second.val();
-                if self.phase.q.val() == self.flush_second.val() {
+                self.phase.d.next = self.phase.q.val() + 1;
+                if self.phase.q.val() == self.ph4.val() {
                     self.phase.d.next = 0.into();
                     self.slot.d.next = self.k0.val();
-                    self.rot.d.next = self.b0.val();
+                    self.rot.d.next = self.kbuf[0].val();
                 }
             }
         }
@@ -421,44 +433,28 @@ impl Logic for VerticalMedian {
         // ================= The line buffers =================
         // Every pixel reads its column; a taken pixel is written a clock
         // later into its row's buffer.
-        self.line0.read_address.next = self.col.q.val();
-        self.line1.read_address.next = self.col.q.val();
-        self.line2.read_address.next = self.col.q.val();
-        self.line3.read_address.next = self.col.q.val();
-        self.line0.write_address.next = self.s0_col.q.val();
-        self.line1.write_address.next = self.s0_col.q.val();
-        self.line2.write_address.next = self.s0_col.q.val();
-        self.line3.write_address.next = self.s0_col.q.val();
-        self.line0.write_data.next = self.s0_d.q.val();
-        self.line1.write_data.next = self.s0_d.q.val();
-        self.line2.write_data.next = self.s0_d.q.val();
-        self.line3.write_data.next = self.s0_d.q.val();
-        self.line0.write_enable.next = self.s0_write.q.val() & (self.s0_buf.q.val() == self.b0.val());
-        self.line1.write_enable.next = self.s0_write.q.val() & (self.s0_buf.q.val() == self.b1.val());
-        self.line2.write_enable.next = self.s0_write.q.val() & (self.s0_buf.q.val() == self.b2.val());
-        self.line3.write_enable.next = self.s0_write.q.val() & (self.s0_buf.q.val() == self.b3.val());
+        for b in 0..MEDIAN_LINE_BUFFERS {
+            self.line[b].read_address.next = self.col.q.val();
+            self.line[b].write_address.next = self.s0_col.q.val();
+            self.line[b].write_data.next = self.s0_d.q.val();
+            self.line[b].write_enable.next = self.s0_write.q.val() & (self.s0_buf.q.val() == self.kbuf[b].val());
+        }
 
-        // S0: the pixel, its output's flags and tap selection (the low
-        // taps from the slot, the high ones from the phase), and the
-        // forwarding of this clock's write to this clock's read.
+        // S0: the pixel, its output's flags, slot and phase (for the tap
+        // selection), and the forwarding of this clock's write to this
+        // clock's read.
         self.s0_write.d.next = self.take.val();
         self.s0_col.d.next = self.col.q.val();
         self.s0_d.d.next = self.p_d.val();
         self.s0_buf.d.next = self.rot_eff.val();
-        self.s0_out.d.next = (self.take.val() & (self.k_eff.val() >= self.k2.val())) | self.flushing.val();
-        self.s0_sof.d.next = (self.take.val() | self.flushing.val()) & (self.k_eff.val() == self.k2.val()) & !self.col.q.val().any();
+        self.s0_out.d.next = (self.take.val() & (self.k_eff.val() >= self.k4.val())) | self.flushing.val();
+        self.s0_sof.d.next = (self.take.val() | self.flushing.val()) & (self.k_eff.val() == self.k4.val()) & !self.col.q.val().any();
         self.s0_last.d.next = self.p_last.val();
         if self.flushing.val() {
             self.s0_last.d.next = self.row_end.val();
         }
-        self.s0_lo.d.next = 0.into();
-        if self.k_eff.val() == self.k2.val() {
-            self.s0_lo.d.next = self.lo2.val();
-        }
-        if self.k_eff.val() == self.k3.val() {
-            self.s0_lo.d.next = self.lo1.val();
-        }
-        self.s0_hi.d.next = self.phase.q.val();
+        self.s0_k.d.next = self.k_eff.val();
+        self.s0_ph.d.next = self.phase.q.val();
         self.s0_rot.d.next = self.rot_eff.val();
         self.s0_hit.d.next = self.s0_write.q.val() & (self.s0_col.q.val() == self.col.q.val());
         self.s0_hit_buf.d.next = self.s0_buf.q.val();
@@ -468,143 +464,291 @@ impl Logic for VerticalMedian {
         self.s1_out.d.next = self.s0_out.q.val();
         self.s1_sof.d.next = self.s0_sof.q.val();
         self.s1_last.d.next = self.s0_last.q.val();
-        self.s1_lo.d.next = self.s0_lo.q.val();
-        self.s1_hi.d.next = self.s0_hi.q.val();
+        self.s1_k.d.next = self.s0_k.q.val();
+        self.s1_ph.d.next = self.s0_ph.q.val();
         self.s1_rot.d.next = self.s0_rot.q.val();
         self.s1_hit.d.next = self.s0_hit.q.val();
         self.s1_hit_buf.d.next = self.s0_hit_buf.q.val();
         self.s1_hit_d.d.next = self.s0_hit_d.q.val();
 
-        // ================= The taps =================
+        // ================= R: the rows in order =================
         // The buffers' words (a word written on its read's clock forwarded).
-        self.bv0.next = self.line0.read_data.val();
-        self.bv1.next = self.line1.read_data.val();
-        self.bv2.next = self.line2.read_data.val();
-        self.bv3.next = self.line3.read_data.val();
-        if self.s1_hit.q.val() {
-            if self.s1_hit_buf.q.val() == self.b0.val() {
-                self.bv0.next = self.s1_hit_d.q.val();
-            }
-            if self.s1_hit_buf.q.val() == self.b1.val() {
-                self.bv1.next = self.s1_hit_d.q.val();
-            }
-            if self.s1_hit_buf.q.val() == self.b2.val() {
-                self.bv2.next = self.s1_hit_d.q.val();
-            }
-            if self.s1_hit_buf.q.val() == self.b3.val() {
-                self.bv3.next = self.s1_hit_d.q.val();
+        for b in 0..MEDIAN_LINE_BUFFERS {
+            self.bv[b].next = self.line[b].read_data.val();
+            if self.s1_hit.q.val() & (self.s1_hit_buf.q.val() == self.kbuf[b].val()) {
+                self.bv[b].next = self.s1_hit_d.q.val();
             }
         }
-        // Rows k-4+i from buffer (k + i) mod 4.
-        self.v0.next = self.bv0.val();
-        self.v1.next = self.bv1.val();
-        self.v2.next = self.bv2.val();
-        self.v3.next = self.bv3.val();
-        if self.s1_rot.q.val() == self.b1.val() {
-            self.v0.next = self.bv1.val();
-            self.v1.next = self.bv2.val();
-            self.v2.next = self.bv3.val();
-            self.v3.next = self.bv0.val();
+        // Row k-8+i is in buffer (k + i) mod 8: rotate by k mod 8, by 1,
+        // then 2, then 4.
+        self.rot1[0].next = self.bv[0].val();
+        self.rot1[1].next = self.bv[1].val();
+        self.rot1[2].next = self.bv[2].val();
+        self.rot1[3].next = self.bv[3].val();
+        self.rot1[4].next = self.bv[4].val();
+        self.rot1[5].next = self.bv[5].val();
+        self.rot1[6].next = self.bv[6].val();
+        self.rot1[7].next = self.bv[7].val();
+        if self.s1_rot.q.val().get_bit(0) {
+            self.rot1[0].next = self.bv[1].val();
+            self.rot1[1].next = self.bv[2].val();
+            self.rot1[2].next = self.bv[3].val();
+            self.rot1[3].next = self.bv[4].val();
+            self.rot1[4].next = self.bv[5].val();
+            self.rot1[5].next = self.bv[6].val();
+            self.rot1[6].next = self.bv[7].val();
+            self.rot1[7].next = self.bv[0].val();
         }
-        if self.s1_rot.q.val() == self.b2.val() {
-            self.v0.next = self.bv2.val();
-            self.v1.next = self.bv3.val();
-            self.v2.next = self.bv0.val();
-            self.v3.next = self.bv1.val();
+        self.rot2[0].next = self.rot1[0].val();
+        self.rot2[1].next = self.rot1[1].val();
+        self.rot2[2].next = self.rot1[2].val();
+        self.rot2[3].next = self.rot1[3].val();
+        self.rot2[4].next = self.rot1[4].val();
+        self.rot2[5].next = self.rot1[5].val();
+        self.rot2[6].next = self.rot1[6].val();
+        self.rot2[7].next = self.rot1[7].val();
+        if self.s1_rot.q.val().get_bit(1) {
+            self.rot2[0].next = self.rot1[2].val();
+            self.rot2[1].next = self.rot1[3].val();
+            self.rot2[2].next = self.rot1[4].val();
+            self.rot2[3].next = self.rot1[5].val();
+            self.rot2[4].next = self.rot1[6].val();
+            self.rot2[5].next = self.rot1[7].val();
+            self.rot2[6].next = self.rot1[0].val();
+            self.rot2[7].next = self.rot1[1].val();
         }
-        if self.s1_rot.q.val() == self.b3.val() {
-            self.v0.next = self.bv3.val();
-            self.v1.next = self.bv0.val();
-            self.v2.next = self.bv1.val();
-            self.v3.next = self.bv2.val();
+        self.r_v[0].d.next = self.rot2[0].val();
+        self.r_v[1].d.next = self.rot2[1].val();
+        self.r_v[2].d.next = self.rot2[2].val();
+        self.r_v[3].d.next = self.rot2[3].val();
+        self.r_v[4].d.next = self.rot2[4].val();
+        self.r_v[5].d.next = self.rot2[5].val();
+        self.r_v[6].d.next = self.rot2[6].val();
+        self.r_v[7].d.next = self.rot2[7].val();
+        if self.s1_rot.q.val().get_bit(2) {
+            self.r_v[0].d.next = self.rot2[4].val();
+            self.r_v[1].d.next = self.rot2[5].val();
+            self.r_v[2].d.next = self.rot2[6].val();
+            self.r_v[3].d.next = self.rot2[7].val();
+            self.r_v[4].d.next = self.rot2[0].val();
+            self.r_v[5].d.next = self.rot2[1].val();
+            self.r_v[6].d.next = self.rot2[2].val();
+            self.r_v[7].d.next = self.rot2[3].val();
         }
-        // The clamp: tap i takes tap clamp(i, lo, hi) (row y = tap 2).
-        self.t_a.d.next = self.v0.val();
-        self.t_b.d.next = self.v1.val();
-        if self.s1_lo.q.val() == self.lo1.val() {
-            self.t_a.d.next = self.v1.val();
+        // The clamp's flags.
+        for j in 0..MEDIAN_HALF {
+            self.r_lo_ge[j].d.next = self.s1_k.q.val() <= self.c_lo[j].val();
+            self.r_hi_le[j].d.next = self.s1_ph.q.val() >= self.c_hi[j].val();
         }
-        if self.s1_lo.q.val() == self.lo2.val() {
-            self.t_a.d.next = self.v2.val();
-            self.t_b.d.next = self.v2.val();
+        self.r_d.d.next = self.s1_d.q.val();
+        self.r_out.d.next = self.s1_out.q.val();
+        self.r_sof.d.next = self.s1_sof.q.val();
+        self.r_last.d.next = self.s1_last.q.val();
+
+        // ================= T: the taps, clamped =================
+        // Tap i < 4 takes row max(i, first); tap i > 4 row min(i, last)
+        // (tap 8 is the incoming pixel).
+        self.t[0].d.next = self.r_v[0].q.val();
+        if self.r_lo_ge[0].q.val() {
+            self.t[0].d.next = self.r_v[1].q.val();
         }
-        self.t_e.d.next = self.v2.val();
-        self.t_c.d.next = self.v3.val();
-        self.t_d.d.next = self.s1_d.q.val();
-        if self.s1_hi.q.val() == self.flush_first.val() {
-            self.t_d.d.next = self.v3.val();
+        if self.r_lo_ge[1].q.val() {
+            self.t[0].d.next = self.r_v[2].q.val();
         }
-        if self.s1_hi.q.val() == self.flush_second.val() {
-            self.t_c.d.next = self.v2.val();
-            self.t_d.d.next = self.v2.val();
+        if self.r_lo_ge[2].q.val() {
+            self.t[0].d.next = self.r_v[3].q.val();
         }
-        self.t_out.d.next = self.s1_out.q.val();
-        self.t_sof.d.next = self.s1_sof.q.val();
-        self.t_last.d.next = self.s1_last.q.val();
+        if self.r_lo_ge[3].q.val() {
+            self.t[0].d.next = self.r_v[4].q.val();
+        }
+        self.t[1].d.next = self.r_v[1].q.val();
+        if self.r_lo_ge[1].q.val() {
+            self.t[1].d.next = self.r_v[2].q.val();
+        }
+        if self.r_lo_ge[2].q.val() {
+            self.t[1].d.next = self.r_v[3].q.val();
+        }
+        if self.r_lo_ge[3].q.val() {
+            self.t[1].d.next = self.r_v[4].q.val();
+        }
+        self.t[2].d.next = self.r_v[2].q.val();
+        if self.r_lo_ge[2].q.val() {
+            self.t[2].d.next = self.r_v[3].q.val();
+        }
+        if self.r_lo_ge[3].q.val() {
+            self.t[2].d.next = self.r_v[4].q.val();
+        }
+        self.t[3].d.next = self.r_v[3].q.val();
+        if self.r_lo_ge[3].q.val() {
+            self.t[3].d.next = self.r_v[4].q.val();
+        }
+        self.t[4].d.next = self.r_v[4].q.val();
+        self.t[5].d.next = self.r_v[5].q.val();
+        if self.r_hi_le[0].q.val() {
+            self.t[5].d.next = self.r_v[4].q.val();
+        }
+        self.t[6].d.next = self.r_v[6].q.val();
+        if self.r_hi_le[1].q.val() {
+            self.t[6].d.next = self.r_v[5].q.val();
+        }
+        if self.r_hi_le[0].q.val() {
+            self.t[6].d.next = self.r_v[4].q.val();
+        }
+        self.t[7].d.next = self.r_v[7].q.val();
+        if self.r_hi_le[2].q.val() {
+            self.t[7].d.next = self.r_v[6].q.val();
+        }
+        if self.r_hi_le[1].q.val() {
+            self.t[7].d.next = self.r_v[5].q.val();
+        }
+        if self.r_hi_le[0].q.val() {
+            self.t[7].d.next = self.r_v[4].q.val();
+        }
+        self.t[8].d.next = self.r_d.q.val();
+        if self.r_hi_le[3].q.val() {
+            self.t[8].d.next = self.r_v[7].q.val();
+        }
+        if self.r_hi_le[2].q.val() {
+            self.t[8].d.next = self.r_v[6].q.val();
+        }
+        if self.r_hi_le[1].q.val() {
+            self.t[8].d.next = self.r_v[5].q.val();
+        }
+        if self.r_hi_le[0].q.val() {
+            self.t[8].d.next = self.r_v[4].q.val();
+        }
+        self.t_out.d.next = self.r_out.q.val();
+        self.t_sof.d.next = self.r_sof.q.val();
+        self.t_last.d.next = self.r_last.q.val();
 
         // ================= The network =================
-        // N1: min/max of (a, b) and of (c, d).
-        self.n1_min_ab.d.next = self.t_b.q.val();
-        self.n1_max_ab.d.next = self.t_a.q.val();
-        if self.t_a.q.val() < self.t_b.q.val() {
-            self.n1_min_ab.d.next = self.t_a.q.val();
-            self.n1_max_ab.d.next = self.t_b.q.val();
+        // A compare-exchange (a, b) leaves min at a, max at b.
+        // N1: (1,2) (4,5) (7,8).
+        for i in 0..MEDIAN_TAPS {
+            self.n1[i].d.next = self.t[i].q.val();
         }
-        self.n1_min_cd.d.next = self.t_d.q.val();
-        self.n1_max_cd.d.next = self.t_c.q.val();
-        if self.t_c.q.val() < self.t_d.q.val() {
-            self.n1_min_cd.d.next = self.t_c.q.val();
-            self.n1_max_cd.d.next = self.t_d.q.val();
+        if self.t[2].q.val() < self.t[1].q.val() {
+            self.n1[1].d.next = self.t[2].q.val();
+            self.n1[2].d.next = self.t[1].q.val();
         }
-        self.n1_e.d.next = self.t_e.q.val();
-        self.n1_out.d.next = self.t_out.q.val();
-        self.n1_sof.d.next = self.t_sof.q.val();
-        self.n1_last.d.next = self.t_last.q.val();
-        // N2: the two middle values of four bracket the median.
-        self.n2_lo.d.next = self.n1_min_ab.q.val();
-        if self.n1_min_ab.q.val() < self.n1_min_cd.q.val() {
-            self.n2_lo.d.next = self.n1_min_cd.q.val();
+        if self.t[5].q.val() < self.t[4].q.val() {
+            self.n1[4].d.next = self.t[5].q.val();
+            self.n1[5].d.next = self.t[4].q.val();
         }
-        self.n2_hi.d.next = self.n1_max_cd.q.val();
-        if self.n1_max_ab.q.val() < self.n1_max_cd.q.val() {
-            self.n2_hi.d.next = self.n1_max_ab.q.val();
+        if self.t[8].q.val() < self.t[7].q.val() {
+            self.n1[7].d.next = self.t[8].q.val();
+            self.n1[8].d.next = self.t[7].q.val();
         }
-        self.n2_e.d.next = self.n1_e.q.val();
-        self.n2_out.d.next = self.n1_out.q.val();
-        self.n2_sof.d.next = self.n1_sof.q.val();
-        self.n2_last.d.next = self.n1_last.q.val();
-        // N3: min/max of (lo, hi).
-        self.n3_min.d.next = self.n2_hi.q.val();
-        self.n3_max.d.next = self.n2_lo.q.val();
-        if self.n2_lo.q.val() < self.n2_hi.q.val() {
-            self.n3_min.d.next = self.n2_lo.q.val();
-            self.n3_max.d.next = self.n2_hi.q.val();
+        // N2: (0,1) (3,4) (6,7).
+        for i in 0..MEDIAN_TAPS {
+            self.n2[i].d.next = self.n1[i].q.val();
         }
-        self.n3_e.d.next = self.n2_e.q.val();
-        self.n3_out.d.next = self.n2_out.q.val();
-        self.n3_sof.d.next = self.n2_sof.q.val();
-        self.n3_last.d.next = self.n2_last.q.val();
-        // N4: min(max(lo, hi), e).
-        self.n4_min.d.next = self.n3_min.q.val();
-        self.n4_upper.d.next = self.n3_e.q.val();
-        if self.n3_max.q.val() < self.n3_e.q.val() {
-            self.n4_upper.d.next = self.n3_max.q.val();
+        if self.n1[1].q.val() < self.n1[0].q.val() {
+            self.n2[0].d.next = self.n1[1].q.val();
+            self.n2[1].d.next = self.n1[0].q.val();
         }
-        self.n4_out.d.next = self.n3_out.q.val();
-        self.n4_sof.d.next = self.n3_sof.q.val();
-        self.n4_last.d.next = self.n3_last.q.val();
-        // The median: max(min(lo, hi), min(max(lo, hi), e)); 0 when no
+        if self.n1[4].q.val() < self.n1[3].q.val() {
+            self.n2[3].d.next = self.n1[4].q.val();
+            self.n2[4].d.next = self.n1[3].q.val();
+        }
+        if self.n1[7].q.val() < self.n1[6].q.val() {
+            self.n2[6].d.next = self.n1[7].q.val();
+            self.n2[7].d.next = self.n1[6].q.val();
+        }
+        // N3: (1,2) (4,5) (7,8).
+        for i in 0..MEDIAN_TAPS {
+            self.n3[i].d.next = self.n2[i].q.val();
+        }
+        if self.n2[2].q.val() < self.n2[1].q.val() {
+            self.n3[1].d.next = self.n2[2].q.val();
+            self.n3[2].d.next = self.n2[1].q.val();
+        }
+        if self.n2[5].q.val() < self.n2[4].q.val() {
+            self.n3[4].d.next = self.n2[5].q.val();
+            self.n3[5].d.next = self.n2[4].q.val();
+        }
+        if self.n2[8].q.val() < self.n2[7].q.val() {
+            self.n3[7].d.next = self.n2[8].q.val();
+            self.n3[8].d.next = self.n2[7].q.val();
+        }
+        // N4: (0,3) (5,8) (4,7); p0 and p8 are read no more (n4[i] = p(i+1)).
+        self.n4[0].d.next = self.n3[1].q.val();
+        self.n4[1].d.next = self.n3[2].q.val();
+        self.n4[5].d.next = self.n3[6].q.val();
+        // p3 = max(p0, p3).
+        self.n4[2].d.next = self.n3[3].q.val();
+        if self.n3[3].q.val() < self.n3[0].q.val() {
+            self.n4[2].d.next = self.n3[0].q.val();
+        }
+        // p5 = min(p5, p8).
+        self.n4[4].d.next = self.n3[5].q.val();
+        if self.n3[8].q.val() < self.n3[5].q.val() {
+            self.n4[4].d.next = self.n3[8].q.val();
+        }
+        // (p4, p7) = (min, max).
+        self.n4[3].d.next = self.n3[4].q.val();
+        self.n4[6].d.next = self.n3[7].q.val();
+        if self.n3[7].q.val() < self.n3[4].q.val() {
+            self.n4[3].d.next = self.n3[7].q.val();
+            self.n4[6].d.next = self.n3[4].q.val();
+        }
+        // N5: (3,6) (1,4) (2,5), keeping p2 = min(p2, p5), p4 = max(p1,
+        // p4), p6 = max(p3, p6), and p7 (n5 = p2, p4, p6, p7).
+        self.n5[0].d.next = self.n4[1].q.val();
+        if self.n4[4].q.val() < self.n4[1].q.val() {
+            self.n5[0].d.next = self.n4[4].q.val();
+        }
+        self.n5[1].d.next = self.n4[3].q.val();
+        if self.n4[3].q.val() < self.n4[0].q.val() {
+            self.n5[1].d.next = self.n4[0].q.val();
+        }
+        self.n5[2].d.next = self.n4[5].q.val();
+        if self.n4[5].q.val() < self.n4[2].q.val() {
+            self.n5[2].d.next = self.n4[2].q.val();
+        }
+        self.n5[3].d.next = self.n4[6].q.val();
+        // N6: (4,7), keeping p4 = min(p4, p7) (n6 = p2, p4, p6).
+        self.n6[0].d.next = self.n5[0].q.val();
+        self.n6[1].d.next = self.n5[1].q.val();
+        if self.n5[3].q.val() < self.n5[1].q.val() {
+            self.n6[1].d.next = self.n5[3].q.val();
+        }
+        self.n6[2].d.next = self.n5[2].q.val();
+        // N7: (4,2): (p4, p2) = (min, max) (n7 = p2, p4, p6).
+        self.n7[0].d.next = self.n6[0].q.val();
+        self.n7[1].d.next = self.n6[1].q.val();
+        if self.n6[0].q.val() < self.n6[1].q.val() {
+            self.n7[0].d.next = self.n6[1].q.val();
+            self.n7[1].d.next = self.n6[0].q.val();
+        }
+        self.n7[2].d.next = self.n6[2].q.val();
+        // N8: (6,4), keeping p4 = max(p6, p4) (n8 = p2, p4).
+        self.n8[0].d.next = self.n7[0].q.val();
+        self.n8[1].d.next = self.n7[1].q.val();
+        if self.n7[1].q.val() < self.n7[2].q.val() {
+            self.n8[1].d.next = self.n7[2].q.val();
+        }
+        // The flags along.
+        self.g_out[0].d.next = self.t_out.q.val();
+        self.g_sof[0].d.next = self.t_sof.q.val();
+        self.g_last[0].d.next = self.t_last.q.val();
+        for s in 1..NET_STAGES {
+            self.g_out[s].d.next = self.g_out[s - 1].q.val();
+            self.g_sof[s].d.next = self.g_sof[s - 1].q.val();
+            self.g_last[s].d.next = self.g_last[s - 1].q.val();
+        }
+        // The median: the last step (4,2), p4 = min(p4, p2); 0 when no
         // pixel leaves.
         self.o_d.d.next = 0.into();
-        if self.n4_out.q.val() {
-            self.o_d.d.next = self.n4_upper.q.val();
-            if self.n4_upper.q.val() < self.n4_min.q.val() {
-                self.o_d.d.next = self.n4_min.q.val();
+        if self.g_out[7].q.val() {
+            self.o_d.d.next = self.n8[1].q.val();
+            if self.n8[0].q.val() < self.n8[1].q.val() {
+                self.o_d.d.next = self.n8[0].q.val();
             }
         }
-        self.o_valid.d.next = self.n4_out.q.val();
-        self.o_sof.d.next = self.n4_sof.q.val() & self.n4_out.q.val();
-        self.o_last.d.next = self.n4_last.q.val() & self.n4_out.q.val();
+        self.o_valid.d.next = self.g_out[7].q.val();
+        self.o_sof.d.next = self.g_sof[7].q.val() & self.g_out[7].q.val();
+        self.o_last.d.next = self.g_last[7].q.val() & self.g_out[7].q.val();
         self.v_valid.next = self.o_valid.q.val();
         self.v_d.next = self.o_d.q.val();
         self.v_sof.next = self.o_sof.q.val();

@@ -8,7 +8,7 @@
 
 use golden::disparity::vertical_median;
 use golden::params::MEDIAN_ROWS;
-use rtl::params::{POS_BITS, POS_FRAC_BITS, W_MAX};
+use rtl::params::{MEDIAN_HALF, POS_BITS, POS_FRAC_BITS, W_MAX};
 use rtl::rust_hdl::prelude::*;
 use rtl::vertical_median::VerticalMedian;
 use thiserror::Error;
@@ -125,7 +125,7 @@ impl VerticalMedianSim {
         let overflows = self.overflows;
         let width = frame[0].len();
         let input = (0..frame.len()).map(|y| (0..width).map(|x| start + (y * period + x) as u64).collect()).collect();
-        let pixels = self.run_beats(&beats, 2 * width + rtl::vertical_median::MEDIAN_LAG + 4);
+        let pixels = self.run_beats(&beats, MEDIAN_HALF * width + rtl::vertical_median::MEDIAN_LAG + 4);
         let (rows, output, sof) = split_rows(&pixels);
         Ok((rows, MedianTiming { input, output, sof, overflows: self.overflows - overflows }))
     }
