@@ -22,8 +22,8 @@
 //!   default mode's consistency check; one line of delay).
 //! - The [`Interpolator`] (paper §IV's last step, with the default mode's
 //!   edge jump [`EDGE_JUMP_LSB`] or none) gives one disparity per pixel.
-//! - The [`VerticalMedian`] takes the median of five rows (the default
-//!   mode's; two lines of delay, the last two rows flushed after the
+//! - The [`VerticalMedian`] takes the median of nine rows (the default
+//!   mode's; four lines of delay, the last four rows flushed after the
 //!   frame's last).
 //! - The [`DepthStage`] gives each disparity its depth (eq. 1) for the
 //!   camera the processor is generated for.

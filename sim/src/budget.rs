@@ -22,10 +22,10 @@
 //! it a row to the event that hands the row on).
 //!
 //! ## A scanline's latency
-//! Output row `y` is the median of rows `y − 2 … y + 2`, and row `y + 2`
-//! leaves the row check only once row `y + 3`'s marker has left the
-//! matcher: row `y`'s first disparity waits for row `y + 3`'s pixels,
-//! three line periods `P` after its own. From row `y`'s first pixel in
+//! Output row `y` is the median of rows `y − 4 … y + 4` (`MEDIAN_HALF` = 4
+//! rows on each side), and row `y + 4` leaves the row check only once row
+//! `y + 5`'s marker has left the matcher: row `y`'s first disparity waits
+//! for row `y + 5`'s pixels, five line periods `P` after its own. From row `y`'s first pixel in
 //! (rows every `P` clocks, every row the same work):
 //!
 //! - detector: `SKID_LAG` (the camera's register slice) `+ (W − 1) +
@@ -41,7 +41,7 @@
 //!   pixels start from the row's marker, not its first match, so
 //!   `ROW_FIRST_LAG` is in no path);
 //! - vertical median: `INTERP_REGISTER_LAG` (the register from the
-//!   interpolator) `+ 2·P` (it waits for row `y + 2`) `+ MEDIAN_LAG`;
+//!   interpolator) `+ 4·P` (it waits for row `y + 4`) `+ MEDIAN_LAG`;
 //! - depth stage: `MEDIAN_REGISTER_LAG` (the register from the median) + `DEPTH_LAG` +
 //!   `OUTPUT_REGISTER_LAG` (the register to the output port).
 //!
@@ -60,18 +60,18 @@
 //! row check does not wait for a row below it) and reaches the interpolator
 //! `max(c_last + ROW_RESTART_LAG, W')` clocks after row `H − 2` (`c_last`
 //! its check's clocks, started `ROW_RESTART_LAG` after row `H − 2`'s finish; the interpolator is still busy with row `H − 2` for `W'`). The
-//! median then sends output row `H − 3` in the last row's slot and flushes
-//! rows `H − 2` and `H − 1`, one pixel per clock, back to back. So the
-//! frame's output rows `0 … H − 4` leave one per line period from the
-//! first disparity on, and the last disparity leaves `(H − 4)·P +
-//! max(c_last + ROW_RESTART_LAG, W') + 3·W' − 1` clocks after the first.
+//! median then sends output row `H − 5` in the last row's slot and flushes
+//! rows `H − 4 … H − 1`, one pixel per clock, back to back. So the
+//! frame's output rows `0 … H − 6` leave one per line period from the
+//! first disparity on, and the last disparity leaves `(H − 6)·P +
+//! max(c_last + ROW_RESTART_LAG, W') + 5·W' − 1` clocks after the first.
 //!
 //! The median takes the next frame's pixels only after its flush (the
 //! pixels that come during it are dropped, `pixels_dropped`). The next
 //! frame's row 0 reaches the interpolator once its row 1's marker has left
 //! the matcher, `(V + 2)·P` after this frame's row `H − 1`'s (`V` lines of
 //! vertical blanking), so with the same work per row it needs
-//! `(V + 2)·P + c_first − c ≥ max(c_last + ROW_RESTART_LAG, W') + 3·W'`: `c_first` the
+//! `(V + 2)·P + c_first − c ≥ max(c_last + ROW_RESTART_LAG, W') + 5·W'`: `c_first` the
 //! first row's check clocks (no row above), `c` a row's inside the frame
 //! (row `H − 2`'s). The least such `V` is the budget's vertical blanking,
 //! and a frame takes `(H + V)·P` clocks. A next frame whose first rows are
@@ -137,7 +137,7 @@ use rtl::depth_stage::DEPTH_LAG;
 use rtl::interpolator::{LINE_BITS, LINE_QUEUE, PIXEL_LAG, SEGMENT_BITS, SEGMENT_LAG};
 use rtl::params::{
     CELLS_PER_CHOICE_WORD, CHOICE_WORDS, CHOICE_WORD_BITS, DEPTH_INDEX_BITS, DEPTH_WORD_BITS, DIAG_BITS, DISPMAX_BITS,
-    HIST_ADDR_BITS, HIST_COUNT_BITS, INDEX_BITS, LEVELS_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, N_CELLS,
+    HIST_ADDR_BITS, HIST_COUNT_BITS, INDEX_BITS, LEVELS_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, MEDIAN_HALF, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, N_CELLS,
     N_MAX, PIXEL_BITS, POS_BITS, POS_FRAC_BITS, RECIP_BITS, ROWS_PER_CELL, ROW_ADDR_BITS, ROW_BANK_BITS,
     ROW_ENTRY_BITS, SEG_ADDR_BITS, WIDTH_BITS, W_MAX,
 };
@@ -193,7 +193,7 @@ pub enum BudgetError {
     ZeroHeight,
     /// `0 < H < MIN_HEIGHT`.
     #[error(
-        "--height {height}: the budget models frames of at least {MIN_HEIGHT} rows (a row's output waits for the three rows below it; the rows of shorter frames all leave through the vertical median's flush)"
+        "--height {height}: the budget models frames of at least {MIN_HEIGHT} rows (a row's output waits for the {} rows below it; the rows of shorter frames all leave through the vertical median's flush)", MIN_HEIGHT - 1
     )]
     TooFewRows {
         /// The rows asked for.
@@ -314,10 +314,10 @@ pub const MEDIAN_LINE_BUFFER: &str = "median line buffer";
 pub const DEPTH_TABLE: &str = "depth table";
 
 /// The fewest rows of a frame the budget models: row `y`'s output waits for
-/// rows `y + 1` (the row check) and `y + 2` (the vertical median), and row
-/// `y + 2`'s check for row `y + 3`; the first output row leaves on that
-/// path only if row 3 exists.
-pub const MIN_HEIGHT: usize = 4;
+/// rows `y + 1` (the row check) and `y + MEDIAN_HALF` (the vertical
+/// median), and row `y + MEDIAN_HALF`'s check for row `y + MEDIAN_HALF +
+/// 1`; the first output row leaves on that path only if that row exists.
+pub const MIN_HEIGHT: usize = MEDIAN_HALF + 2;
 
 /// `DP16KD`s of one `rtl::block_ram::BlockRam` of `words` words of
 /// `word_bits` bits: one per [`DP16KD_WIDTH`] bits of width and
@@ -457,8 +457,8 @@ impl StageBudget {
 /// check's clocks (start → finish) of a row inside the frame, of its first
 /// row and of its last.
 ///
-/// In the latency, `(n, m, stop_diag, k)` is row `y + 3`'s line and `check`
-/// row `y + 2`'s clocks; in the frame's end, the last row's line, row
+/// In the latency, `(n, m, stop_diag, k)` is row `y + 5`'s line and `check`
+/// row `y + 4`'s clocks; in the frame's end, the last row's line, row
 /// `H − 2`'s `check` and row `H − 1`'s `last_check`; in the vertical
 /// blanking, the next frame's row 0's `first_check`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -772,13 +772,16 @@ pub fn interpolator_stage(s: &Sizes) -> StageBudget {
         ])
 }
 
-/// The vertical median of five rows (`rtl::vertical_median`): two lines of
-/// delay.
+/// The vertical median of nine rows (`rtl::vertical_median`):
+/// `MEDIAN_HALF` = 4 lines of delay.
 pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "vertical median";
     let latency_terms = vec![
         Term::new("INTERP_REGISTER_LAG", INTERP_REGISTER_LAG),
-        Term::new("2·P (the median of rows y − 2 … y + 2 waits for row y + 2, two line periods later)", 2 * s.line_period as usize),
+        Term::new(
+            format!("{MEDIAN_HALF}·P (the median of rows y − {MEDIAN_HALF} … y + {MEDIAN_HALF} waits for row y + {MEDIAN_HALF}, {MEDIAN_HALF} line periods later)"),
+            MEDIAN_HALF * s.line_period as usize,
+        ),
         Term::new("MEDIAN_LAG", MEDIAN_LAG),
     ];
     StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock)".to_string(), latency_terms, "row y's first disparity out of the interpolator → output row y's first median out")
@@ -790,7 +793,7 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
             W_MAX,
             POS_BITS,
             Some(MEDIAN_LINE_BUFFERS * dp16kd_of(POS_BITS, W_MAX)),
-            "VerticalMedian::line0..line3 (rows k − 4 … k − 1 of the MEDIAN_TAPS = 5 taps, one DP16KD each)",
+            "VerticalMedian::line (rows k − 8 … k − 1 of the MEDIAN_TAPS = 9 taps, one DP16KD each)",
         )])
 }
 
@@ -933,7 +936,7 @@ pub struct Budget {
     /// `latency + (W' − 1)`.
     pub latency_last_pixel_cycles: u64,
     /// The frame's first disparity out → its last,
-    /// `(H − 4)·P + max(c_last + ROW_RESTART_LAG, W') + 3·W' − 1`.
+    /// `(H − 6)·P + max(c_last + ROW_RESTART_LAG, W') + 5·W' − 1`.
     pub output_span_cycles: u64,
     pub output_span_formula: String,
     /// The frame's first pixel accepted → its last disparity out,
@@ -1071,9 +1074,12 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     let last_check = if sizes.worst { "max(row_check_cycles(N, N, 0) + ROW_RESTART_LAG, W')" } else { "max(c_last + ROW_RESTART_LAG, W')" };
     let last_check_cycles = (load.last_check + ROW_RESTART_LAG).max(wp);
     let (output_span_cycles, output_span_formula) = render(&[
-        Term::new("(H − 4)·P (output rows 0 … H − 4, one a line period)", (h - MIN_HEIGHT) * p),
+        Term::new(format!("(H − {MIN_HEIGHT})·P (output rows 0 … H − {MIN_HEIGHT}, one a line period)"), (h - MIN_HEIGHT) * p),
         Term::new(format!("{last_check} (the last row, checked right after row H − 2, follows it into the interpolator)"), last_check_cycles),
-        Term::new("3·W' (output row H − 3 in the last row's slot, then the median's flush of rows H − 2 and H − 1, back to back)", 3 * wp),
+        Term::new(
+            format!("{}·W' (output row H − {} in the last row's slot, then the median's flush of rows H − {MEDIAN_HALF} … H − 1, back to back)", MEDIAN_HALF + 1, MEDIAN_HALF + 1),
+            (MEDIAN_HALF + 1) * wp,
+        ),
         Term::minus("1", 1),
     ]);
     let last_out_cycles = latency_cycles + output_span_cycles;
@@ -1094,7 +1100,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     let end = |first: Term| -> Vec<Term> {
         vec![
             Term::new(last_check, last_check_cycles),
-            Term::new("3·W' (the last row and the median's flush)", 3 * wp),
+            Term::new(format!("{}·W' (the last row and the median's flush)", MEDIAN_HALF + 1), (MEDIAN_HALF + 1) * wp),
             Term::new(if sizes.worst { "row_check_cycles(N, N, N)" } else { "c" }, load.check),
             first,
         ]
@@ -1169,7 +1175,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
         r.dispmax
     ));
     notes.push(format!(
-        "vertical blanking: the median (MEDIAN_TAPS = {MEDIAN_TAPS} rows) flushes the frame's last two rows after it and drops the pixels that come meanwhile (pixels_dropped); {} of P with rows of the same work, {} whatever the next frame's rows",
+        "vertical blanking: the median (MEDIAN_TAPS = {MEDIAN_TAPS} rows) flushes the frame's last MEDIAN_HALF = {MEDIAN_HALF} rows after it and drops the pixels that come meanwhile (pixels_dropped); {} of P with rows of the same work, {} whatever the next frame's rows",
         lines(vblank_lines),
         lines(vblank_lines_any_rows)
     ));
@@ -1497,10 +1503,10 @@ mod tests {
             assert_eq!(sum_of(&b.output_span_formula), b.output_span_cycles as i64);
             assert_eq!(b.last_out_cycles, b.latency_cycles + b.output_span_cycles);
             assert_eq!(b.latency_last_pixel_cycles, b.latency_cycles + b.stored_width as u64 - 1);
-            // Three line periods: one in the row check, two in the median.
+            // Five line periods: one in the row check, four in the median.
             let p = b.line_period_cycles;
-            let lines: u64 = b.stages.iter().flat_map(|s| &s.latency_terms).filter(|t| t.text.starts_with("P ") || t.text.starts_with("2·P ")).map(|t| t.value as u64).sum();
-            assert_eq!(lines, 3 * p);
+            let lines: u64 = b.stages.iter().flat_map(|s| &s.latency_terms).filter(|t| t.text.starts_with("P ") || t.text.starts_with("4·P ")).map(|t| t.value as u64).sum();
+            assert_eq!(lines, 5 * p);
         }
     }
 
@@ -1555,7 +1561,7 @@ mod tests {
         let cases: [(BudgetRequest, fn(&BudgetError) -> bool); 11] = [
             (BudgetRequest { width: 0, ..ok }, |e| matches!(e, BudgetError::ZeroWidth)),
             (BudgetRequest { height: 0, ..ok }, |e| matches!(e, BudgetError::ZeroHeight)),
-            (BudgetRequest { height: MIN_HEIGHT - 1, ..ok }, |e| matches!(e, BudgetError::TooFewRows { height: 3 })),
+            (BudgetRequest { height: MIN_HEIGHT - 1, ..ok }, |e| matches!(e, BudgetError::TooFewRows { height: 5 })),
             (BudgetRequest { n_max: 0, ..ok }, |e| matches!(e, BudgetError::NoDeclivities)),
             (BudgetRequest { n_max: N_MAX + 1, ..ok }, |e| matches!(e, BudgetError::TooManyDeclivities { .. })),
             (BudgetRequest { cells: 5, ..ok }, |e| matches!(e, BudgetError::UnsupportedCells { cells: 5 })),

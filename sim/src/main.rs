@@ -99,10 +99,10 @@ k and falls with the stop diagonal); the row check's worst row is row_check_cycl
 Then: the line period P = max(W + hblank, slowest stage), and if a stage is slower than the input, \
 by how much per line and the least hblank that paces the input to it (the detector holds the input; \
 behind a slower matcher the record queues fill and then drop records); the latency of a scanline, \
-from a row's first pixel accepted to its first disparity out, stage by stage (three line periods of \
-it: the row check waits for the row below, the vertical median for the two rows below); the frame's \
+from a row's first pixel accepted to its first disparity out, stage by stage (five line periods of \
+it: the row check waits for the row below, the vertical median for the four rows below); the frame's \
 end (first to last disparity out, the flush after the last pixel in) and the vertical blanking the \
-median's flush of the last two rows needs; the frame time, (H + vertical blanking) x P / clock, and \
+median's flush of the last four rows needs; the frame time, (H + vertical blanking) x P / clock, and \
 frames per second; the resources as the rtl blocks declare them (line buffers, |dI| histogram banks, \
 record queues, gain cells (PEs) and rows per cell, the record memories and their position copies, \
 the choice memory (two banks) and the traceback stack, the row \
@@ -197,7 +197,7 @@ golden's gains, golden's optimal path as green rings and the rtl path as orange 
 601 luma) through the cycle-accurate line processor (rtl::stereo_line_processor: two declivity \
 detectors, a record queue per side, the matcher of N_CELLS = 32 cells in the default gain rule, \
 the row check against the neighbouring rows, the interpolator with the default mode's edge jump, \
-the vertical median of five rows, the depth stage for the default camera), the two cameras \
+the vertical median of nine rows, the depth stage for the default camera), the two cameras \
 streaming one pixel per clock from the same clock with --hblank idle clocks after each line, and \
 compare the disparity map with golden's default mode in hardware parity. --engine rust-hdl (the \
 default) runs the rust-hdl model itself, about 1-2 thousand clocks per second: a 384x288 pair takes \

@@ -466,7 +466,7 @@ fn check_frame(w: usize, h: usize, steps: usize, rows: Rows, hblank: usize) -> (
     assert_eq!(b.line_period_cycles, det.max((w + hblank) as u64), "{what}: no stage slower than the input");
     let latency = run.latency_cycles().expect("a disparity out");
     assert_eq!(latency, b.latency_cycles, "{what}: first pixel in → first disparity out ({})", b.latency_formula);
-    // Output rows 0 … H − 4 one a line period, then the frame's end.
+    // Output rows 0 … H − 6 one a line period, then the frame's end.
     let (first_out, last_out) = (run.first_out.expect("out"), run.last_out.expect("out"));
     assert_eq!(last_out - first_out, b.output_span_cycles, "{what}: first → last disparity out ({})", b.output_span_formula);
     assert_eq!(run.last_in - run.first_in, b.last_in_cycle, "{what}: the frame's last pixel in");
@@ -509,7 +509,7 @@ fn line_processor_latency_and_frame_end_equal_the_budget_for_rows_with_flat_neig
 /// phases, 20 its four.
 #[test]
 fn line_processor_latency_and_frame_end_equal_the_budget_for_rows_alike() {
-    for (w, h, steps, hblank) in [(64, 5, 4, 0), (128, 8, 7, 0), (300, 6, 16, 0), (300, 6, 20, 0), (300, 7, 9, 37)] {
+    for (w, h, steps, hblank) in [(64, 9, 4, 0), (128, 8, 7, 0), (300, 6, 16, 0), (300, 6, 20, 0), (300, 7, 9, 37)] {
         let (left, right) = stepped_pair(w, h, steps, Rows::All);
         let (load, _) = frame_load(&left, &right);
         let bound = rtl::row_check::row_check_cycles(steps, steps, steps);
@@ -570,7 +570,7 @@ fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
     assert_eq!(beyond(verilog_dp16kd), of(&new_stages, rams));
     assert_eq!(r.memory_bits, 2 * detector + matcher + interpolator + beyond(verilog_memory_bits));
     assert_eq!(r.dp16kd_instances, 2 * verilog_dp16kd(&det_v) + verilog_dp16kd(&mat_v) + verilog_dp16kd(&int_v) + beyond(verilog_dp16kd));
-    assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell, r.median_line_buffers), (2, 4, 32, 4, 4));
+    assert_eq!((r.line_buffers, r.histogram_banks, r.pe_count, r.rows_per_cell, r.median_line_buffers), (2, 4, 32, 4, 8));
     // The cells' rows in LUT RAM: the primitives the matcher instantiates,
     // 16 bits used of each (4 words of 4 bits), the last of each RAM partly.
     assert_eq!(mat_v.matches("TRELLIS_DPR16X4 #(").count(), r.reference_row_dpr16x4);
@@ -584,11 +584,12 @@ fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
 /// 512×512 at 125 MHz, hblank 88, N = 16 on 8 cells: every stage's worst
 /// line is below 600 clocks, so the line period is the input's
 /// 512 + 88 = 600 clocks. The vertical blanking: the last row's check
-/// (row_check_cycles(16, 16, 0) = 6 + 16 + 16 + 6·16 = 134) and the
-/// median's flush take max(134 + 2, 512) + 3·512 = 2048 clocks, and the
-/// first row's check is 16 clocks faster than a row's inside (150 − 134):
-/// ⌈2064 / 600⌉ − 2 = 2 lines. A frame is (512 + 2) × 600 = 308 400 clocks = 2.4672 ms,
-/// 405.3 frames/s.
+/// (row_check_cycles(16, 16, 0) = 6 + 16 + 16 + 6·16 = 134), the row
+/// before the flush and the median's flush of four rows take
+/// max(134 + 2, 512) + 5·512 = 3072 clocks, and the first row's check is
+/// 16 clocks faster than a row's inside (150 − 134): ⌈3088 / 600⌉ − 2 = 4
+/// lines. A frame is (512 + 4) × 600 = 309 600 clocks = 2.4768 ms, 403.7
+/// frames/s.
 #[test]
 fn frame_time_of_512_by_512_at_125_mhz_with_an_input_bound_line_period() {
     let b = budget(&BudgetRequest { hblank: 88, cells: 8, ..BudgetRequest::new(512, 512, 16, 64.0, 125.0) }).expect("valid");
@@ -596,28 +597,28 @@ fn frame_time_of_512_by_512_at_125_mhz_with_an_input_bound_line_period() {
     assert_eq!(b.line_period_cycles, 600);
     assert_eq!(b.stall_cycles_per_line, 0);
     assert_eq!((b.load.check, b.load.first_check, b.load.last_check), (150, 134, 134));
-    assert_eq!(b.vblank_lines, 2, "{}", b.vblank_formula);
-    assert_eq!(b.frame_cycles, 308_400);
-    assert!((b.frame_time_ms - 2.4672).abs() < 1e-9, "{}", b.frame_time_ms);
-    assert!((b.fps - 1000.0 / 2.4672).abs() < 1e-9, "{}", b.fps);
-    // Three line periods of the latency, and the frame's end.
-    assert_eq!(b.output_span_cycles, 508 * 600 + 512 + 3 * 512 - 1);
+    assert_eq!(b.vblank_lines, 4, "{}", b.vblank_formula);
+    assert_eq!(b.frame_cycles, 309_600);
+    assert!((b.frame_time_ms - 2.4768).abs() < 1e-9, "{}", b.frame_time_ms);
+    assert!((b.fps - 1000.0 / 2.4768).abs() < 1e-9, "{}", b.fps);
+    // Output rows 0 … H − 6 a line period apart, then the frame's end.
+    assert_eq!(b.output_span_cycles, 506 * 600 + 512 + 5 * 512 - 1);
     assert_eq!(b.last_in_cycle, 511 * 600 + 511);
     assert_eq!(b.flush_cycles, b.latency_cycles + b.output_span_cycles - b.last_in_cycle);
 }
 
 /// 1024×768 at 125 MHz with the 320 clocks of blanking of XGA timing
 /// (1344 clocks per line): the sensor's matcher fits, the period is 1344
-/// clocks; the vertical blanking ⌈(1024 + 3·1024 + 900 − 516) / 1344⌉ − 2
-/// = 2 lines, a frame (768 + 2) × 1344 = 1 034 880 clocks = 8.279 04 ms.
+/// clocks; the vertical blanking ⌈(1024 + 5·1024 + 900 − 516) / 1344⌉ − 2
+/// = 3 lines, a frame (768 + 3) × 1344 = 1 036 224 clocks = 8.289 792 ms.
 #[test]
 fn frame_time_of_1024_by_768_at_125_mhz_with_xga_blanking() {
     let b = budget(&BudgetRequest { hblank: 320, ..BudgetRequest::new(1024, 768, N_MAX, 64.0, 125.0) }).expect("valid");
     assert_eq!(b.line_period_cycles, 1344);
-    assert_eq!(b.vblank_lines, 2, "{}", b.vblank_formula);
-    assert_eq!(b.frame_cycles, 1_034_880);
-    assert!((b.frame_time_ms - 8.279_04).abs() < 1e-9, "{}", b.frame_time_ms);
-    assert!((b.fps - 1000.0 / 8.279_04).abs() < 1e-9);
+    assert_eq!(b.vblank_lines, 3, "{}", b.vblank_formula);
+    assert_eq!(b.frame_cycles, 1_036_224);
+    assert!((b.frame_time_ms - 8.289_792).abs() < 1e-9, "{}", b.frame_time_ms);
+    assert!((b.fps - 1000.0 / 8.289_792).abs() < 1e-9);
     assert!((b.latency_us - b.latency_cycles as f64 / 125.0).abs() < 1e-12);
 }
 
@@ -676,7 +677,7 @@ fn cli_bad_sizes_exit_non_zero_with_a_message_naming_the_problem() {
     let cases = [
         ("--width", "0", "--width 0"),
         ("--height", "0", "--height 0"),
-        ("--height", "3", "at least 4 rows"),
+        ("--height", "3", "at least 6 rows"),
         ("--n-max", "0", "--n-max 0"),
         ("--n-max", "129", "N_MAX = 128"),
         ("--cells", "5", "--cells 5"),
