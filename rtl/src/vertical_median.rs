@@ -17,10 +17,14 @@
 //!   column from the eight buffers (rows `k-8 ..= k-1`) and is written into
 //!   buffer `k mod 8` one clock later (after its old word, row `k-8`, was
 //!   read: a `DP16KD` read and write of one address on one clock is
-//!   undefined). A read of the word being written on the same clock takes
-//!   the written value instead (forwarding: rows of one pixel back to back).
+//!   undefined).
 //! - The eight words are put in row order by a rotation by `k mod 8` (three
-//!   stages of 2-to-1 multiplexers, by 1, 2 and 4) into registers.
+//!   stages of 2-to-1 multiplexers, by 1, 2 and 4) into registers. A read
+//!   of the word being written on the same clock takes the written value
+//!   instead (forwarding: rows of one pixel back to back). The forwarding
+//!   acts after the rotation, on the tap of the written row (the previous
+//!   row's, tap 7, or in a short frame's first flush slot the last row's),
+//!   picked a stage ahead.
 //! - Slot `k` emits row `y = k - 4`. Each of the nine taps (rows
 //!   `k-8 ..= k`) takes the tap of its clamped row: in slots 4 to 7 the
 //!   rows above the frame take row 0; after the frame's last row (`h - 1`,
@@ -64,7 +68,9 @@
 //!
 //! ## Cost
 //! Alone on the ECP5-85K (speed 6; Yosys 0.70 `synth_ecp5`, nextpnr 0.11.1,
-//! its pads included): COST_TBD.
+//! its pads included): 1 685 LUT4, 1 057 FF, 8 `DP16KD`, no DSP, 169.2 MHz
+//! (the five-row block it replaced: 1 186 LUT4, 388 FF, 4 `DP16KD`, 149.7
+//! MHz).
 
 use crate::block_ram::BlockRam;
 use crate::params::*;
@@ -140,8 +146,7 @@ pub struct VerticalMedian {
     s1_k: DFF<Bits<SLOT_BITS>>,
     s1_ph: DFF<Bits<PHASE_BITS>>,
     s1_rot: DFF<Bits<BUF_BITS>>,
-    s1_hit: DFF<Bit>,
-    s1_hit_buf: DFF<Bits<BUF_BITS>>,
+    s1_hit_tap: [DFF<Bit>; MEDIAN_LINE_BUFFERS],
     s1_hit_d: DFF<Bits<POS_BITS>>,
     // ---- R: rows k-8+i in r_v[i]; the clamp's flags: r_lo_ge[j] = the
     // first row of the frame is tap j + 1 or later (slot k <= 7 - j),
@@ -187,7 +192,7 @@ pub struct VerticalMedian {
     flush_next: Signal<Local, Bits<SLOT_BITS>>,
     rot_next: Signal<Local, Bits<BUF_BITS>>,
     row_end: Signal<Local, Bit>,
-    bv: [Signal<Local, Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
+    hit_tap: Signal<Local, Bits<BUF_BITS>>,
     rot1: [Signal<Local, Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
     rot2: [Signal<Local, Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
     // ---- Constants.
@@ -251,8 +256,7 @@ impl VerticalMedian {
             s1_k: Default::default(),
             s1_ph: Default::default(),
             s1_rot: Default::default(),
-            s1_hit: Default::default(),
-            s1_hit_buf: Default::default(),
+            s1_hit_tap: Default::default(),
             s1_hit_d: Default::default(),
             r_v: Default::default(),
             r_d: Default::default(),
@@ -289,7 +293,7 @@ impl VerticalMedian {
             flush_next: Default::default(),
             rot_next: Default::default(),
             row_end: Default::default(),
-            bv: Default::default(),
+            hit_tap: Default::default(),
             rot1: Default::default(),
             rot2: Default::default(),
             k0: ck(0),
@@ -319,9 +323,10 @@ impl Default for VerticalMedian {
 impl Logic for VerticalMedian {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, slot, rot, phase, col, last_col, dropping, overflow_q, s0_write, s0_col, s0_d, s0_buf, s0_out, s0_sof, s0_last, s0_k, s0_ph, s0_rot, s0_hit, s0_hit_buf, s0_hit_d, s1_d, s1_out, s1_sof, s1_last, s1_k, s1_ph, s1_rot, s1_hit, s1_hit_buf, s1_hit_d, r_d, r_out, r_sof, r_last, t_out, t_sof, t_last, o_valid, o_sof, o_last, o_d);
+        dff_setup!(self, clock, slot, rot, phase, col, last_col, dropping, overflow_q, s0_write, s0_col, s0_d, s0_buf, s0_out, s0_sof, s0_last, s0_k, s0_ph, s0_rot, s0_hit, s0_hit_buf, s0_hit_d, s1_d, s1_out, s1_sof, s1_last, s1_k, s1_ph, s1_rot, s1_hit_d, r_d, r_out, r_sof, r_last, t_out, t_sof, t_last, o_valid, o_sof, o_last, o_d);
         for b in 0..MEDIAN_LINE_BUFFERS {
             self.line[b].clock.next = self.clock.val();
+            self.s1_hit_tap[b].clock.next = self.clock.val();
             self.r_v[b].clock.next = self.clock.val();
             self.r_v[b].d.next = self.r_v[b].q.val();
         }
@@ -467,37 +472,34 @@ impl Logic for VerticalMedian {
         self.s1_k.d.next = self.s0_k.q.val();
         self.s1_ph.d.next = self.s0_ph.q.val();
         self.s1_rot.d.next = self.s0_rot.q.val();
-        self.s1_hit.d.next = self.s0_hit.q.val();
-        self.s1_hit_buf.d.next = self.s0_hit_buf.q.val();
+        // The forwarded word's tap: its buffer less the reading slot's
+        // rotation (mod 8).
+        self.hit_tap.next = self.s0_hit_buf.q.val() - self.s0_rot.q.val();
+        for i in 0..MEDIAN_LINE_BUFFERS {
+            self.s1_hit_tap[i].d.next = self.s0_hit.q.val() & (self.hit_tap.val() == self.kbuf[i].val());
+        }
         self.s1_hit_d.d.next = self.s0_hit_d.q.val();
 
         // ================= R: the rows in order =================
-        // The buffers' words (a word written on its read's clock forwarded).
-        for b in 0..MEDIAN_LINE_BUFFERS {
-            self.bv[b].next = self.line[b].read_data.val();
-            if self.s1_hit.q.val() & (self.s1_hit_buf.q.val() == self.kbuf[b].val()) {
-                self.bv[b].next = self.s1_hit_d.q.val();
-            }
-        }
-        // Row k-8+i is in buffer (k + i) mod 8: rotate by k mod 8, by 1,
-        // then 2, then 4.
-        self.rot1[0].next = self.bv[0].val();
-        self.rot1[1].next = self.bv[1].val();
-        self.rot1[2].next = self.bv[2].val();
-        self.rot1[3].next = self.bv[3].val();
-        self.rot1[4].next = self.bv[4].val();
-        self.rot1[5].next = self.bv[5].val();
-        self.rot1[6].next = self.bv[6].val();
-        self.rot1[7].next = self.bv[7].val();
+        // Row k-8+i is in buffer (k + i) mod 8: rotate the buffers' words by
+        // k mod 8, by 1, then 2, then 4.
+        self.rot1[0].next = self.line[0].read_data.val();
+        self.rot1[1].next = self.line[1].read_data.val();
+        self.rot1[2].next = self.line[2].read_data.val();
+        self.rot1[3].next = self.line[3].read_data.val();
+        self.rot1[4].next = self.line[4].read_data.val();
+        self.rot1[5].next = self.line[5].read_data.val();
+        self.rot1[6].next = self.line[6].read_data.val();
+        self.rot1[7].next = self.line[7].read_data.val();
         if self.s1_rot.q.val().get_bit(0) {
-            self.rot1[0].next = self.bv[1].val();
-            self.rot1[1].next = self.bv[2].val();
-            self.rot1[2].next = self.bv[3].val();
-            self.rot1[3].next = self.bv[4].val();
-            self.rot1[4].next = self.bv[5].val();
-            self.rot1[5].next = self.bv[6].val();
-            self.rot1[6].next = self.bv[7].val();
-            self.rot1[7].next = self.bv[0].val();
+            self.rot1[0].next = self.line[1].read_data.val();
+            self.rot1[1].next = self.line[2].read_data.val();
+            self.rot1[2].next = self.line[3].read_data.val();
+            self.rot1[3].next = self.line[4].read_data.val();
+            self.rot1[4].next = self.line[5].read_data.val();
+            self.rot1[5].next = self.line[6].read_data.val();
+            self.rot1[6].next = self.line[7].read_data.val();
+            self.rot1[7].next = self.line[0].read_data.val();
         }
         self.rot2[0].next = self.rot1[0].val();
         self.rot2[1].next = self.rot1[1].val();
@@ -534,6 +536,12 @@ impl Logic for VerticalMedian {
             self.r_v[5].d.next = self.rot2[1].val();
             self.r_v[6].d.next = self.rot2[2].val();
             self.r_v[7].d.next = self.rot2[3].val();
+        }
+        // A word written on its read's clock, on its tap.
+        for i in 0..MEDIAN_LINE_BUFFERS {
+            if self.s1_hit_tap[i].q.val() {
+                self.r_v[i].d.next = self.s1_hit_d.q.val();
+            }
         }
         // The clamp's flags.
         for j in 0..MEDIAN_HALF {
