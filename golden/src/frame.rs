@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use crate::disparity::{interpolate_chunked, interpolate_into, median_of_rows, vertical_median, Anchor};
+use crate::disparity::{interpolate_chunked, interpolate_into, median9_of_two_rows, median_of_rows, vertical_median, Anchor};
 use crate::error::GoldenError;
 use crate::line::{process_line_in, LineBuffers, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
@@ -206,7 +206,8 @@ pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Par
 /// interpolated into a ring of `median_rows` rows and the median of the
 /// rows around it is written out as soon as they are there, so that the
 /// interpolated map is never stored whole (the same values as
-/// [`interpolate_into`] on every row, then [`vertical_median`]).
+/// [`interpolate_into`] on every row, then [`vertical_median`]; nine rows
+/// two output rows at a time, [`median9_of_two_rows`]).
 fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Vec<f64> {
     let features = params.mode.features();
     let (h, rows) = (lines.len(), features.median_rows);
@@ -225,7 +226,29 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
         }
         return disparity;
     }
-    assert!(matches!(rows, 3 | 5 | 9), "vertical median over {rows} rows: 1, 3, 5 or 9 are supported");
+    if rows == 9 {
+        // Two output rows at a time ([`median9_of_two_rows`]): rows y - 4
+        // ..= y + 5, clamped to the image, from a ring of ten.
+        let mut ring = vec![0.0; 10 * w];
+        let mut spare = vec![0.0; w];
+        let mut next = 0;
+        disparity.resize(w * h, 0.0);
+        for y in (0..h).step_by(2) {
+            while next < h && next <= y + 5 {
+                interpolate(&lines[next], &mut ring[(next % 10) * w..][..w]);
+                next += 1;
+            }
+            let around: [&[f64]; 10] = std::array::from_fn(|k| {
+                let r = (y + k).saturating_sub(4).min(h - 1);
+                &ring[(r % 10) * w..][..w]
+            });
+            let (top, rest) = disparity[y * w..].split_at_mut(w);
+            let bottom = if y + 1 < h { &mut rest[..w] } else { &mut spare[..] };
+            median9_of_two_rows(&around, top, bottom);
+        }
+        return disparity;
+    }
+    assert!(matches!(rows, 3 | 5), "vertical median over {rows} rows: 1, 3, 5 or 9 are supported");
     // Interpolated row r lives in slot r % rows; rows y - half ..= y + half
     // (clamped to the image) are there when row y's median is taken.
     let half = rows / 2;
