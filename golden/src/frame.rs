@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use crate::disparity::{interpolate_chunked, interpolate_into, median9_of_two_rows, median_of_rows, vertical_median, Anchor};
+use crate::disparity::{interpolate_chunked, interpolate_into, median9_of_two_rows, vertical_median, Anchor};
 use crate::error::GoldenError;
 use crate::line::{process_line_in, LineBuffers, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
@@ -203,11 +203,10 @@ pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Par
 }
 
 /// Steps 4 and 5 of [`finish_frame`] on one thread, row by row: each row is
-/// interpolated into a ring of `median_rows` rows and the median of the
-/// rows around it is written out as soon as they are there, so that the
-/// interpolated map is never stored whole (the same values as
-/// [`interpolate_into`] on every row, then [`vertical_median`]; nine rows
-/// two output rows at a time, [`median9_of_two_rows`]).
+/// interpolated into a ring of ten rows and the medians of the nine rows
+/// around two output rows are written out as soon as those rows are there,
+/// so that the interpolated map is never stored whole (the same values as
+/// [`interpolate_into`] on every row, then [`vertical_median`]).
 fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Vec<f64> {
     let features = params.mode.features();
     let (h, rows) = (lines.len(), features.median_rows);
@@ -226,47 +225,26 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
         }
         return disparity;
     }
-    if rows == 9 {
-        // Two output rows at a time ([`median9_of_two_rows`]): rows y - 4
-        // ..= y + 5, clamped to the image, from a ring of ten.
-        let mut ring = vec![0.0; 10 * w];
-        let mut spare = vec![0.0; w];
-        let mut next = 0;
-        disparity.resize(w * h, 0.0);
-        for y in (0..h).step_by(2) {
-            while next < h && next <= y + 5 {
-                interpolate(&lines[next], &mut ring[(next % 10) * w..][..w]);
-                next += 1;
-            }
-            let around: [&[f64]; 10] = std::array::from_fn(|k| {
-                let r = (y + k).saturating_sub(4).min(h - 1);
-                &ring[(r % 10) * w..][..w]
-            });
-            let (top, rest) = disparity[y * w..].split_at_mut(w);
-            let bottom = if y + 1 < h { &mut rest[..w] } else { &mut spare[..] };
-            median9_of_two_rows(&around, top, bottom);
-        }
-        return disparity;
-    }
-    assert!(matches!(rows, 3 | 5), "vertical median over {rows} rows: 1, 3, 5 or 9 are supported");
-    // Interpolated row r lives in slot r % rows; rows y - half ..= y + half
-    // (clamped to the image) are there when row y's median is taken.
-    let half = rows / 2;
-    let mut ring = vec![0.0; rows * w];
+    // The modes' median is MEDIAN_ROWS = 9 rows (the Features of every Mode).
+    assert_eq!(rows, 9, "vertical median over {rows} rows on one thread: 1 or 9 are supported");
+    // Two output rows at a time ([`median9_of_two_rows`]): rows y - 4 ..=
+    // y + 5, clamped to the image, from a ring of ten.
+    let mut ring = vec![0.0; 10 * w];
+    let mut spare = vec![0.0; w];
     let mut next = 0;
-    for y in 0..h {
-        while next < h && next <= y + half {
-            interpolate(&lines[next], &mut ring[(next % rows) * w..][..w]);
+    disparity.resize(w * h, 0.0);
+    for y in (0..h).step_by(2) {
+        while next < h && next <= y + 5 {
+            interpolate(&lines[next], &mut ring[(next % 10) * w..][..w]);
             next += 1;
         }
-        // Rows y - half + k, k < rows, clamped to the image.
-        let around: [&[f64]; 9] = std::array::from_fn(|k| {
-            let r = (y + k).saturating_sub(half).min(h - 1);
-            &ring[(r % rows) * w..][..w]
+        let around: [&[f64]; 10] = std::array::from_fn(|k| {
+            let r = (y + k).saturating_sub(4).min(h - 1);
+            &ring[(r % 10) * w..][..w]
         });
-        let start = disparity.len();
-        disparity.resize(start + w, 0.0);
-        median_of_rows(&around[..rows], &mut disparity[start..]);
+        let (top, rest) = disparity[y * w..].split_at_mut(w);
+        let bottom = if y + 1 < h { &mut rest[..w] } else { &mut spare[..] };
+        median9_of_two_rows(&around, top, bottom);
     }
     disparity
 }

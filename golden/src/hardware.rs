@@ -132,7 +132,7 @@ mod parity_tests {
         let params = Params::new(40.0).unwrap();
         // Within the limits: the same declivities, positions rounded down
         // to 1/16 px, d_t to the matcher's 1/2 grey level.
-        let (l, r) = (textured(600, 1), textured(600, 2));
+        let l = textured(600, 1);
         let (free, hw) = (line_features(&l), line_features_with(&l, Some(limits)));
         assert_eq!(free.declivities.len(), hw.declivities.len());
         for (f, h) in free.declivities.iter().zip(&hw.declivities) {

@@ -54,7 +54,8 @@
 //!   interpolator, which the limit on lines in flight below rules out:
 //!   their pixels are not sent),
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
-//!   frame's last rows: the vertical blanking must last two lines),
+//!   frame's last rows: the vertical blanking must last up to four lines,
+//!   `declivity budget` gives the number),
 //!   `lines_full` (lines with
 //!   more than `4·N` declivities on a side: the first are matched),
 //!   `lines_wide` (line pairs with a side wider than [`W_MAX`]: the first
@@ -72,8 +73,8 @@
 //! (`line_cycles`), one line period in the row check (it waits for the
 //! next line's matches), [`CHECK_REGISTER_LAG`] between the row check and
 //! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`,
-//! [`INTERP_REGISTER_LAG`] between the interpolator and the median, two
-//! line periods in the median (it waits for the row two below),
+//! [`INTERP_REGISTER_LAG`] between the interpolator and the median, four
+//! line periods in the median (it waits for the row four below),
 //! [`MEDIAN_REGISTER_LAG`] between the median and the depth stage, the
 //! depth stage's `DEPTH_LAG`, and [`OUTPUT_REGISTER_LAG`] to the output
 //! port. The simulation measures it (`declivity rtl depth`:
@@ -81,7 +82,8 @@
 //! latency is more by the largest backlog of the matcher so far in the
 //! frame (see "Lines in flight"). After the frame's last line the row check
 //! and the median flush their last rows by themselves; the next frame may
-//! start once they have (two lines of vertical blanking).
+//! start once they have (up to four lines of vertical blanking, fewer
+//! when the line period is longer than the line: `declivity budget`).
 //!
 //! ## Lines in flight
 //! The interpolator sends one line per `W` clocks, the cameras' rate, so
