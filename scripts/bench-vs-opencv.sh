@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # Golden model vs OpenCV StereoBM/SGBM, one thread each, on the same machine in the same run.
-# Usage: scripts/bench-vs-opencv.sh [DATA_DIR]   (default ../shared/data/stereo)
+# Usage: scripts/bench-vs-opencv.sh [DATA_DIR]   (default data/stereo)
 # Prints per pair: golden ms (median of 5), BM ms, SGBM ms (median of 5) and the ratios.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-DATA=${1:-../shared/data/stereo}
+DATA=${1:-data/stereo}
 python3 -c "import cv2, numpy" 2>/dev/null || pip install -q numpy opencv-python-headless
-cargo build --release -q -p sim
+cargo build --release -q -p cli
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # The baseline script writes its CSV into the data folder: give it one of ours.
 for d in "$DATA"/*/; do [ -f "$d/meta.txt" ] && ln -s "$(cd "$d" && pwd)" "$work/$(basename "$d")"; done
-python3 ../shared/tools/opencv_baseline.py "$work" --threads 1 > "$work/opencv.txt"
+python3 scripts/opencv_baseline.py "$work" --threads 1 > "$work/opencv.txt"
 for mode in paper robust; do
   ./target/release/declivity eval --json --runs 5 --mode "$mode" "$work"/*/
 done > "$work/golden.jsonl"

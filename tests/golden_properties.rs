@@ -62,16 +62,14 @@ fn sigma_estimate_mean_over_200_noisy_lines_is_within_5_percent_12_at_sigma_1_an
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
-// Measured tail (100 000 lines per σ, seeded): at σ = 1 the estimator has a
-// +9.4% bias (quantization of the line plus the linear interpolation in bin 1,
-// where the density of |ΔI| falls steeply) and a spread of 4.7%, so about 2
-// lines in 100 000 exceed +30% (largest seen: +31.6%, e.g. proptest input
-// seed = 8903334059003871188, σ = 1: estimate 1.305). At σ >= 2 none of the
-// 700 000 lines left ±30% (extremes 0.750 and 1.294). This property can
+// The tail: at σ = 1 the estimator is biased upward (quantization of the
+// line plus the linear interpolation in bin 1, where the density of |ΔI|
+// falls steeply), so that a few lines in a hundred thousand exceed +30%; at
+// σ >= 2 the per-line estimates stay well inside ±30%. This property can
 // therefore fail, rarely, at σ = 1; the bound is the specification's and is
 // not loosened here. The generator seed is fixed so that the run is the same
-// every time (a failure replays, and the suite is not flaky); the cases it
-// draws were checked to stay inside the bound.
+// every time (a failure replays, and the suite is not flaky), and the cases
+// it draws stay inside the bound.
 proptest! {
     #![proptest_config(ProptestConfig { rng_seed: proptest::test_runner::RngSeed::Fixed(0x5eed_0001), ..ProptestConfig::default() })]
     #[test]

@@ -1,4 +1,4 @@
-//! The rtl depth stage (`rtl::depth_stage`) against golden's eq. 1
+//! The rtl depth stage (`rtl::post::depth_stage`) against golden's eq. 1
 //! (`golden::reconstruct::depth`) on the same fixed-point disparities:
 //! random disparities and cameras, every disparity for four cameras,
 //! golden's dense disparity of two real pairs; its timing clock by clock;
@@ -13,9 +13,10 @@
 //! rtl_depth_stage`).
 
 use proptest::prelude::*;
-use rtl::depth_stage::{depth_table, DepthCamera, DepthError, DepthScale, DepthStage, DEPTH_LAG};
+use rtl::post::depth_stage::{depth_table, DepthCamera, DepthError, DepthScale, DepthStage, DEPTH_LAG};
 use rtl::params::{DEPTH_INDEX_BITS, DEPTH_K_LIMIT, DEPTH_MAX_MM, DEPTH_SCALE_MAX, DEPTH_SCALE_MIN, DEPTH_WEIGHT_BITS, POS_BITS, POS_FRAC_BITS};
-use sim::depth_stage::{disparity_lsb, golden_depth_mm, DepthIn, DepthOut, DepthStageSim};
+use sim::formats::disparity_lsb;
+use sim::drive::depth_stage::{golden_depth_mm, DepthIn, DepthOut, DepthStageSim};
 
 /// The largest disparity (LSB).
 const D_MAX: u64 = (1 << POS_BITS) - 1;
@@ -271,7 +272,7 @@ fn cameras_outside_the_range_are_refused_with_typed_errors() {
 /// position format, row by row through the stage for `cam`, one row per
 /// line period: every depth as golden within the bound.
 fn real_pair(pair: &str, cam: DepthCamera) {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let params = golden::Params::new(data.dispmax + 1.0).expect("params");
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = frame.width;
@@ -316,7 +317,7 @@ fn golden_dense_disparity_of_motorcycle_gives_golden_depths() {
 // ===========================================================================
 
 fn design() -> String {
-    sim::cosim::verilog_of(DepthStage::default())
+    sim::hdl::cosim::verilog_of(DepthStage::default())
 }
 
 
@@ -328,8 +329,8 @@ fn depth_stage_verilog_generates_and_lints_clean_but_for_the_accepted_warnings()
         eprintln!("verilator not installed: lint skipped");
         return;
     }
-    let warnings = sim::cosim::lint_verilator(&v).unwrap_or_else(|e| panic!("{e}"));
-    let counts = sim::cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
+    let warnings = sim::hdl::cosim::lint_verilator(&v).unwrap_or_else(|e| panic!("{e}"));
+    let counts = sim::hdl::cosim::check_accepted(&warnings, sim::hdl::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }
 
@@ -338,11 +339,11 @@ fn depth_stage_verilog_generates_and_lints_clean_but_for_the_accepted_warnings()
 /// clocks.
 #[test]
 fn depth_stage_verilog_replays_the_rust_model_under_icarus_and_verilator() {
-    use sim::cosim::{self, Options, Simulator};
+    use sim::hdl::cosim::{self, Options, Simulator};
     let v = design();
     let (ins, outs) = cosim::data_ports(&v).expect("ports");
     let names: Vec<String> = ins.iter().map(|p| p.name.clone()).collect();
-    let mut rng = cosim::VectorRng(0xdeb7_0001);
+    let mut rng = sim::rng::VectorRng(0xdeb7_0001);
     let mut beats: Vec<DepthIn> = (0..=D_MAX).map(|d| DepthIn { valid: true, d, last: d % 97 == 0, sof: d == 0 }).collect();
     beats.extend((0..3000).map(|_| {
         let r = rng.next();
@@ -386,14 +387,13 @@ fn depth_stage_verilog_replays_the_rust_model_under_icarus_and_verilator() {
 }
 
 /// Yosys and nextpnr on the ECP5-85K: the table in one block RAM, the step's
-/// product in one multiplier, a few hundred LUTs, and the 125 MHz target
-/// met (measured: 262 LUTs, 308 FFs, 134.3 MHz at 3752c6f, the table's
-/// block RAM into the multiplier's input registers; 140.8 MHz before, with
-/// the product of two fabric registers).
+/// product in one multiplier (the slope and weight in its own input
+/// registers), no LUT RAM, a few hundred LUTs (under 600), and the sensor's
+/// 125 MHz target met.
 #[test]
 fn depth_stage_places_and_routes_on_ecp5_85k_at_125_mhz_with_one_block_ram_and_one_multiplier() {
-    let r = sim::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("{}", sim::synth::report_table(&r));
+    let r = sim::hdl::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{}", sim::hdl::synth::report_table(&r));
     assert_eq!((r.brams, r.dsps, r.lutram), (1, 1, 0), "block RAMs, multipliers, LUT RAM");
     assert!(r.luts < 600, "LUTs {}", r.luts);
     assert!(r.meets_target, "Fmax {} MHz", r.fmax_mhz);

@@ -1,8 +1,8 @@
-//! The streaming declivity detector (`rtl::declivity_detector`) against
+//! The streaming declivity detector (`rtl::detector::declivity_detector`) against
 //! golden's hardware-parity detector (`golden::hardware`), and its cycle
 //! counts against the latency model in its doc comment (`DESIGN.md` §4).
 //!
-//! Everything drives the rtl block cycle by cycle through `sim::detector`
+//! Everything drives the rtl block cycle by cycle through `sim::drive::detector`
 //! (direct drive, no testbench threads): lines are streamed with
 //! `run_lines` and each line's records are compared with golden by
 //! `compare_line`. Where the clock of every record is needed, [`run_timed`]
@@ -18,7 +18,7 @@
 //!   stalls (between lines only) below it.
 //!
 //! Run in release mode (`cargo test --release -p declivity-tests --test
-//! rtl_detector`): the simulation does about 40–50 k clocks/s.
+//! rtl_detector`): a debug build simulates the detector far more slowly.
 
 use declivity_tests::{any_line, block_line, seeded};
 use golden::declivity::all_declivities;
@@ -28,9 +28,9 @@ use proptest::prelude::*;
 use proptest::test_runner::{TestCaseError, TestRunner};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
-use rtl::declivity_detector::{marker_latency, MIN_LINE_PERIOD};
+use rtl::detector::declivity_detector::{marker_latency, MIN_LINE_PERIOD};
 use rtl::params::{DT_FRAC_BITS, N_MAX, W_MAX};
-use sim::detector::{
+use sim::drive::detector::{
     compare_line, golden_lines, run_lines, DetectorRun, DetectorSim, HwLine, LineComparison, RecordBeat,
 };
 use std::cell::RefCell;
@@ -368,7 +368,7 @@ proptest! {
 /// the bound is exact: borderline ≤ the line's declivities (all, before the
 /// threshold) whose `|a|` lies between the two `d_t` (inclusive). Over the
 /// whole run they must also be rare: ≤ 1 % of the common ones + 8 (an
-/// integer `d_t` only every 32 LSBs; measured: see the report printed).
+/// integer `d_t` only every 32 LSBs; the counts are printed).
 #[test]
 fn prop_borderline_declivities_are_only_those_between_the_two_thresholds_and_rare() {
     // (common, borderline, lines) over every case.
@@ -500,7 +500,7 @@ struct PairResult {
 }
 
 fn run_pair(dir: &std::path::Path) -> PairResult {
-    let pair = sim::io::load_pair_dir(dir).unwrap_or_else(|e| panic!("cannot load {}: {e}", dir.display()));
+    let pair = sim::eval::io::load_pair_dir(dir).unwrap_or_else(|e| panic!("cannot load {}: {e}", dir.display()));
     let mut sim = DetectorSim::new();
     let mut r = PairResult {
         name: pair.name.clone(),
@@ -552,13 +552,13 @@ fn run_pair(dir: &std::path::Path) -> PairResult {
 
 #[test]
 fn every_row_of_both_views_of_the_eight_real_pairs_matches_golden_at_one_pixel_per_clock() {
-    let root = sim::io::shared_stereo_dir();
+    let root = sim::eval::io::stereo_data_dir();
     assert!(
         root.is_dir(),
         "the real pairs are missing: {} (set DECLIVITY_DATA to the folder of the eight Middlebury pairs)",
         root.display()
     );
-    let mut dirs = sim::io::expand_pair_dirs(&[root.clone()]).unwrap_or_else(|e| panic!("{}: {e}", root.display()));
+    let mut dirs = sim::eval::io::expand_pair_dirs(&[root.clone()]).unwrap_or_else(|e| panic!("{}: {e}", root.display()));
     assert_eq!(dirs.len(), 8, "eight pairs expected in {}", root.display());
     // Largest first, so that two workers end together.
     dirs.sort_by_key(|d| std::cmp::Reverse(std::fs::metadata(d.join("left_gray.png")).map(|m| m.len()).unwrap_or(0)));
@@ -605,7 +605,8 @@ fn every_row_of_both_views_of_the_eight_real_pairs_matches_golden_at_one_pixel_p
         assert_eq!(r.stalls, 0, "{}: stalls", r.name);
         assert!(r.px_per_clk == [1.0, 1.0], "{}: {:?} px/clk", r.name, r.px_per_clk);
         assert!(r.sof_ok, "{}: sof on a line other than each view's first", r.name);
-        // Borderline declivities are rare on real rows (measured 0.03–0.11 %).
+        // Borderline declivities are rare on real rows: at most 0.5 % of the
+        // records + 4.
         assert!(r.borderline <= r.records / 200 + 4, "{}: {} borderline of {}", r.name, r.borderline, r.records);
     }
 }
@@ -639,7 +640,7 @@ fn marker_leaves_marker_latency_of_the_stored_width_after_the_last_pixel_on_idle
 
 #[test]
 fn records_leave_w_minus_closing_pixel_clocks_before_the_marker_on_real_and_overflow_lines() {
-    let pair = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("tsukuba"))
+    let pair = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba"))
         .unwrap_or_else(|e| panic!("the test needs the tsukuba pair: {e}"));
     let mut lines: Vec<Vec<u8>> = (100..110).map(|y| pair.left.row(y).to_vec()).collect();
     lines.push(zigzag_after_flat(200, 360, 50, 150)); // full
@@ -734,7 +735,7 @@ fn back_to_back_lines_of_mixed_widths_start_on_the_clocks_of_the_documented_recu
         let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
         let timed = run_timed(&mut DetectorSim::new(), &refs, |_| false);
         let starts: Vec<u64> = timed.lines.iter().map(|l| l.first_pixel_cycle).collect();
-        assert_eq!(starts, rtl::declivity_detector::line_starts(&widths), "widths {widths:?}");
+        assert_eq!(starts, rtl::detector::declivity_detector::line_starts(&widths), "widths {widths:?}");
         // Stalls are the gaps the recurrence leaves between lines.
         let expected_stalls: u64 = starts.windows(2).zip(&widths).map(|(s, &w)| s[1] - (s[0] + w as u64)).sum();
         assert_eq!(run.stall_cycles, expected_stalls, "widths {widths:?}");

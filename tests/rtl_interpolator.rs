@@ -1,9 +1,9 @@
-//! The rtl interpolator (`rtl::interpolator`) against golden's interpolation
+//! The rtl interpolator (`rtl::post::interpolator`) against golden's interpolation
 //! (`golden::disparity::interpolate_into`, ends held), on generated lines
 //! and on the matches of every row of real pairs, and its timing against
 //! the constants in its doc comment.
 //!
-//! Both get the same fixed-point anchors (`sim::interpolator`): golden
+//! Both get the same fixed-point anchors (`sim::drive::interpolator`): golden
 //! interpolates them as reals. The pixels that hold a value (before the
 //! first match, from the last one's pixel on, across a jump) must be equal;
 //! a pixel of a ramp between matches `a`, `b` may differ by the
@@ -15,9 +15,9 @@
 //! rtl_interpolator`).
 
 use proptest::prelude::*;
-use rtl::interpolator::{recip_table, LINE_QUEUE, PIXEL_LAG, SEGMENT_LAG};
+use rtl::post::interpolator::{recip_table, LINE_QUEUE, PIXEL_LAG, SEGMENT_LAG};
 use rtl::params::{EDGE_JUMP_LSB, N_MAX, POS_BITS, POS_FRAC_BITS, RECIP_INDEX_BITS, RECIP_SHIFT, W_MAX};
-use sim::interpolator::{fixed_anchors, golden_line, AnchorLine, FixedAnchor, InterpolatorSim, PixelLine};
+use sim::drive::interpolator::{fixed_anchors, golden_line, AnchorLine, FixedAnchor, InterpolatorSim, PixelLine};
 
 /// One position LSB (1/16 px).
 const PX: u32 = 1 << POS_FRAC_BITS;
@@ -311,9 +311,9 @@ fn the_edge_jump_is_golden_default_mode_edge_jump() {
 /// back to back, and the share within a quarter pixel reported and
 /// required ≥ 99.5 %.
 fn real_pair(pair: &str) {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::detector::hardware_limits());
+    params.hardware = Some(sim::formats::hardware_limits());
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = data.left.width();
     let lines: Vec<AnchorLine> = frame.lines.iter().enumerate().map(|(y, l)| fixed_anchors(&l.matches, w, y == 0)).collect();

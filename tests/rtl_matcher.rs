@@ -1,15 +1,15 @@
-//! The rtl matcher (`rtl::declivity_matcher`: gain cells, systolic array,
+//! The rtl matcher (`rtl::matcher::declivity_matcher`: gain cells, systolic array,
 //! traceback) against golden's matcher (eq. 4–9, `golden::gain`,
 //! `golden::dp`), and its cycle counts against the formulas in its doc
 //! comments (`DESIGN.md` §4).
 //!
 //! Both models get the same declivities in the hardware's fixed-point
-//! formats (`sim::matcher`): every local gain is then an integer number of
+//! formats (`sim::drive::matcher`): every local gain is then an integer number of
 //! `2^-GAIN_FRAC_BITS` grey levels in both, golden's f64 sums of them are
 //! exact, and the gain tolerance is zero. So the properties are strict: the
 //! rtl path is golden's node for node (ties included: both break them in
 //! the order start, node, up, left), and the path gain on the marker is
-//! golden's optimum exactly. `sim::matcher::agreement` still counts a line
+//! golden's optimum exactly. `sim::drive::matcher::agreement` still counts a line
 //! whose path differs but has golden's optimal gain ("equal gain") apart
 //! from a true mismatch; the tests require identical lines.
 //!
@@ -25,18 +25,18 @@
 //! the sensor's matcher, `N_CELLS` = 32 cells for `N_MAX` = 128 rows.
 //!
 //! Run in release mode (`cargo test --release -p declivity-tests --test
-//! rtl_matcher`): rust-hdl simulates the 32-cell matcher at a few thousand
-//! clocks/s per core.
+//! rtl_matcher`): a debug build simulates the 32-cell matcher far more
+//! slowly.
 
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
-use rtl::declivity_matcher::{
+use rtl::matcher::declivity_matcher::{
     line_cycles, line_period, schedule, sweep_cycles, EngineLine, GainRule, OUTPUT_LAG, TAKE_AFTER_MARKER,
 };
-use rtl::traceback::traceback_cycles;
+use rtl::matcher::traceback::traceback_cycles;
 use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
-use sim::matcher::{
+use sim::drive::matcher::{
     agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
     MatcherSim,
 };
@@ -295,7 +295,7 @@ proptest! {
     }
 }
 
-/// The engine's timing as `rtl::declivity_matcher::schedule` states it, for
+/// The engine's timing as `rtl::matcher::declivity_matcher::schedule` states it, for
 /// pairs whose work is known from golden (n, m, the walk's stop diagonal, the
 /// pairs).
 fn engine_lines(cases: &[Case], got: &[MatchedLine], dispmax: u32, rule: GainRule, cells: usize) -> Vec<EngineLine> {
@@ -400,7 +400,7 @@ fn the_worst_line_pair_of_n_max_declivities_fits_in_the_line_time_of_a_w_max_lin
 
 /// Every row of `pair` through the sensor's matcher; all lines identical.
 fn real_pair(pair: &str, rule: GainRule) {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let lines = image_lines(&data.left, &data.right);
     let dispmax = ((data.dispmax + 1.0) * PX as f64) as u32;
     let (report, outcomes) = match_image::<N_CELLS>(pair, &lines, rule, dispmax, 2, &|| {});

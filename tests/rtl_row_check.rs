@@ -1,9 +1,9 @@
-//! The rtl row check (`rtl::row_check`) against golden's check across
+//! The rtl row check (`rtl::post::row_check`) against golden's check across
 //! neighbouring rows (`golden::frame::confirmed_matches`), on generated
 //! frames and on every row of real pairs, and its timing against the
 //! constants in its doc comment.
 //!
-//! Both get the same fixed-point matches (`sim::row_check`): golden checks
+//! Both get the same fixed-point matches (`sim::drive::row_check`): golden checks
 //! them as reals (`x / 16`, `d / 16`, exact), so the kept matches must be
 //! exactly equal.
 //!
@@ -12,8 +12,8 @@
 
 use proptest::prelude::*;
 use rtl::params::{CONSISTENT_DD_LSB, CONSISTENT_DX_LSB, N_MAX, POS_FRAC_BITS, W_MAX};
-use rtl::row_check::{row_check_cycles, row_check_period, RowCheck, ROW_FIRST_LAG, ROW_RESTART_LAG, ROW_START_LAG};
-use sim::row_check::{frame_rows, golden_kept, row_beats, unchecked_rows, Beat, FixedMatch, RowCheckSim, RowRun, TimedRow};
+use rtl::post::row_check::{row_check_cycles, row_check_period, RowCheck, ROW_FIRST_LAG, ROW_RESTART_LAG, ROW_START_LAG};
+use sim::drive::row_check::{frame_rows, golden_kept, row_beats, unchecked_rows, Beat, FixedMatch, RowCheckSim, RowRun, TimedRow};
 
 /// One position LSB (1/16 px).
 const PX: u64 = 1 << POS_FRAC_BITS;
@@ -315,9 +315,9 @@ fn the_thresholds_are_golden_consistency_bounds() {
 /// `confirmed_matches` of the same values, on the documented clocks,
 /// nothing dropped.
 fn real_pair(pair: &str) {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::detector::hardware_limits());
+    params.hardware = Some(sim::formats::hardware_limits());
     assert!(params.mode.features().consistent, "the default mode checks across rows");
     let frame = unchecked_rows(&data.left, &data.right, &params);
     let w = data.left.width();
@@ -351,14 +351,14 @@ fn every_row_of_cones_keeps_golden_confirmed_matches() {
 
 #[test]
 fn row_check_generates_verilog_that_lints_clean_but_for_the_accepted_warnings() {
-    let v = sim::cosim::verilog_of(RowCheck::new());
+    let v = sim::hdl::cosim::verilog_of(RowCheck::new());
     assert!(v.contains("module top") && v.contains("DP16KD"), "the Verilog holds the block and its block RAMs");
     if std::process::Command::new("verilator").arg("--version").output().is_err() {
         eprintln!("verilator not installed: lint skipped");
         return;
     }
-    let warnings = sim::cosim::lint_verilator(&v).unwrap_or_else(|e| panic!("{e}"));
-    let counts = sim::cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
+    let warnings = sim::hdl::cosim::lint_verilator(&v).unwrap_or_else(|e| panic!("{e}"));
+    let counts = sim::hdl::cosim::check_accepted(&warnings, sim::hdl::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }
 
@@ -368,11 +368,11 @@ fn row_check_generates_verilog_that_lints_clean_but_for_the_accepted_warnings() 
 /// too short (rows dropped) to long, with idle clocks between matches.
 #[test]
 fn row_check_verilog_replays_the_rust_model_under_icarus_and_verilator() {
-    use sim::cosim::{self, Options, Simulator};
-    let v = sim::cosim::verilog_of(RowCheck::new());
+    use sim::hdl::cosim::{self, Options, Simulator};
+    let v = sim::hdl::cosim::verilog_of(RowCheck::new());
     let (ins, outs) = cosim::data_ports(&v).expect("ports");
     let names: Vec<String> = ins.iter().map(|p| p.name.clone()).collect();
-    let mut rng = cosim::VectorRng(0x0c0f_fee5);
+    let mut rng = sim::rng::VectorRng(0x0c0f_fee5);
     let mut rows: Vec<TimedRow> = Vec::new();
     // Frames of `h` rows: `n` matches `step` apart, rows `period` clocks
     // apart; the first two fixed (denser than a pixel: crowded; full rows
@@ -443,20 +443,14 @@ fn row_check_verilog_replays_the_rust_model_under_icarus_and_verilator() {
 }
 
 /// Yosys and nextpnr place and route the row check on the ECP5-85K
-/// (`sim::synth`, target 125 MHz): its six block RAMs (three copies of
+/// (`sim::hdl::synth`, target 125 MHz): its six block RAMs (three copies of
 /// two), no multiplier, no LUT RAM. The report (LUTs, FFs, Fmax, critical
-/// path) is printed, not checked: measured at commit time 2580 LUTs, 1439
-/// FFs, 146.9 MHz with nextpnr's default seed (136-148 MHz over seeds
-/// 0-5); critical path a window's read issue (a registered left-of-window
-/// flag, the slot's release, the free-slot test, the read counter's
-/// enable), with other seeds a compared match's operand through a
-/// comparison's carry chain into the registered confirmations, or the
-/// prefetch ring's one-hot pointer through its read into the compare
-/// stage.
+/// path) is printed, not checked: Fmax and the critical path change with
+/// nextpnr's placer seed.
 #[test]
 fn row_check_places_and_routes_on_ecp5_85k_with_six_block_rams() {
-    let v = sim::cosim::verilog_of(RowCheck::new());
-    let r = sim::synth::synthesize(&v, 125.0).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("{}", sim::synth::report_table(&r));
+    let v = sim::hdl::cosim::verilog_of(RowCheck::new());
+    let r = sim::hdl::synth::synthesize(&v, 125.0).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{}", sim::hdl::synth::report_table(&r));
     assert_eq!((r.brams, r.dsps, r.lutram), (6, 0, 0), "block RAMs, multipliers, LUT RAM");
 }

@@ -1,4 +1,4 @@
-//! The camera input's register slice (`rtl::skid_buffer`), driven clock by
+//! The camera input's register slice (`rtl::stream::skid_buffer`), driven clock by
 //! clock: every beat the camera hands over leaves toward the detector once,
 //! in order, with its `tuser` and `tlast`, whatever the detector's `tready`
 //! does; `s_tready` is a register (the detector's `tready` does not reach
@@ -16,7 +16,7 @@ use proptest::collection::vec;
 use proptest::prelude::*;
 use rtl::params::PIXEL_BITS;
 use rtl::rust_hdl::prelude::*;
-use rtl::skid_buffer::{SkidBuffer, SKID_LAG};
+use rtl::stream::skid_buffer::{SkidBuffer, SKID_LAG};
 
 /// A beat: grey level, start of frame, end of line.
 type Beat = (u8, bool, bool);
@@ -91,7 +91,7 @@ fn beats_of(row: &[u8], sof: bool) -> Vec<Beat> {
 }
 
 fn tsukuba_rows(rows: std::ops::Range<usize>) -> Vec<Beat> {
-    let pair = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("tsukuba"))
+    let pair = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba"))
         .unwrap_or_else(|e| panic!("the test needs the tsukuba pair: {e}"));
     let first = rows.start;
     rows.flat_map(|y| beats_of(pair.left.row(y), y == first)).collect()

@@ -2,12 +2,13 @@
 //! real pair: two camera streams in, the disparity and depth map out, equal
 //! to its blocks run one after the other and within 1/4 px of golden.
 
-use rtl::declivity_matcher::GainRule;
-use rtl::depth_stage::DepthCamera;
-use rtl::interpolator::LINE_QUEUE;
+use rtl::matcher::declivity_matcher::GainRule;
+use rtl::post::depth_stage::DepthCamera;
+use rtl::post::interpolator::LINE_QUEUE;
 use rtl::params::{EDGE_JUMP_LSB, N_CELLS};
 use rtl::stereo_line_processor::LINES_IN_FLIGHT;
-use sim::stereo::{agree_quarter_px, golden_map, StereoSim};
+use sim::drive::stereo::{golden_map, StereoSim};
+use sim::eval::scores::agree_quarter_px;
 
 /// Rows `rows` of both images of `pair`.
 fn crop(img: &golden::GreyImage, rows: std::ops::Range<usize>) -> golden::GreyImage {
@@ -17,7 +18,7 @@ fn crop(img: &golden::GreyImage, rows: std::ops::Range<usize>) -> golden::GreyIm
 
 #[test]
 fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_other() {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("tsukuba")).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
     let (left, right) = (crop(&data.left, 100..116), crop(&data.right, 100..116));
     let dispmax = data.dispmax + 1.0;
     let run = run_and_report("tsukuba rows 100..116", &left, &right, dispmax);
@@ -27,24 +28,23 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
     assert_eq!(run.rows.len(), left.height());
     assert_eq!((run.records_dropped, run.lines_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
     let (blocks, depth) =
-        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
+        sim::drive::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
     assert_eq!(blocks.len(), run.rows.len());
     for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
         assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
     }
     assert_eq!(run.depth_rows, depth, "the depths differ from the depth stage's on the same map");
     // Issue 6's target, against golden's hardware parity (the detector's
-    // limits and the formats the matcher sees). (Before golden's parity
-    // took the formats, this band agreed on 0.958 of its pixels: a position
-    // moved by less than 1/16 px changes a near tie of eq. 9.)
+    // limits and the formats the matcher sees: parity needs the formats, as
+    // a position moved by less than 1/16 px changes a near tie of eq. 9).
     assert!(agree >= 0.995, "{agree}");
 }
 
 
 /// Runs the pair through the default line processor (`dispmax` px) and
 /// prints what came out, the speed and the queues' peaks.
-fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> sim::stereo::StereoRun {
-    let mut sim = StereoSim::<N_CELLS>::robust(sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
+fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> sim::drive::stereo::StereoRun {
+    let mut sim = StereoSim::<N_CELLS>::robust(sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
     let t = std::time::Instant::now();
     let run = sim.run(left, right, 0, |_| {});
     let secs = t.elapsed().as_secs_f64();
@@ -70,7 +70,7 @@ fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImag
 
 /// Prints the probe's state on each dropped line and the lines' clocks
 /// through the stages around it (diagnostics).
-fn print_probe(what: &str, run: &sim::stereo::StereoRun, width: usize) {
+fn print_probe(what: &str, run: &sim::drive::stereo::StereoRun, width: usize) {
     let p = &run.probe;
     eprintln!("{what}: peaks {:?} (interpolator's lines at clock {})", p.peak, p.peak_interp_cycle);
     for d in &p.drops {
@@ -88,14 +88,13 @@ fn print_probe(what: &str, run: &sim::stereo::StereoRun, width: usize) {
 /// matching takes longer than their 434-clock line) and the record queues
 /// hold the backlog; the interpolator's output, which sends a line per line
 /// time and so never catches up, stays that far behind while the matcher
-/// catches up, and around row 305 the interpolator had to hold five lines.
-/// With a four-line queue it dropped one (the whole frame: `lines_dropped`
-/// 1, agree 0.9829). The line processor now keeps at most
-/// `LINES_IN_FLIGHT` lines between the matcher's input and the
-/// interpolator's output, all of which the interpolator holds.
+/// catches up, so that the interpolator holds more than four lines at once.
+/// The line processor keeps at most `LINES_IN_FLIGHT` lines between the
+/// matcher's input and the interpolator's output, all of which the
+/// interpolator holds (`LINE_QUEUE`): no line is dropped.
 #[test]
 fn venus_after_its_slow_stretch_loses_no_line() {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("venus")).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("venus")).expect("the pair loads");
     let rows = 228..310;
     let (left, right) = (crop(&data.left, rows.clone()), crop(&data.right, rows.clone()));
     let dispmax = data.dispmax + 1.0;
@@ -108,8 +107,7 @@ fn venus_after_its_slow_stretch_loses_no_line() {
     assert_eq!(run.rows.len(), left.height());
     assert!(agree >= 0.995, "{agree}");
     assert!(peak.in_flight as usize <= LINES_IN_FLIGHT && peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
-    // The band still stresses the queue: more lines at once than the old
-    // four.
+    // The band stresses the queue: more than four lines at once.
     assert!(peak.interp_lines > 4, "the band no longer fills the interpolator's queue: {peak:?}");
 }
 
@@ -163,7 +161,7 @@ fn lines_after_a_backlog_are_held_in_the_record_queues_not_dropped() {
     assert!(peak.held_clocks > 0, "{peak:?}");
     assert!(peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
     let (blocks, depth) =
-        sim::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::budget::dispmax_lsb(dispmax).expect("dispmax"));
+        sim::drive::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
     assert_eq!(blocks.len(), run.rows.len());
     for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
         assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");

@@ -1,10 +1,10 @@
-//! The rtl vertical median (`rtl::vertical_median`) against golden's
+//! The rtl vertical median (`rtl::post::vertical_median`) against golden's
 //! (`golden::disparity::vertical_median`, `MEDIAN_ROWS` rows), on generated
 //! frames and on the robust mode's dense maps of real pairs before their
 //! median, and its timing against `MEDIAN_LAG` and the flush rule of its
 //! doc comment, clock by clock.
 //!
-//! Both get the same fixed-point values (`sim::vertical_median`): golden
+//! Both get the same fixed-point values (`sim::drive::vertical_median`): golden
 //! takes them as reals (`d / 16`, exact). A median is one of its inputs, so
 //! the two must be equal on every pixel.
 //!
@@ -15,10 +15,11 @@ use golden::disparity::{interpolate_into, vertical_median, Anchor};
 use golden::params::{EndRule, EDGE_JUMP, MEDIAN_ROWS};
 use proptest::prelude::*;
 use rtl::params::{MEDIAN_HALF, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, POS_BITS, W_MAX};
-use rtl::vertical_median::MEDIAN_LAG;
-use sim::cosim::{self, Options, Simulator};
-use sim::vertical_median::{
-    frame_beats, golden_median, median_trace, median_verilog, quantise_map, split_rows, MedianBeat, MedianTiming, VerticalMedianSim,
+use rtl::post::vertical_median::MEDIAN_LAG;
+use sim::hdl::cosim::{self, Options, Simulator};
+use sim::hdl::traces::{median_trace, median_verilog};
+use sim::drive::vertical_median::{
+    frame_beats, golden_median, quantise_map, split_rows, MedianBeat, MedianTiming, VerticalMedianSim,
 };
 
 /// The largest disparity.
@@ -237,9 +238,9 @@ fn the_median_has_golden_default_mode_rows_and_one_buffer_per_row_above() {
 /// flag, interpolated as its step 4 does. Checked: golden's median of it is
 /// golden's final map.
 fn robust_map_before_median(pair: &str) -> (Vec<f64>, usize) {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(pair)).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::detector::hardware_limits());
+    params.hardware = Some(sim::formats::hardware_limits());
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = frame.width;
     let mut map = vec![0.0; w * frame.height];

@@ -184,7 +184,7 @@ pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &m
 /// The compare-exchanges of the median of nine values (Paeth's network, as
 /// in N. Devillard's `opt_med9`): `(a, b)` leaves `min` at `a` and `max` at
 /// `b`; after the 19 of them, in this order, value 4 is the median. Each
-/// line is one step of the hardware's pipeline (`rtl::vertical_median`): its
+/// line is one step of the hardware's pipeline (`rtl::post::vertical_median`): its
 /// exchanges touch distinct values.
 pub const MEDIAN9_NETWORK: [&[(usize, usize)]; 9] = [
     &[(1, 2), (4, 5), (7, 8)],

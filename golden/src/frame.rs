@@ -252,8 +252,9 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
 /// [`confirmed_matches`] as one flat list of flags, row after row (each
 /// row's flags followed by three unused slots), and the index of each row's
 /// first flag: the same merge of each pair of adjacent
-/// rows, without a branch on the data where it can be avoided (mispredicted
-/// branches were most of its time in a frame). The positions and disparities
+/// rows, without a branch on the data where it can be avoided (such
+/// branches are mispredicted often and would dominate its time). The
+/// positions and disparities
 /// are copied out of the matches, each row closed by three `+∞` positions;
 /// a window's first three matches are checked unconditionally and a loop
 /// runs only when it holds more (rare: matches are seldom closer than

@@ -3,7 +3,7 @@
 //! frames processed as the hardware would process them.
 //!
 //! The hardware stores at most `w_max` pixels of a line and sends at most
-//! `n_max` characteristic declivities per line (`rtl::declivity_detector`):
+//! `n_max` characteristic declivities per line (`rtl::detector::declivity_detector`):
 //! - a longer line is processed as its first `w_max` pixels (its threshold,
 //!   declivities and attributes come from them alone) and flagged `wide`;
 //! - a line with more characteristic declivities keeps the first `n_max`,
@@ -14,8 +14,8 @@
 //! bits (the eq. 3 divider's quotient), `d_t` rounded to `dt_frac_bits`
 //! (the threshold unit's) then down to `match_dt_frac_bits` (the gain
 //! rule's). Without the last step, golden's optimal path differs from the
-//! hardware's on about 2 % of the pixels of tsukuba and cones: a position
-//! moved by less than 1/16 px changes a near tie of eq. 9.
+//! hardware's on some pixels: a position moved by less than 1/16 px changes
+//! a near tie of eq. 9.
 //!
 //! Everything else is golden's f64 method unchanged.
 

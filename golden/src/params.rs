@@ -45,9 +45,12 @@ pub struct Features {
     /// of a declivity's two end levels, and nodes only between declivities of
     /// one polarity. A brightness offset between the cameras then no longer
     /// pushes true pairs over `gmax`.
-    /// Hardware: the detector emits the six neighbour levels relative to the
-    /// end-level mean (6 subtractors, 10-bit); each PE compares 10-bit instead
-    /// of 8-bit levels and the two polarity bits (1 XOR). No added latency.
+    /// Hardware: the matcher's record memory stores the six neighbour
+    /// levels relative to the end-level mean as they come in, doubled
+    /// (`2·I - (I(x_i) + I(x_{i+1}))` plus an offset: one adder and 6
+    /// subtractors, 10-bit; the paper's rule stores `2·I` plus the offset in
+    /// the same format); each processing element also compares the two
+    /// polarity bits (1 XOR). No added latency.
     pub relative: bool,
     /// A node similar on one side only (the paper's "partially masked"
     /// case) gets `gmax - d_similar` instead of `gmax - lpd - rpd ≤ 0`, so it
@@ -58,10 +61,11 @@ pub struct Features {
     /// A match is kept only if the row above or the row below has a match
     /// within [`CONSISTENT_DX`] px of it whose disparity differs by at most
     /// [`CONSISTENT_DD`] px: isolated wrong matches are dropped.
-    /// Hardware: the matches of the previous and next lines in two buffers
-    /// of `N_MAX` (position, disparity) entries; matches are sorted, so each
-    /// is checked by a merge with 2 comparators per neighbour line. Latency:
-    /// one line period.
+    /// Hardware (`rtl::post::row_check`): the matches of four rows (above,
+    /// checked, below, incoming) in banks of `N_MAX` (position, disparity)
+    /// entries; matches are sorted, so each neighbour row is read in order
+    /// into a window of eight entries, and each match is compared with the
+    /// entries held. Latency: one line period.
     pub consistent: bool,
     /// Between consecutive matches whose disparities differ by more than
     /// this (px), the interpolation holds the smaller disparity (the
@@ -71,9 +75,10 @@ pub struct Features {
     pub edge_jump: Option<f64>,
     /// Rows of a vertical median of the dense disparity map (1 = none):
     /// streaks of a single wrong line disappear.
-    /// Hardware: `median_rows - 1` line buffers of `W_MAX` 16-bit
-    /// disparities and a median network per pixel (19 compare-exchange
-    /// steps for 9 rows, `crate::disparity::MEDIAN9_NETWORK`). Latency:
+    /// Hardware (`rtl::post::vertical_median`): `median_rows - 1` line
+    /// buffers of `W_MAX` 14-bit disparities (one block RAM each) and a
+    /// median network per pixel (for 9 rows the 19 compare-exchanges of
+    /// `crate::disparity::MEDIAN9_NETWORK`, pipelined). Latency:
     /// `median_rows / 2` lines.
     pub median_rows: usize,
     /// Matches whose disparity differs by more than this (px) from that of
@@ -104,8 +109,7 @@ pub const EDGE_JUMP: f64 = 6.0;
 pub const EDGE_FLAG_JUMP: f64 = 2.0;
 /// [`Features::median_rows`] of the modes that use it: of 5, 7, 9 and 11
 /// rows (`sim` example `accuracy_limits -- medians`), 9 is the fewest that
-/// brings the robust mode's mean bad2 on the eight pairs below SGBM's
-/// (18.1; 5 rows 18.9, 7 rows 18.5, 11 rows 18.05).
+/// brings the robust mode's mean bad2 on the eight pairs below SGBM's.
 pub const MEDIAN_ROWS: usize = 9;
 
 impl Mode {

@@ -1,12 +1,23 @@
 //! # rtl — the declivity stereo sensor as cycle-accurate rust-hdl blocks
 //!
-//! The hardware half of the project (`DESIGN.md` §3): a declivity detector
-//! per camera (one pixel per clock, ping-pong line buffer, |ΔI| histogram and
-//! median for `d_t`, extrema tracking and the eq. 3 divider), a systolic
-//! matcher (processing elements of two reference declivities each computing
-//! eq. 4–9 in fixed point), a traceback, an interpolator/depth stage and the top level
-//! joining them. Each block generates Verilog that is co-simulated bit-exactly
-//! against the Rust model and checked against `golden`.
+//! The hardware half of the project (`DESIGN.md` §3), one block per file,
+//! grouped by pipeline stage:
+//!
+//! - [`stream`]: the cameras' register slices and the record queues;
+//! - [`detector`]: a declivity detector per camera (one pixel per clock,
+//!   ping-pong line buffer, |ΔI| histogram and median for `d_t`, extrema
+//!   tracking and the eq. 3 divider);
+//! - [`matcher`]: a systolic array of gain cells, each holding
+//!   [`params::ROWS_PER_CELL`] reference declivities and computing eq. 4–9
+//!   in fixed point, and the traceback of the optimal path;
+//! - [`post`]: the row check, the interpolator, the vertical median and the
+//!   depth stage;
+//! - [`primitives`]: block RAM, LUT RAM, logic ROM and DSP multipliers;
+//! - [`stereo_line_processor`]: the top level joining them;
+//! - [`params`]: the generation-time sizes and fixed-point formats.
+//!
+//! Each block generates Verilog that is co-simulated bit-exactly against the
+//! Rust model and checked against `golden`.
 //!
 //! Conventions in every block: one clock input `clock`, no reset (registers
 //! start from their Verilog `initial` values, which rust-hdl writes), and
@@ -14,30 +25,12 @@
 //! context-sized expressions compute exactly what the Rust simulation does.
 
 pub mod params;
-pub mod pixel_window;
-pub mod skid_buffer;
-pub mod adaptive_threshold;
-pub mod declivity_detector;
-pub mod declivity_tracker;
-pub mod position_divider;
-pub mod gain_cell;
-pub mod systolic_matcher;
-pub mod choice_word;
-pub mod traceback;
-pub mod block_ram;
-pub mod lut_ram;
-pub mod logic_rom;
-pub mod dsp_multiplier;
-pub mod record_input;
-pub mod record_memory;
-pub mod declivity_matcher;
-pub mod record_fifo;
-pub mod interpolator;
+pub mod stream;
+pub mod detector;
+pub mod matcher;
+pub mod post;
+pub mod primitives;
 pub mod stereo_line_processor;
-pub mod row_check;
-pub mod neighbour_window;
-pub mod vertical_median;
-pub mod depth_stage;
 
 pub use rust_hdl;
 

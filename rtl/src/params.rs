@@ -12,17 +12,17 @@ pub const PIXEL_BITS: usize = 8;
 /// log2 of the maximum line width `W_MAX`.
 pub const W_MAX_BITS: usize = 10;
 /// `W_MAX`: the widest line the detector stores (pixels beyond it are
-/// dropped and the line is flagged; see [`crate::declivity_detector`]).
+/// dropped and the line is flagged; see [`crate::detector::declivity_detector`]).
 pub const W_MAX: usize = 1 << W_MAX_BITS;
 /// Bits of a pixel index `x < W_MAX`.
 pub const X_BITS: usize = W_MAX_BITS;
 /// Address bits of the ping-pong line buffer: one bank bit above `x`.
 pub const LINE_BUF_ADDR_BITS: usize = W_MAX_BITS + 1;
 
-/// `N_MAX`: characteristic declivities kept per line. Measured on the eight
-/// Middlebury pairs: 27–82 per line on average and at most 117 (motorcycle,
-/// 741 px wide), so 128 covers every row with room to spare; the 129th and
-/// later declivities of a line are dropped and the line is flagged.
+/// `N_MAX`: characteristic declivities kept per line. A line of the eight
+/// Middlebury pairs has at most 117 (motorcycle, 741 px wide), so 128
+/// covers every row with room to spare; the 129th and later declivities of
+/// a line are dropped and the line is flagged.
 pub const N_MAX: usize = 128;
 /// Bits of a per-line declivity count `0 ..= N_MAX`.
 pub const COUNT_BITS: usize = 8;
@@ -208,18 +208,19 @@ pub const RECIP_SHIFT: usize = POS_BITS - 1 + RECIP_BITS;
 /// Address bits of the interpolator's segment memory (`2^SEG_ADDR_BITS`
 /// = 1024 entries): with a full line queue, the other `LINE_QUEUE - 1`
 /// lines' segments, at most `N_MAX - 1` each (889), leave a line's reserve
-/// (`N_MAX - 1 + 3` = 130) free, so a line the queue has room for is never
-/// dropped for want of segments. Still one `DP16KD` per field (1024 words
-/// of 18 bits, the most one holds).
+/// ([`SEG_RESERVE`](crate::post::interpolator::SEG_RESERVE),
+/// `N_MAX - 1 + 4` = 131) free, so a line the queue has room for is never
+/// dropped for want of segments. One `DP16KD` per field (1024 words of 18
+/// bits, the most one holds).
 pub const SEG_ADDR_BITS: usize = INDEX_BITS + 3;
-/// Address bits of the interpolator's line queue (8 lines). Lines reach the
+/// Address bits of the interpolator's line queue (8 lines,
+/// [`LINE_QUEUE`](crate::post::interpolator::LINE_QUEUE)). Lines reach the
 /// interpolator in bursts when the matcher catches up on a backlog, while
-/// it sends one per `W` clocks and so never catches up itself: on venus
-/// (434 px) the matcher fell about three line times behind (rows 231-246)
-/// and at row 305 the queue had to hold five lines (four dropped one). The
-/// line processor keeps at most this many lines between the matcher's
-/// input and the interpolator's output (`rtl::stereo_line_processor`,
-/// "Lines in flight"), so the interpolator never drops one there.
+/// it sends one per `W` clocks and so never catches up itself: after a
+/// busy stretch of lines the queue holds several lines at once. The line
+/// processor keeps at most this many lines between the matcher's input and
+/// the interpolator's output (`rtl::stereo_line_processor`, "Lines in
+/// flight"), so the interpolator never drops one there.
 pub const LINE_QUEUE_BITS: usize = 3;
 
 /// Reference declivities per gain cell, at most: cell `c` of `C` holds rows
@@ -228,14 +229,15 @@ pub const LINE_QUEUE_BITS: usize = 3;
 /// array once per phase, interleaved), so one datapath serves four rows. A
 /// line of at most `2C` reference declivities uses two phases and sweeps an
 /// anti-diagonal every two clocks; a longer one uses up to four and sweeps
-/// one every four (see `crate::systolic_matcher`).
+/// one every four (see `crate::matcher::systolic_matcher`).
 pub const ROWS_PER_CELL: usize = 4;
 /// Bits of a phase `0 .. ROWS_PER_CELL`.
 pub const PHASE_BITS: usize = 2;
 /// Gain cells of the sensor's matcher: `N_MAX / ROWS_PER_CELL`.
 pub const N_CELLS: usize = N_MAX / ROWS_PER_CELL;
-/// Bits of a sweep clock count: up to `4·N_MAX + 3·(2·N_CELLS + 1)` and a
-/// few of pipeline (`crate::declivity_matcher::sweep_cycles`).
+/// Bits of a sweep clock count: up to `4·N_MAX + 3·(2·N_CELLS + 1) +
+/// 4·(N_CELLS - 1)` and a few of pipeline, 844 for `n = m = N_MAX`
+/// (`crate::matcher::declivity_matcher::sweep_cycles`).
 pub const SWEEP_BITS: usize = DIAG_BITS + 2;
 /// Bits of a reference's or a column's six neighbour levels side by side,
 /// level `k` (left 0–2, then right 0–2) at bit `k·LEVEL_BITS`.
@@ -256,11 +258,11 @@ pub const ROW_GROUP_BITS: usize = INDEX_BITS - CELLS_PER_CHOICE_WORD.trailing_ze
 pub const PAIR_BITS: usize = 5;
 /// Words of 16 choices (32 bits) of a gain cell's skew delay: with four
 /// phases, cell `c`'s choices wait `2c` clocks, so that every cell writes
-/// one anti-diagonal together (`crate::gain_cell`); `2·(N_CELLS - 1)`
+/// one anti-diagonal together (`crate::matcher::gain_cell`); `2·(N_CELLS - 1)`
 /// choices at most.
 pub const SKEW_WORDS: usize = (2 * (N_CELLS - 1)).div_ceil(CELLS_PER_CHOICE_WORD);
 
-// ---- The depth stage (paper eq. 1, `rtl::depth_stage`).
+// ---- The depth stage (paper eq. 1, `rtl::post::depth_stage`).
 
 /// Bits of a depth in millimetres: `0` is "no depth" (disparity 0), and
 /// depths from [`DEPTH_MAX_MM`] on read as it (saturation).
@@ -298,10 +300,10 @@ pub const DEPTH_SCALE_MIN: u32 = 1;
 pub const DEPTH_SCALE_MAX: u32 = 1 << DEPTH_SHIFT_BITS;
 
 // ---------------------------------------------------------------------------
-// The vertical median (`rtl::vertical_median`)
+// The vertical median (`rtl::post::vertical_median`)
 
 /// Rows of the vertical median of the default mode (golden's
-/// `MEDIAN_ROWS`): the taps of `rtl::vertical_median`'s network.
+/// `MEDIAN_ROWS`): the taps of `rtl::post::vertical_median`'s network.
 pub const MEDIAN_TAPS: usize = 9;
 /// Rows on each side of the median's centre row, `MEDIAN_TAPS / 2`: output
 /// row `y` waits for row `y + MEDIAN_HALF`, and the flush after a frame's

@@ -22,9 +22,9 @@
 //!   default mode's consistency check; one line of delay).
 //! - The [`Interpolator`] (paper §IV's last step, with the default mode's
 //!   edge jump [`EDGE_JUMP_LSB`] or none) gives one disparity per pixel.
-//! - The [`VerticalMedian`] takes the median of nine rows (the default
-//!   mode's; four lines of delay, the last four rows flushed after the
-//!   frame's last).
+//! - The [`VerticalMedian`] takes the median of [`MEDIAN_TAPS`] (nine)
+//!   rows (the default mode's; [`MEDIAN_HALF`] (four) lines of delay, the
+//!   last [`MEDIAN_HALF`] rows flushed after the frame's last).
 //! - The [`DepthStage`] gives each disparity its depth (eq. 1) for the
 //!   camera the processor is generated for.
 //!
@@ -54,10 +54,11 @@
 //!   interpolator, which the limit on lines in flight below rules out:
 //!   their pixels are not sent),
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
-//!   frame's last rows: the vertical blanking must last up to four lines,
-//!   `declivity budget` gives the number),
-//!   `lines_full` (lines with
-//!   more than `4·N` declivities on a side: the first are matched),
+//!   frame's last rows: the vertical blanking must last up to
+//!   [`MEDIAN_HALF`] lines, `declivity budget` gives the number),
+//!   `lines_full` (lines with more than `ROWS_PER_CELL·N` ([`N_MAX`] in the
+//!   sensor's [`N_CELLS`] cells) declivities on a side: the first are
+//!   matched),
 //!   `lines_wide` (line pairs with a side wider than [`W_MAX`]: the first
 //!   `W_MAX` pixels are processed). Each counts its event two clocks after
 //!   it (the event is registered beside its source).
@@ -65,16 +66,17 @@
 //! ## Timing
 //! Throughput: one pixel per clock per camera while the matcher keeps up on
 //! average; a line's matching may take longer than its line time as long as
-//! the record queues ([`crate::record_fifo::RECORD_FIFO_DEPTH`] beats)
+//! the record queues ([`crate::stream::record_fifo::RECORD_FIFO_DEPTH`] beats)
 //! absorb it. Latency from a line's last pixel in to its first disparity
-//! out: the register slice's [`crate::skid_buffer::SKID_LAG`], the
-//! detector's [`crate::declivity_detector::marker_latency`], the
-//! queue's [`crate::record_fifo::RECORD_FIFO_LAG`], the matcher's line
+//! out: the register slice's [`crate::stream::skid_buffer::SKID_LAG`], the
+//! detector's [`crate::detector::declivity_detector::marker_latency`], the
+//! queue's [`crate::stream::record_fifo::RECORD_FIFO_LAG`], the matcher's line
 //! (`line_cycles`), one line period in the row check (it waits for the
 //! next line's matches), [`CHECK_REGISTER_LAG`] between the row check and
 //! the interpolator, the interpolator's `SEGMENT_LAG + PIXEL_LAG`,
-//! [`INTERP_REGISTER_LAG`] between the interpolator and the median, four
-//! line periods in the median (it waits for the row four below),
+//! [`INTERP_REGISTER_LAG`] between the interpolator and the median,
+//! [`MEDIAN_HALF`] line periods in the median (it waits for the row
+//! [`MEDIAN_HALF`] below),
 //! [`MEDIAN_REGISTER_LAG`] between the median and the depth stage, the
 //! depth stage's `DEPTH_LAG`, and [`OUTPUT_REGISTER_LAG`] to the output
 //! port. The simulation measures it (`declivity rtl depth`:
@@ -82,8 +84,12 @@
 //! latency is more by the largest backlog of the matcher so far in the
 //! frame (see "Lines in flight"). After the frame's last line the row check
 //! and the median flush their last rows by themselves; the next frame may
-//! start once they have (up to four lines of vertical blanking, fewer
-//! when the line period is longer than the line: `declivity budget`).
+//! start once they have (up to [`MEDIAN_HALF`] lines of vertical blanking,
+//! fewer when the line period is longer than the line: `declivity budget`).
+//!
+//! No reset: every block's registers start from their Verilog initial
+//! values (queues empty, engines idle, status counters at zero), so the
+//! first beat after configuration may start a frame.
 //!
 //! ## Lines in flight
 //! The interpolator sends one line per `W` clocks, the cameras' rate, so
@@ -92,13 +98,12 @@
 //! to match than their line time, the backlog waiting in the record
 //! queues), the interpolator's output stays `D` later for the rest of the
 //! frame, and when the matcher has caught up its queue holds the lines of
-//! those `D` clocks besides its usual one or two. On venus (434 px) the
-//! matcher's marker left 5.75 line times after its line's last pixel at row
-//! 245 against 2.2–2.9 usually (the record queues then held 3 lines, 184
-//! beats), the interpolator's output stayed 7.9 line times behind from row
-//! 248 on, and at row 305 its queue had to hold five lines: with four it
-//! dropped one. A queue sized for every backlog the record queues allow is
-//! large: they hold 1024 beats per side, the matching of up to eight full
+//! those `D` clocks besides its usual one or two. Real pairs have such
+//! stretches (a busy run of lines puts the matcher several line times
+//! behind), so the queue must hold several lines at once. A queue sized
+//! for every backlog the record queues allow is large: they hold
+//! [`RECORD_FIFO_DEPTH`](crate::stream::record_fifo::RECORD_FIFO_DEPTH)
+//! (1024) beats per side, the matching of up to eight full
 //! lines (`line_period` 845 clocks per 129 beats back to back, 14 for an
 //! empty line),
 //! and with the three pairs inside the matcher a backlog of about 9 k clocks,
@@ -120,12 +125,10 @@
 //! waits on itself: the row check holds back only the last row it got (for
 //! the next marker), the matcher and the interpolator finish their lines
 //! by themselves, so with two or more lines allowed one always leaves. The
-//! limit costs no throughput while fewer than eight lines are in flight:
-//! on the eight pairs at most 7 (venus), it never held. `tests/rtl_stereo.rs`
-//! drives it with a synthetic pair (ten rows twice as slow to match as
-//! their line, then light ones): it holds 5970 clocks, the record queues
-//! peak at 515 beats, and no line is lost (without it the interpolator
-//! dropped nine).
+//! limit costs no throughput while fewer than [`LINES_IN_FLIGHT`] lines
+//! are in flight. `tests/rtl_stereo.rs` drives it with a synthetic pair
+//! (ten rows twice as slow to match as their line, then light ones) on
+//! which it holds and no line is lost.
 //!
 //! The width given to the interpolator is the last reference line's
 //! (every line of a frame has one width): it is counted as the line comes
@@ -136,16 +139,16 @@
 //! clock of its own); the line's marker comes out of the detector and the
 //! matcher far later than that.
 
-use crate::block_ram::DP16KD_WIDTH;
-use crate::declivity_detector::DeclivityDetector;
-use crate::declivity_matcher::{DeclivityMatcher, GainRule};
-use crate::depth_stage::{DepthCamera, DepthError, DepthStage};
-use crate::interpolator::{Interpolator, LINE_QUEUE, SEG_RESERVE};
+use crate::primitives::block_ram::DP16KD_WIDTH;
+use crate::detector::declivity_detector::DeclivityDetector;
+use crate::matcher::declivity_matcher::{DeclivityMatcher, GainRule};
+use crate::post::depth_stage::{DepthCamera, DepthError, DepthStage};
+use crate::post::interpolator::{Interpolator, LINE_QUEUE, SEG_RESERVE};
 use crate::params::*;
-use crate::record_fifo::RecordFifo;
-use crate::row_check::RowCheck;
-use crate::skid_buffer::SkidBuffer;
-use crate::vertical_median::VerticalMedian;
+use crate::stream::record_fifo::RecordFifo;
+use crate::post::row_check::RowCheck;
+use crate::stream::skid_buffer::SkidBuffer;
+use crate::post::vertical_median::VerticalMedian;
 use rust_hdl::prelude::*;
 
 /// Bits of the status counters.
@@ -159,25 +162,24 @@ pub const OUT_BITS: usize = 2 * DEPTH_BITS;
 pub const LINES_IN_FLIGHT: usize = LINE_QUEUE;
 /// Clocks of the register between the row check's output and the
 /// interpolator's input (the two blocks are placed apart on the die: their
-/// route and the interpolator's first stage did not fit one clock).
+/// route and the interpolator's first stage do not fit one clock).
 pub const CHECK_REGISTER_LAG: usize = 1;
 /// Clocks of the register between the vertical median's output and the
 /// depth stage's input (placed apart on the die: the route from the
-/// median's output register and the depth stage's first stage did not fit
-/// one clock, 10.23 ns on a placed ECP5-85K).
+/// median's output register and the depth stage's first stage do not fit
+/// one clock).
 pub const MEDIAN_REGISTER_LAG: usize = 1;
 /// Clocks of the register between the depth stage's output and the output
 /// port (`m_*`): no logic drives the flip-flops that feed the port, which
-/// nextpnr may place by its pins far from the depth stage (the depth
-/// stage's valid bit across the die into the clear of its output register,
-/// 8.85 ns on a placed ECP5-85K at 3c60346).
+/// nextpnr may place by its pins far from the depth stage, so the depth
+/// stage's valid bit does not cross the die into the clear of its output
+/// register.
 pub const OUTPUT_REGISTER_LAG: usize = 1;
 /// Clocks of the register between the interpolator's output and the
 /// vertical median's input (placed apart on the die: the route from the
 /// interpolator's output register, the row count's comparison for the
-/// frame's last row and the median's first logic did not fit one clock,
-/// 10.75 ns on a placed ECP5-85K). The pixel's end-of-frame flag is
-/// computed into it.
+/// frame's last row and the median's first logic do not fit one clock).
+/// The pixel's end-of-frame flag is computed into it.
 pub const INTERP_REGISTER_LAG: usize = 1;
 /// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
 const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
@@ -196,7 +198,7 @@ const _: () = assert!(POS_BITS <= DEPTH_BITS);
 // two clocks later; the matcher's markers are at least that far apart: the
 // traceback starts a line the clock after it sends the previous line's
 // marker at the earliest, and takes at least a clock.
-const _: () = assert!(crate::traceback::traceback_cycles(0, 0, 0, 0) >= 1);
+const _: () = assert!(crate::matcher::traceback::traceback_cycles(0, 0, 0, 0) >= 1);
 
 /// Where a detector beat's fields sit in the record queue's lanes.
 /// Lane 0: `pos`, then the marker's flags.
@@ -328,17 +330,15 @@ pub struct StereoLineProcessor<const N: usize> {
     // The lines that left on the clock before (0–3: one out of the
     // interpolator, one dropped by it, one by the row check), registered
     // beside their sources, and the count less them: a taken marker then
-    // only picks `flight_base` or `flight_base + 1`. (Counted on their own
-    // clock, the marker's handshake, the hold and three ± 1 in series were
-    // 8.0 ns on a placed ECP5-85K.)
+    // only picks `flight_base` or `flight_base + 1`, and the marker's
+    // handshake, the hold and three ± 1 are not in series in one clock.
     flight_left: DFF<Bits<2>>,
     flight_base: Signal<Local, Bits<FLIGHT_BITS>>,
     flight_left_now: Signal<Local, Bits<2>>,
     pub hold: Signal<Local, Bit>,
     // `in_flight >= LINES_IN_FLIGHT` as a register, its next value picked
-    // from comparisons of `flight_base` by the taken marker (the count's
-    // comparison behind the marker's handshake was 7.7 ns on a placed
-    // ECP5-85K).
+    // from comparisons of `flight_base` by the taken marker, so that the
+    // count's comparison is not behind the marker's handshake.
     hold_q: DFF<Bit>,
     took_last: Signal<Local, Bit>,
     flight_max: Constant<Bits<FLIGHT_BITS>>,

@@ -9,10 +9,10 @@ use criterion::{criterion_group, criterion_main, Criterion};
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use golden::{process_frame, Mode, Params, Threads};
-use sim::io::{load_pair_dir, shared_stereo_dir};
+use sim::eval::io::{load_pair_dir, stereo_data_dir};
 
 fn frame(c: &mut Criterion) {
-    let dir = shared_stereo_dir().join("cones");
+    let dir = stereo_data_dir().join("cones");
     let pair = load_pair_dir(&dir).unwrap_or_else(|e| panic!("bench needs the cones pair: {e}"));
     let mut g = c.benchmark_group("golden_frame_cones");
     g.sample_size(30);

@@ -39,8 +39,8 @@ use golden::gain::{pair_disparity, LineGain, REJECTED};
 use golden::line::{line_features, search_bands, LineResult, Match};
 use golden::{process_frame, process_line, FrameResult, Mode, Params, RefView, Threads};
 use rayon::prelude::*;
-use sim::eval::{dense_scores, sparse_counts};
-use sim::io::{load_pair_dir, PairData};
+use sim::eval::scores::{dense_scores, sparse_counts};
+use sim::eval::io::{load_pair_dir, PairData};
 
 const PAIRS: [&str; 8] = ["tsukuba", "venus", "sawtooth", "map", "cones", "teddy", "art", "motorcycle"];
 
@@ -355,7 +355,7 @@ fn list(s: Option<String>, default: &str) -> Vec<f64> {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let cmd = args.next().unwrap_or_default();
-    let root = sim::io::shared_stereo_dir();
+    let root = sim::eval::io::stereo_data_dir();
     let mut pairs = Vec::new();
     for name in PAIRS {
         let data = load_pair_dir(&root.join(name))?;

@@ -9,7 +9,7 @@
 //! (`golden::line::search_bands`), then the row confirmation, the edge flag,
 //! the interpolation holding the background across jumps and the vertical
 //! median (`golden::frame::finish_frame`, as `process_frame` runs them);
-//! scores by `sim::eval`.
+//! scores by `sim::eval::scores`.
 //!
 //! - `exact`: `G(i,j) = g(i,j) + max(0, max_{m<i,n<j} [G(m,n) − pen])` over
 //!   the nodes that exist, `O(K²)` per line for `K` nodes (the upper bound;
@@ -42,8 +42,8 @@ use golden::gain::{gmax, pair_disparity, LineGain, Neighbours, REJECTED};
 use golden::line::{line_features, search_bands, LineFeatures, LineResult, Match};
 use golden::{process_frame, FrameResult, Mode, Params, RefView, Threads};
 use rayon::prelude::*;
-use sim::eval::{dense_scores, sparse_counts};
-use sim::io::{load_pair_dir, PairData};
+use sim::eval::scores::{dense_scores, sparse_counts};
+use sim::eval::io::{load_pair_dir, PairData};
 
 const PAIRS: [&str; 8] = ["tsukuba", "cones", "motorcycle", "art", "map", "sawtooth", "teddy", "venus"];
 
@@ -258,7 +258,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let (mut variants, mut lambdas, mut taus) = (vec![Variant::Approx, Variant::Exact], list("0,0.25,0.5,1,2"), list("0.5,1,2"));
     let mut caps = vec![f64::INFINITY];
-    let mut root = sim::io::shared_stereo_dir();
+    let mut root = sim::eval::io::stereo_data_dir();
     while let Some(a) = args.next() {
         match a.as_str() {
             "--variants" => {

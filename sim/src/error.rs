@@ -41,11 +41,17 @@ pub enum SimError {
     Golden(#[from] golden::GoldenError),
     /// A picture could not be written.
     #[error(transparent)]
-    Picture(#[from] crate::pictures::PictureError),
+    Picture(#[from] crate::eval::pictures::PictureError),
     /// A latency budget was asked for sizes the hardware does not take.
     #[error(transparent)]
     Budget(#[from] crate::budget::BudgetError),
     /// A Verilog simulator failed or disagreed.
     #[error(transparent)]
-    Cosim(#[from] crate::cosim::CosimError),
+    Cosim(#[from] crate::hdl::cosim::CosimError),
+    /// Synthesis or place and route failed.
+    #[error(transparent)]
+    Synth(#[from] crate::hdl::synth::SynthError),
+    /// A search bound the matcher does not take.
+    #[error(transparent)]
+    Dispmax(#[from] crate::formats::DispmaxError),
 }

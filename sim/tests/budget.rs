@@ -8,23 +8,21 @@
 //! the frame's end) and its flush equal the budget's formulas on frames of
 //! several sizes whose rows' work is known; its memory sizes and `DP16KD`s
 //! equal those of the generated Verilog; its frame arithmetic equals
-//! numbers worked out by hand; and the CLI refuses bad sizes with a message
-//! that names them.
+//! numbers worked out by hand (the CLI's refusals are in `cli/tests/budget.rs`).
 
-use std::process::{Command, Output};
 use std::sync::{Arc, Mutex};
 
-use rtl::declivity_matcher::{line_cycles, line_period, schedule, sweep_cycles, DeclivityMatcher, EngineLine, GainRule, TAKE_AFTER_MARKER};
+use rtl::matcher::declivity_matcher::{line_cycles, line_period, schedule, sweep_cycles, DeclivityMatcher, EngineLine, GainRule, TAKE_AFTER_MARKER};
 use rtl::params::{DT_FRAC_BITS, N_CELLS, N_MAX, POS_FRAC_BITS, W_MAX};
-use rtl::row_check::ROW_FIRST_LAG;
-use rtl::skid_buffer::SKID_LAG;
+use rtl::post::row_check::ROW_FIRST_LAG;
+use rtl::stream::skid_buffer::SKID_LAG;
 use rtl::stereo_line_processor::CHECK_REGISTER_LAG;
-use rtl::depth_stage::DepthCamera;
-use rtl::traceback::traceback_cycles;
+use rtl::post::depth_stage::DepthCamera;
+use rtl::matcher::traceback::traceback_cycles;
 use sim::budget::{budget, budget_with_load, Budget, BudgetRequest, RowLoad, StageBudget};
-use sim::cosim::VectorRng;
-use sim::detector::{run_lines, DetectorSim};
-use sim::matcher::{golden_match, MatchLine, MatchRecord, MatcherSim};
+use sim::rng::VectorRng;
+use sim::drive::detector::{run_lines, DetectorSim};
+use sim::drive::matcher::{golden_match, MatchLine, MatchRecord, MatcherSim};
 
 /// One pixel of a matcher position (`POS_FRAC_BITS` fraction bits).
 const PX: u32 = 1 << POS_FRAC_BITS;
@@ -204,7 +202,7 @@ fn engine_lines(got: &[Measured], cells: usize) -> Vec<EngineLine> {
 /// the first, taken by an idle engine, shows the latency; the second,
 /// loaded while the engine sweeps the first, is taken the clock after the
 /// first's traceback starts and its traceback starts when its sweep ends
-/// (`rtl::declivity_matcher::schedule`), so the spacing of the two markers
+/// (`rtl::matcher::declivity_matcher::schedule`), so the spacing of the two markers
 /// is the engine's clocks per line back to back, `line_period`. Both equal
 /// the budget's.
 fn check_worst_line<const N: usize>(n: usize) -> Budget {
@@ -250,7 +248,7 @@ fn matcher_worst_line_of_n_max_on_the_sensors_32_cells_equals_the_budget() {
     assert_eq!(N_CELLS, 32, "the sensor's array");
     let b = check_worst_line::<N_CELLS>(N_MAX);
     let m = stage(&b, "matcher");
-    // 845 clocks back to back, 3 + 1239 alone (rtl::declivity_matcher's
+    // 845 clocks back to back, 3 + 1239 alone (rtl::matcher::declivity_matcher's
     // doc and tests/rtl_matcher.rs).
     assert_eq!((m.cycles_per_line, m.latency_cycles), (845, 3 + 1239));
     // The worst line fits the line time of a W_MAX line without blanking;
@@ -262,7 +260,7 @@ fn matcher_worst_line_of_n_max_on_the_sensors_32_cells_equals_the_budget() {
 
 /// Random line pairs of several sizes (two phases and four), back to back:
 /// every marker leaves when the matcher's schedule
-/// (`rtl::declivity_matcher::schedule`: the pair taken `TAKE_AFTER_MARKER`
+/// (`rtl::matcher::declivity_matcher::schedule`: the pair taken `TAKE_AFTER_MARKER`
 /// after its second marker or the clock after the previous traceback
 /// starts, its traceback started when its sweep and the previous traceback
 /// are over) says; and no pair costs more than the budget's worst line for
@@ -337,12 +335,12 @@ fn stage_latencies_equal_the_clocks_measured_on_their_blocks() {
     let detector = run.lines[0].marker_cycle - run.first_pixel_cycle[0];
     let pair = &measure::<CELLS>(&[worst_pair(n)], WORST_DISPMAX)[0];
     let matcher = pair.marker - pair.input_done;
-    let line = sim::interpolator::AnchorLine {
-        anchors: vec![sim::interpolator::FixedAnchor { x: 100, d: 40 }, sim::interpolator::FixedAnchor { x: 5000, d: 90 }],
+    let line = sim::drive::interpolator::AnchorLine {
+        anchors: vec![sim::drive::interpolator::FixedAnchor { x: 100, d: 40 }, sim::drive::interpolator::FixedAnchor { x: 5000, d: 90 }],
         width,
         sof: true,
     };
-    let mut interp = sim::interpolator::InterpolatorSim::robust();
+    let mut interp = sim::drive::interpolator::InterpolatorSim::robust();
     let (lines, markers) = interp.run(&[line], 0);
     let interpolator = lines[0].first_cycle - markers[0];
     assert_eq!(lines[0].last_cycle - lines[0].first_cycle, width as u64 - 1, "one pixel a clock");
@@ -405,32 +403,32 @@ fn stepped_pair(w: usize, h: usize, steps: usize, rows: Rows) -> (golden::GreyIm
 
 /// What a frame's rows cost the matcher and the row check, from the blocks'
 /// own models: each row's line pair as the detectors send it
-/// (`sim::matcher::image_lines`), golden's path through it (the matcher's,
+/// (`sim::drive::matcher::image_lines`), golden's path through it (the matcher's,
 /// by `matcher_*` tests above), and the row check's clocks for each row,
 /// measured by simulating the rtl row check on the frame's matches. Also
 /// the declivities per textured line in each view.
 fn frame_load(left: &golden::GreyImage, right: &golden::GreyImage) -> (RowLoad, Vec<(usize, usize)>) {
     let h = left.height();
-    let lines = sim::matcher::image_lines(left, right);
+    let lines = sim::drive::matcher::image_lines(left, right);
     let paths: Vec<_> = lines.iter().map(|(r, o)| golden_match(r, o, TOP_DISPMAX, GainRule::Robust)).collect();
     let counts: Vec<(usize, usize)> = lines.iter().map(|(r, o)| (r.records.len(), o.records.len())).collect();
     let line_of = |y: usize| (counts[y].0, counts[y].1, paths[y].stop_diag, paths[y].nodes.len());
     // The latency takes row 3's line, the frame's end row H - 1's: one load
     // holds both only if they are alike.
     assert_eq!(line_of(3), line_of(h - 1), "rows 3 and H - 1 match alike");
-    let frame: Vec<Vec<sim::row_check::FixedMatch>> = lines
+    let frame: Vec<Vec<sim::drive::row_check::FixedMatch>> = lines
         .iter()
         .zip(&paths)
         .map(|((r, o), g)| g.nodes.iter().map(|&(i, j)| (r.records[i].pos as u64, (r.records[i].pos - o.records[j].pos) as u64)).collect())
         .collect();
     // Rows a line period of the widest apart: each row is checked alone.
-    let run = sim::row_check::RowCheckSim::new().run(&frame, rtl::row_check::row_check_period());
+    let run = sim::drive::row_check::RowCheckSim::new().run(&frame, rtl::post::row_check::row_check_period());
     assert_eq!(run.rows.len(), h, "every row checked");
     // Row y < H - 1 starts ROW_START_LAG after row y + 1's marker in, the
     // last ROW_RESTART_LAG after row H - 2 finished; each marker leaves the
     // clock after its row's finish.
-    let start_lag = rtl::row_check::ROW_START_LAG as u64;
-    let restart_lag = rtl::row_check::ROW_RESTART_LAG as u64;
+    let start_lag = rtl::post::row_check::ROW_START_LAG as u64;
+    let restart_lag = rtl::post::row_check::ROW_RESTART_LAG as u64;
     let check = |y: usize| (run.rows[y].marker_cycle - run.markers[y + 1] - start_lag - 1) as usize;
     let last_check = (run.rows[h - 1].marker_cycle - run.rows[h - 2].marker_cycle - restart_lag) as usize;
     assert_eq!(check(2), check(h - 2), "rows 2 and H - 2 checked alike");
@@ -448,7 +446,7 @@ fn check_frame(w: usize, h: usize, steps: usize, rows: Rows, hblank: usize) -> (
         assert_eq!((n, m), (want, want), "W {w}: row {y}'s declivities");
     }
     assert_eq!((load.k, load.stop_diag), (steps, 0), "W {w}: every step matched, the path down to (0, 0)");
-    let mut sim = sim::stereo::StereoSim::<TOP_CELLS>::new(GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), DepthCamera::default(), TOP_DISPMAX)
+    let mut sim = sim::drive::stereo::StereoSim::<TOP_CELLS>::new(GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), DepthCamera::default(), TOP_DISPMAX)
         .expect("the default camera");
     let run = sim.run(&left, &right, hblank, |_| {});
     let what = format!("W {w} H {h} {rows:?} hblank {hblank}, {load:?}");
@@ -512,8 +510,8 @@ fn line_processor_latency_and_frame_end_equal_the_budget_for_rows_alike() {
     for (w, h, steps, hblank) in [(64, 9, 4, 0), (128, 8, 7, 0), (300, 6, 16, 0), (300, 6, 20, 0), (300, 7, 9, 37)] {
         let (left, right) = stepped_pair(w, h, steps, Rows::All);
         let (load, _) = frame_load(&left, &right);
-        let bound = rtl::row_check::row_check_cycles(steps, steps, steps);
-        assert!(load.check <= bound && load.last_check <= rtl::row_check::row_check_cycles(steps, steps, 0), "W {w}: {load:?}");
+        let bound = rtl::post::row_check::row_check_cycles(steps, steps, steps);
+        assert!(load.check <= bound && load.last_check <= rtl::post::row_check::row_check_cycles(steps, steps, 0), "W {w}: {load:?}");
         check_frame(w, h, steps, Rows::All, hblank);
     }
 }
@@ -532,7 +530,7 @@ fn verilog_memory_bits(v: &str) -> usize {
         .sum()
 }
 
-/// `DP16KD` instances of a Verilog text (`rtl::block_ram::BlockRam`).
+/// `DP16KD` instances of a Verilog text (`rtl::primitives::block_ram::BlockRam`).
 fn verilog_dp16kd(v: &str) -> usize {
     v.matches("DP16KD #(").count()
 }
@@ -544,7 +542,7 @@ fn verilog_dp16kd(v: &str) -> usize {
 /// the depth stage's. The same for the `DP16KD`s the blocks instantiate.
 #[test]
 fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
-    use sim::verilog::{generate, generate_with, Top};
+    use sim::hdl::verilog::{generate, generate_with, Top};
     let b = budget(&request(512, N_MAX, N_CELLS)).expect("valid");
     let (det_v, mat_v, int_v) = (generate(Top::Detector), generate(Top::Matcher), generate(Top::Interpolator));
     let (detector, matcher, interpolator) = (verilog_memory_bits(&det_v), verilog_memory_bits(&mat_v), verilog_memory_bits(&int_v));
@@ -650,163 +648,3 @@ fn a_stage_slower_than_the_input_sets_the_period() {
     let short = budget(&BudgetRequest { hblank: h - 1, ..base }).expect("valid");
     assert_eq!((short.line_period_cycles, short.stall_cycles_per_line), (slowest, 1));
 }
-
-// ===========================================================================
-// The command line
-// ===========================================================================
-
-fn declivity(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_declivity")).args(args).output().expect("the binary runs")
-}
-
-const GOOD: [&str; 11] =
-    ["budget", "--width", "512", "--height", "512", "--n-max", "128", "--dispmax", "64", "--clock-mhz", "125"];
-
-/// `GOOD` with `flag` set to `value`.
-fn with(flag: &str, value: &str) -> Vec<String> {
-    let mut a: Vec<String> = GOOD.iter().map(|s| s.to_string()).collect();
-    match a.iter().position(|s| s == flag) {
-        Some(i) => a[i + 1] = value.to_string(),
-        None => a.extend([flag.to_string(), value.to_string()]),
-    }
-    a
-}
-
-#[test]
-fn cli_bad_sizes_exit_non_zero_with_a_message_naming_the_problem() {
-    let cases = [
-        ("--width", "0", "--width 0"),
-        ("--height", "0", "--height 0"),
-        ("--height", "3", "at least 6 rows"),
-        ("--n-max", "0", "--n-max 0"),
-        ("--n-max", "129", "N_MAX = 128"),
-        ("--cells", "5", "--cells 5"),
-        ("--cells", "16", "need at least 32 cells"),
-        ("--cells", "16", "(4 per cell)"),
-        ("--cells", "64", "--cells 64"),
-        ("--clock-mhz", "0", "--clock-mhz 0"),
-        ("--clock-mhz", "-125", "--clock-mhz -125"),
-        ("--dispmax", "0.5", "greater than 1"),
-        ("--dispmax", "5000", "W_MAX = 1024"),
-        ("--width", "wide", "--width"),
-    ];
-    for (flag, value, says) in cases {
-        let args = with(flag, value);
-        let o = Command::new(env!("CARGO_BIN_EXE_declivity")).args(&args).output().expect("runs");
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(!o.status.success(), "{args:?} accepted");
-        assert!(err.contains(says), "{args:?}: stderr does not say `{says}`: {err}");
-    }
-}
-
-#[test]
-fn cli_json_is_one_object_with_the_budget_keys() {
-    let o = declivity(&[&GOOD[..], &["--hblank", "100", "--json"]].concat());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
-    for key in [
-        "width",
-        "height",
-        "n_max",
-        "dispmax",
-        "clock_mhz",
-        "hblank",
-        "cells",
-        "line_period_cycles",
-        "stall_cycles_per_line",
-        "min_hblank_cycles",
-        "latency_cycles",
-        "latency_us",
-        "frame_time_ms",
-        "fps",
-        "latency_last_pixel_cycles",
-        "output_span_cycles",
-        "last_out_cycles",
-        "flush_cycles",
-        "vblank_lines",
-        "vblank_lines_any_rows",
-        "frame_cycles",
-        "load",
-        "stages",
-        "resources",
-    ] {
-        assert!(v.get(key).is_some(), "no key {key} in {v}");
-    }
-    let stages = v["stages"].as_array().expect("stages");
-    let names: Vec<&str> = stages.iter().filter_map(|s| s["name"].as_str()).collect();
-    assert_eq!(
-        names,
-        ["declivity detector", "record queues", "matcher", "row check", "interpolator", "vertical median", "depth stage"]
-    );
-    for s in stages {
-        for key in ["name", "cycles_per_line", "formula", "latency_cycles", "latency_formula", "dsp_blocks", "memories"] {
-            assert!(s.get(key).is_some(), "no key {key} in {s}");
-        }
-    }
-    for key in [
-        "line_buffer_bits",
-        "histogram_banks",
-        "pe_count",
-        "rows_per_cell",
-        "choice_memory_bits",
-        "record_memory_bits",
-        "record_queue_bits",
-        "row_memory_bits",
-        "median_line_buffers",
-        "depth_table_bits",
-        "dp16kd_instances",
-        "dsp_blocks",
-    ] {
-        assert!(v["resources"].get(key).is_some(), "no resources.{key}");
-    }
-    // The frame time is (H + vertical blanking) × period / F, and the
-    // latency the sum of the stages', by the numbers the object gives.
-    let (h, p, f) = (v["height"].as_f64().unwrap(), v["line_period_cycles"].as_f64().unwrap(), v["clock_mhz"].as_f64().unwrap());
-    let vb = v["vblank_lines"].as_f64().unwrap();
-    assert!((v["frame_time_ms"].as_f64().unwrap() - (h + vb) * p / (f * 1e3)).abs() < 1e-9);
-    let sum: u64 = stages.iter().map(|s| s["latency_cycles"].as_u64().unwrap()).sum();
-    assert_eq!(v["latency_cycles"].as_u64(), Some(sum));
-    assert_eq!(v["hblank"].as_u64(), Some(100));
-    assert!(v.get("not_included").is_none(), "every stage is in");
-}
-
-#[test]
-fn cli_text_names_every_stage_the_frame_end_and_a_wide_line() {
-    let o = declivity(&with("--width", "1500").iter().map(|s| s.as_str()).collect::<Vec<_>>());
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for says in [
-        "declivity detector",
-        "record queues",
-        "matcher",
-        "row check",
-        "interpolator",
-        "vertical median",
-        "depth stage",
-        "line period",
-        "latency",
-        "flush",
-        "vertical blanking",
-        "frames/s",
-        "DP16KD",
-        "MULT18X18D",
-        "wide",
-        "W_MAX = 1024",
-    ] {
-        assert!(out.contains(says), "does not say `{says}`:\n{out}");
-    }
-}
-
-#[test]
-fn cli_help_explains_every_option() {
-    let o = declivity(&["budget", "--help"]);
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success());
-    for opt in ["--width", "--height", "--n-max", "--dispmax", "--clock-mhz", "--hblank", "--cells", "--json"] {
-        assert!(out.contains(opt), "--help does not explain {opt}");
-    }
-    for says in ["line period", "latency", "record queues", "row check", "interpolator", "vertical median", "depth stage", "vertical blanking", "worst line"] {
-        assert!(out.contains(says), "--help does not say `{says}`");
-    }
-}
-

@@ -9,17 +9,19 @@
 
 use std::path::{Path, PathBuf};
 
-use rtl::declivity_detector::MIN_LINE_PERIOD;
+use rtl::detector::declivity_detector::MIN_LINE_PERIOD;
 use rtl::params::W_MAX;
-use sim::cosim::{self, Options, Simulator, Trace, VectorRng};
-use sim::detector::{detector_trace, frame_beats};
+use sim::hdl::cosim::{self, Options, Simulator, Trace};
+use sim::rng::VectorRng;
+use sim::drive::detector::frame_beats;
+use sim::hdl::traces::detector_trace;
 
 fn vectors() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/detector")
 }
 
 fn design() -> String {
-    sim::verilog::generate(sim::verilog::Top::Detector)
+    sim::hdl::verilog::generate(sim::hdl::verilog::Top::Detector)
 }
 
 
@@ -34,9 +36,9 @@ fn walk(rng: &mut VectorRng, n: usize, step: i64) -> Vec<u8> {
 }
 
 fn row(pair: &str, y: usize) -> Vec<u8> {
-    let dir = sim::io::shared_stereo_dir().join(pair);
-    let img = sim::io::load_grey(&dir.join("left_gray.png"))
-        .unwrap_or_else(|e| panic!("{}: {e} (the shared stereo data must be beside the repository)", dir.display()))
+    let dir = sim::eval::io::stereo_data_dir().join(pair);
+    let img = sim::eval::io::load_grey(&dir.join("left_gray.png"))
+        .unwrap_or_else(|e| panic!("{}: {e} (the pairs are in data/stereo)", dir.display()))
         .image;
     img.row(y).to_vec()
 }
@@ -74,7 +76,7 @@ fn real_trace(design: &str) -> Trace {
     let lines: Vec<Vec<u8>> = (150..156).map(|y| row("cones", y)).chain((200..206).map(|y| row("teddy", y))).collect();
     let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
     let mut beats = frame_beats(&refs, 0, || false);
-    beats.extend(std::iter::repeat_n(sim::detector::PixelBeat::default(), 2 * MIN_LINE_PERIOD + 512));
+    beats.extend(std::iter::repeat_n(sim::drive::detector::PixelBeat::default(), 2 * MIN_LINE_PERIOD + 512));
     detector_trace(design, &beats).expect("records")
 }
 
@@ -125,21 +127,21 @@ fn cosim_detector_verilator_matches_rust_on_corner_cases_and_real_rows() {
 #[test]
 fn detector_verilog_lints_clean_but_for_the_accepted_warnings() {
     let warnings = cosim::lint_verilator(&design()).unwrap_or_else(|e| panic!("{e}"));
-    let counts = cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
+    let counts = cosim::check_accepted(&warnings, sim::hdl::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }
 
 #[test]
 fn detector_synthesizes_in_yosys_without_latches() {
-    let check = sim::synth::yosys_latch_check(&design(), "top").unwrap_or_else(|e| panic!("{e}"));
+    let check = sim::hdl::synth::yosys_latch_check(&design(), "top").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
     assert!(check.cells > 1000, "the detector is not empty: {} cells", check.cells);
 }
 
 #[test]
 fn detector_places_and_routes_on_ecp5_85k_with_its_memories_in_block_ram() {
-    let r = sim::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("{}", sim::synth::report_table(&r));
+    let r = sim::hdl::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{}", sim::hdl::synth::report_table(&r));
     // One DP16KD (its 1024 × 18-bit mode, `BlockRam`) per bank of the
     // 2 × 1024 × 8-bit line buffer, one each of the two 256 × 12-bit
     // histogram banks.

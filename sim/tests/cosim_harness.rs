@@ -1,4 +1,4 @@
-//! Tests of the co-simulation harness (`sim::cosim`) on a small block: an
+//! Tests of the co-simulation harness (`sim::hdl::cosim`) on a small block: an
 //! 8-bit accumulator with enable, a registered comparator, a 64-bit
 //! registered adder and a 16×8 block RAM (`rust_hdl::widgets` `RAM`).
 //! Icarus Verilog and Verilator must reproduce the Rust simulation exactly.
@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rust_hdl::prelude::*;
-use sim::cosim::{self, CosimError, Options, Port, Simulator, Trace};
+use sim::hdl::cosim::{self, CosimError, Options, Port, Simulator, Trace};
 
 /// The test block. `rdata` is gated by `started` so that the RAM's
 /// undefined output before the first clock edge (X in Icarus) is not seen.

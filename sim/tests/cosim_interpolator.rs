@@ -9,10 +9,12 @@
 
 use std::path::{Path, PathBuf};
 
-use rtl::interpolator::{LINE_QUEUE, PIXEL_LAG, SEGMENT_LAG};
+use rtl::post::interpolator::{LINE_QUEUE, PIXEL_LAG, SEGMENT_LAG};
 use rtl::params::{N_MAX, POS_BITS, POS_FRAC_BITS, W_MAX};
-use sim::cosim::{self, Options, Simulator, Trace, VectorRng};
-use sim::interpolator::{fixed_anchors, interpolator_trace, AnchorLine, FixedAnchor};
+use sim::hdl::cosim::{self, Options, Simulator, Trace};
+use sim::rng::VectorRng;
+use sim::drive::interpolator::{fixed_anchors, AnchorLine, FixedAnchor};
+use sim::hdl::traces::interpolator_trace;
 
 /// One position LSB (1/16 px).
 const PX: u32 = 1 << POS_FRAC_BITS;
@@ -22,7 +24,7 @@ fn vectors() -> PathBuf {
 }
 
 fn design() -> String {
-    sim::verilog::generate(sim::verilog::Top::Interpolator)
+    sim::hdl::verilog::generate(sim::hdl::verilog::Top::Interpolator)
 }
 
 /// A random line of `n` anchors: steps of one LSB to 20 px, disparities
@@ -79,9 +81,9 @@ fn corner_trace(design: &str) -> Trace {
 /// golden's matches of six rows of cones (default mode, hardware parity),
 /// one line per line period.
 fn real_trace(design: &str) -> Trace {
-    let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join("cones")).expect("the pair loads");
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("cones")).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::detector::hardware_limits());
+    params.hardware = Some(sim::formats::hardware_limits());
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = data.left.width();
     let lines: Vec<AnchorLine> = (180..186).map(|y| fixed_anchors(&frame.lines[y].matches, w, y == 180)).collect();
@@ -137,21 +139,21 @@ fn cosim_interpolator_verilator_matches_rust_on_corner_cases_and_real_rows() {
 #[test]
 fn interpolator_verilog_lints_clean_but_for_the_accepted_warnings() {
     let warnings = cosim::lint_verilator(&design()).unwrap_or_else(|e| panic!("{e}"));
-    let counts = cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
+    let counts = cosim::check_accepted(&warnings, sim::hdl::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?}");
 }
 
 #[test]
 fn interpolator_synthesizes_in_yosys_without_latches() {
-    let check = sim::synth::yosys_latch_check(&design(), "top").unwrap_or_else(|e| panic!("{e}"));
+    let check = sim::hdl::synth::yosys_latch_check(&design(), "top").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
     assert!(check.cells > 300, "the interpolator is not empty: {} cells", check.cells);
 }
 
 #[test]
 fn interpolator_places_and_routes_on_ecp5_85k_with_two_multipliers() {
-    let r = sim::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("{}", sim::synth::report_table(&r));
+    let r = sim::hdl::synth::synthesize(&design(), 125.0).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{}", sim::hdl::synth::report_table(&r));
     // The weight v·recip and the step t·|Δd|.
     assert_eq!(r.dsps, 2, "DSPs");
     // A small block: well under a twentieth of the device.

@@ -3,7 +3,7 @@
 //! (`vectors/matcher/`), Verilator lint with the detector's accepted list,
 //! Yosys without latches and ECP5 place and route.
 //!
-//! The vectors are recorded from the Rust model (`sim::matcher_cosim`); a
+//! The vectors are recorded from the Rust model (`sim::hdl::traces`); a
 //! test fails when the committed files differ from a fresh recording.
 //! Regenerate them with
 //! `COSIM_BLESS=1 cargo test --release -p sim --test cosim_matcher`.
@@ -23,12 +23,13 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rtl::declivity_matcher::GainRule;
+use rtl::matcher::declivity_matcher::GainRule;
 use rtl::params::{DT_FRAC_BITS, N_CELLS, POS_FRAC_BITS, ROWS_PER_CELL};
-use sim::cosim::{self, CosimError, Options, Simulator, Trace, VectorRng};
-use sim::matcher::{check_line, golden_match, image_lines, MatchLine, MatchRecord, MatchedLine};
-use sim::matcher_cosim::matcher_trace;
-use sim::verilog::{generate_with, Top};
+use sim::hdl::cosim::{self, CosimError, Options, Simulator, Trace};
+use sim::rng::VectorRng;
+use sim::drive::matcher::{check_line, golden_match, image_lines, MatchLine, MatchRecord, MatchedLine};
+use sim::hdl::traces::matcher_trace;
+use sim::hdl::verilog::{generate_with, Top};
 
 /// Cells of the array the vectors are recorded for.
 const CELLS: usize = 16;
@@ -208,9 +209,9 @@ fn corner_pairs() -> Vec<(&'static str, MatchLine, MatchLine)> {
 const ROWS: std::ops::Range<usize> = 140..170;
 
 fn real_pairs() -> (Vec<(MatchLine, MatchLine)>, u32) {
-    let dir = sim::io::shared_stereo_dir().join("tsukuba");
-    let pair = sim::io::load_pair_dir(&dir)
-        .unwrap_or_else(|e| panic!("{}: {e} (the shared stereo data must be beside the repository)", dir.display()));
+    let dir = sim::eval::io::stereo_data_dir().join("tsukuba");
+    let pair = sim::eval::io::load_pair_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e} (the pairs are in data/stereo)", dir.display()));
     let lines = image_lines(&pair.left, &pair.right);
     // The bound `dispmax + 1` that `eval` gives golden.
     let dispmax = ((pair.dispmax + 1.0) * (1 << POS_FRAC_BITS) as f64) as u32;
@@ -418,7 +419,7 @@ fn cosim_matcher_icarus_catches_a_changed_design() {
 fn matcher_verilog_lints_clean_but_for_the_accepted_warnings() {
     let t0 = Instant::now();
     let warnings = cosim::lint_verilator(&design(N_CELLS, RULE)).unwrap_or_else(|e| panic!("{e}"));
-    let counts = cosim::check_accepted(&warnings, sim::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
+    let counts = cosim::check_accepted(&warnings, sim::hdl::cosim::ACCEPTED_LINT).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("accepted lint warnings: {counts:?} ({:.1} s)", t0.elapsed().as_secs_f64());
 }
 
@@ -426,20 +427,21 @@ fn matcher_verilog_lints_clean_but_for_the_accepted_warnings() {
 #[test]
 fn matcher_synthesizes_in_yosys_without_latches() {
     let t0 = Instant::now();
-    let check = sim::synth::yosys_latch_check(&design(N_CELLS, RULE), "top").unwrap_or_else(|e| panic!("{e}"));
+    let check = sim::hdl::synth::yosys_latch_check(&design(N_CELLS, RULE), "top").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
     assert!(check.cells > 5_000, "the matcher is not empty: {} cells", check.cells);
     eprintln!("{} cells after proc, no latch ({:.1} s)", check.cells, t0.elapsed().as_secs_f64());
 }
 
-/// A 4-cell array through the ECP5 flow (about 45 s). The counts are
-/// reported, not pinned: the rtl is still changing. Measured on commit
-/// cbb6d42: 4230 LUT4, 2307 FF, 14 DP16KD, 0 DSP, 96 LUT-RAM write ports,
-/// 113 MHz.
+/// A 4-cell array through the ECP5 flow (a small array, so that the run
+/// stays short). The counts are reported, not pinned: the bounds only
+/// say that the record memories are in block RAM, that the array is not
+/// empty, that four cells fit in a quarter of the device's 83 640 LUT4s, and
+/// that the clock has a register-to-register Fmax (above a floor of 30 MHz).
 #[test]
 fn matcher_places_and_routes_on_ecp5_85k() {
-    let r = sim::synth::synthesize(&design(4, RULE), 100.0).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("{}", sim::synth::report_table(&r));
+    let r = sim::hdl::synth::synthesize(&design(4, RULE), 100.0).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{}", sim::hdl::synth::report_table(&r));
     // The record memories (two banks of N_MAX entries per field) are as
     // deep at every size, and go to block RAM.
     assert!(r.brams > 0, "block RAMs: {}", r.brams);

@@ -3,10 +3,10 @@
 //! latches. (Generated with a 16-cell matcher, the size `cosim_matcher`
 //! co-simulates: the cells are the matcher's; the joins are what is new.)
 
-use sim::cosim;
+use sim::hdl::cosim;
 
 fn design() -> String {
-    sim::verilog::generate_with(sim::verilog::Top::Stereo, CELLS, rtl::declivity_matcher::GainRule::Robust).expect("a supported size")
+    sim::hdl::verilog::generate_with(sim::hdl::verilog::Top::Stereo, CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size")
 }
 
 /// Cells of the matcher in the checked Verilog.
@@ -15,9 +15,9 @@ const CELLS: usize = 16;
 /// Verilator `-Wall` warnings accepted in the line processor's Verilog,
 /// with why.
 const ACCEPTED: &[(&str, &str)] = &[
-    sim::cosim::ACCEPTED_LINT[0],
-    sim::cosim::ACCEPTED_LINT[1],
-    sim::cosim::DP16KD_UNUSED_OUTPUTS,
+    sim::hdl::cosim::ACCEPTED_LINT[0],
+    sim::hdl::cosim::ACCEPTED_LINT[1],
+    sim::hdl::cosim::DP16KD_UNUSED_OUTPUTS,
     ("UNUSEDSIGNAL", "outputs of the blocks that the line processor does not use (listed in UNUSED_OUTPUTS and checked one by one)"),
 ];
 
@@ -57,7 +57,7 @@ fn stereo_verilog_lints_clean_but_for_the_accepted_warnings() {
 
 #[test]
 fn stereo_synthesizes_in_yosys_without_latches() {
-    let check = sim::synth::yosys_latch_check(&design(), "top").unwrap_or_else(|e| panic!("{e}"));
+    let check = sim::hdl::synth::yosys_latch_check(&design(), "top").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
     assert!(check.cells > 3000, "the line processor is not empty: {} cells", check.cells);
 }
@@ -68,9 +68,9 @@ fn stereo_synthesizes_in_yosys_without_latches() {
 mod frames {
     use golden::GreyImage;
     use rtl::params::N_CELLS;
-    use sim::cosim::{Options, Simulator};
-    use sim::stereo::{StereoRun, StereoSim};
-    use sim::stereo_cosim::{differences, run_frame, FRAME_BEATS_FILE, FRAME_SUMMARY_FILE};
+    use sim::hdl::cosim::{Options, Simulator};
+    use sim::drive::stereo::{StereoRun, StereoSim};
+    use sim::hdl::frame::{differences, run_frame, FRAME_BEATS_FILE, FRAME_SUMMARY_FILE};
 
     /// Rows `rows` of `img`.
     fn crop(img: &GreyImage, rows: std::ops::Range<usize>) -> GreyImage {
@@ -79,8 +79,8 @@ mod frames {
     }
 
     fn pair(name: &str) -> (GreyImage, GreyImage, u32) {
-        let data = sim::io::load_pair_dir(&sim::io::shared_stereo_dir().join(name)).expect("the pair loads");
-        (data.left, data.right, sim::budget::dispmax_lsb(data.dispmax + 1.0).expect("dispmax"))
+        let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(name)).expect("the pair loads");
+        (data.left, data.right, sim::formats::dispmax_lsb(data.dispmax + 1.0).expect("dispmax"))
     }
 
     fn model<const N: usize>(left: &GreyImage, right: &GreyImage, hblank: usize, dispmax: u32) -> (StereoRun, f64) {
@@ -94,7 +94,7 @@ mod frames {
     /// The model with `N` cells against its Verilog under `simulator` on
     /// the frame: every field of the run equal.
     fn check<const N: usize>(simulator: Simulator, left: &GreyImage, right: &GreyImage, hblank: usize, dispmax: u32, what: &str) {
-        let design = sim::verilog::generate_with(sim::verilog::Top::Stereo, N, rtl::declivity_matcher::GainRule::Robust).expect("a supported size");
+        let design = sim::hdl::verilog::generate_with(sim::hdl::verilog::Top::Stereo, N, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
         let (want, model_rate) = model::<N>(left, right, hblank, dispmax);
         assert!(want.rows.len() == left.height() && want.pixels_in > 0, "{what}: the model ran the frame");
         let got = run_frame(simulator, &design, left, right, hblank, dispmax, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
@@ -110,8 +110,8 @@ mod frames {
         assert!(diff.is_empty(), "{what}: {} differs from the rust-hdl model: {diff:#?}", simulator.name());
     }
 
-    /// Icarus simulates the 32-cell processor at a few clocks a second; a
-    /// few lines with the 16 cells of the lint test keep it to a minute.
+    /// Icarus is the slowest engine by far; a few lines with the 16 cells of
+    /// the lint test keep the test short.
     /// (The lines have more declivities than 16 cells hold: `lines_full`
     /// counts them, and the Verilog must count them alike.)
     #[test]
@@ -128,7 +128,7 @@ mod frames {
     fn cosim_verilator_driver_writes_the_icarus_testbench_files_byte_for_byte() {
         let (left, right, dispmax) = pair("tsukuba");
         let (left, right) = (crop(&left, 120..122), crop(&right, 120..122));
-        let design = sim::verilog::generate_with(sim::verilog::Top::Stereo, super::CELLS, rtl::declivity_matcher::GainRule::Robust).expect("a supported size");
+        let design = sim::hdl::verilog::generate_with(sim::hdl::verilog::Top::Stereo, super::CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
         let opts = Options { keep: true, ..Options::default() };
         let (want, _) = model::<{ super::CELLS }>(&left, &right, 7, dispmax);
         let mut files = Vec::new();

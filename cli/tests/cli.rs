@@ -1,0 +1,383 @@
+//! The `declivity` binary as a user meets it: the main job, `depth`, `eval`,
+//! `rtl detect`, `rtl match`, `verilog`, and clear errors with a non-zero
+//! exit on bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use image::{GrayImage, Luma, Rgb, RgbImage};
+
+fn declivity(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_declivity")).args(args).current_dir(cwd).output().expect("the binary runs")
+}
+
+fn text(o: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+fn stereo() -> PathBuf {
+    sim::eval::io::stereo_data_dir()
+}
+
+/// A textured grey image and the same shifted left by `d` pixels (so the
+/// disparity is `d` everywhere away from the border).
+fn shifted_pair(w: u32, h: u32, d: u32) -> (GrayImage, GrayImage) {
+    let tex = |x: u32, y: u32| -> u8 {
+        let v = ((x / 5) * 37 + (y / 7) * 11) % 7;
+        (40 + v * 30) as u8
+    };
+    let left = GrayImage::from_fn(w, h, |x, y| Luma([tex(x, y)]));
+    let right = GrayImage::from_fn(w, h, |x, y| Luma([tex(x + d, y)]));
+    (left, right)
+}
+
+#[test]
+fn main_job_without_arguments_writes_the_bundled_pair_pictures_and_cites_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = declivity(&[], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(out.contains("Scharstein") && out.contains("Tsukuba"), "citation printed: {out}");
+    let folder = dir.path().join("declivity-out/tsukuba");
+    assert!(out.contains("declivity-out/tsukuba"), "names its folder: {out}");
+    for f in ["disparity16.png", "disparity.png", "declivities_left.png", "declivities_right.png", "graph_line_144.png"] {
+        assert!(folder.join(f).is_file(), "{f} written");
+    }
+    let d16 = image::open(folder.join("disparity16.png")).unwrap().into_luma16();
+    assert_eq!(d16.dimensions(), (384, 288));
+    // Tsukuba's ground truth lies in 5..14 px: most pixels of the paper
+    // mode's map (more than 65 %) hold d x 16 with d in 5..=15.
+    let in_range = d16.pixels().filter(|p| (5 * 16..=15 * 16).contains(&p[0])).count();
+    assert!(in_range as f64 > 0.65 * (384.0 * 288.0), "{in_range} pixels in range");
+}
+
+#[test]
+fn depth_on_a_shifted_pair_recovers_the_shift_and_writes_depth_and_point_cloud() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = shifted_pair(120, 16, 6);
+    l.save(dir.path().join("l.png")).unwrap();
+    r.save(dir.path().join("r.png")).unwrap();
+    let o = declivity(
+        &["depth", "l.png", "r.png", "--dispmax", "10", "--out", "out", "--focal-px", "500", "--baseline-m", "0.1", "--graph-line", "3"],
+        dir.path(),
+    );
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let d16 = image::open(dir.path().join("out/disparity16.png")).unwrap().into_luma16();
+    // d = 6 px -> 96 in the 16-bit map, at every pixel away from the right border.
+    let centre = d16.get_pixel(60, 8)[0];
+    assert_eq!(centre, 96);
+    let depth = image::open(dir.path().join("out/depth_mm.png")).unwrap().into_luma16();
+    // Z = f b / d = 500 * 0.1 / 6 m = 8333 mm.
+    assert_eq!(depth.get_pixel(60, 8)[0], 8333);
+    let ply = std::fs::read_to_string(dir.path().join("out/points.ply")).unwrap();
+    assert!(ply.starts_with("ply\nformat ascii 1.0"), "PLY header");
+    assert!(dir.path().join("out/graph_line_3.png").is_file());
+}
+
+#[test]
+fn colour_input_is_converted_with_a_note_not_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = shifted_pair(80, 8, 4);
+    let colour = RgbImage::from_fn(80, 8, |x, y| {
+        let v = l.get_pixel(x, y)[0];
+        Rgb([v, v, v])
+    });
+    colour.save(dir.path().join("l.png")).unwrap();
+    r.save(dir.path().join("r.png")).unwrap();
+    let o = declivity(&["depth", "l.png", "r.png", "--dispmax", "8", "--out", "o"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(err.contains("note:") && err.contains("converted to grey"), "stderr {err}");
+}
+
+#[test]
+fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = shifted_pair(60, 10, 3);
+    l.save(p.join("l.png")).unwrap();
+    r.save(p.join("r.png")).unwrap();
+    GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
+    std::fs::write(p.join("junk.png"), b"not an image").unwrap();
+    std::fs::create_dir(p.join("empty")).unwrap();
+    let cases: [(&[&str], &str); 7] = [
+        (&["depth", "missing.png", "r.png", "--dispmax", "8"], "missing.png"),
+        (&["depth", "junk.png", "r.png", "--dispmax", "8"], "cannot read image"),
+        (&["depth", "l.png", "small.png", "--dispmax", "8"], "differ in size"),
+        (&["depth", "l.png", "r.png", "--dispmax", "1"], "dispmax must be greater than 1"),
+        (&["eval", "empty"], "nothing to evaluate"),
+        (&["depth", "l.png", "r.png", "--dispmax", "8", "--graph-line", "10"], "outside the image"),
+        // The sensor's array is 32 cells of four rows; 64 is not generated.
+        (&["verilog", "--top", "matcher", "--cells", "64"], "generated with [2, 4, 8, 16, 32] cells"),
+    ];
+    for (args, needle) in cases {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains("error:") && err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    }
+}
+
+#[test]
+fn eval_json_has_the_documented_keys_per_pair() {
+    let o = declivity(&["eval", "--json", "--runs", "1", stereo().join("tsukuba").to_str().unwrap()], Path::new("."));
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stderr {err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 1, "one object per pair: {out}");
+    let v: serde_json::Value = serde_json::from_str(lines[0]).unwrap();
+    for k in [
+        "pair", "mode", "width", "height", "declivities", "matches", "match_frac", "sparse_acc1", "bad1", "bad2", "bad1v", "bad2v", "density",
+        "nonocc_bad2", "ms",
+    ] {
+        assert!(v.get(k).is_some(), "key {k} in {v}");
+    }
+    assert_eq!(v["pair"], "tsukuba");
+    assert_eq!(v["mode"], "robust", "the default mode");
+    assert!(v["nonocc_bad2"].is_number(), "tsukuba has a mask");
+}
+
+#[test]
+fn eval_json_gives_null_nonocc_without_a_mask() {
+    let o = declivity(&["eval", "--json", "--runs", "1", "--mode", "paper", stereo().join("map").to_str().unwrap()], Path::new("."));
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert!(v["nonocc_bad2"].is_null(), "{v}");
+    assert_eq!(v["mode"], "paper");
+}
+
+#[test]
+fn every_subcommand_explains_itself_in_help() {
+    for args in [
+        &["--help"][..],
+        &["depth", "--help"],
+        &["eval", "--help"],
+        &["rtl", "detect", "--help"],
+        &["rtl", "match", "--help"],
+        &["verilog", "--help"],
+        &["synth", "--help"],
+    ] {
+        let o = declivity(args, Path::new("."));
+        let (out, _) = text(&o);
+        assert!(o.status.success());
+        assert!(out.contains("Usage:") && out.len() > 400, "{args:?}: {out}");
+    }
+}
+
+fn bundled_left() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/stereo/tsukuba/left_gray.png")
+}
+
+#[test]
+fn rtl_detect_json_reports_agreement_throughput_and_writes_the_overlay_and_waveform() {
+    let dir = tempfile::tempdir().unwrap();
+    let left = bundled_left();
+    let o = declivity(
+        &["rtl", "detect", left.to_str().unwrap(), "--json", "--out", "o", "--vcd", "w.vcd", "--lines", "10..11"],
+        dir.path(),
+    );
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    for key in [
+        "lines",
+        "pixels",
+        "cycles",
+        "px_per_clk",
+        "declivities_rtl",
+        "declivities_golden",
+        "borderline",
+        "mismatches",
+        "max_pos_err_lsb",
+        "sim_cycles_per_s",
+    ] {
+        assert!(v.get(key).is_some(), "{key} in {out}");
+    }
+    assert_eq!(v["lines"], 288);
+    assert_eq!(v["pixels"], 384 * 288);
+    assert_eq!(v["mismatches"], 0, "{out}");
+    assert_eq!(v["px_per_clk"], 1.0, "{out}");
+    // The records are golden's but for the few whose amplitude sits on d_t.
+    let (rtl, gold) = (v["declivities_rtl"].as_u64().unwrap(), v["declivities_golden"].as_u64().unwrap());
+    assert!(rtl > 10_000 && rtl.abs_diff(gold) <= v["borderline"].as_u64().unwrap(), "{out}");
+    assert!(v["max_pos_err_lsb"].as_f64().unwrap() < 1.0);
+    // The image streams in `pixels` clocks; the last line's records follow
+    // within one marker latency.
+    let cycles = v["cycles"].as_u64().unwrap();
+    assert!(cycles > 384 * 288 && cycles < 384 * 288 + 2000, "{cycles}");
+    let overlay = image::open(dir.path().join("o/declivities_rtl.png")).unwrap();
+    assert_eq!((overlay.width(), overlay.height()), (384, 288));
+    let vcd = std::fs::read_to_string(dir.path().join("w.vcd")).unwrap();
+    assert!(vcd.contains("$var") && vcd.contains("s_tdata") && vcd.contains("#"), "a VCD with the ports");
+}
+
+#[test]
+fn rtl_detect_rejects_rows_outside_the_image_and_unreadable_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let left = bundled_left();
+    let o = declivity(&["rtl", "detect", left.to_str().unwrap(), "--vcd", "w.vcd", "--lines", "280..300"], dir.path());
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("280..300") && err.contains("288 rows"), "{err}");
+    std::fs::write(dir.path().join("bad.png"), b"not a png").unwrap();
+    let o = declivity(&["rtl", "detect", "bad.png"], dir.path());
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("bad.png"), "{err}");
+    let o = declivity(&["rtl", "detect", left.to_str().unwrap(), "--lines", "5..2", "--vcd", "w.vcd"], dir.path());
+    assert!(!o.status.success());
+    assert!(text(&o).1.contains("empty"), "{}", text(&o).1);
+}
+
+#[test]
+fn verilog_command_writes_the_detector_with_its_ports() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = declivity(&["verilog", "--top", "detector", "--out", "v"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v = std::fs::read_to_string(dir.path().join("v/detector.v")).unwrap();
+    assert!(v.contains("module top"));
+    for port in ["s_tdata", "s_tvalid", "s_tuser", "s_tlast", "s_tready", "m_valid", "m_last", "m_pos", "m_dt"] {
+        assert!(v.contains(port), "{port}");
+    }
+}
+
+/// Left and right images of the Tsukuba pair in data/stereo.
+fn tsukuba_pair() -> (String, String) {
+    let dir = stereo().join("tsukuba");
+    let path = |f: &str| dir.join(f).to_str().unwrap().to_string();
+    (path("left_gray.png"), path("right_gray.png"))
+}
+
+#[test]
+fn rtl_match_json_on_a_few_rows_agrees_with_golden_and_draws_the_graph() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = tsukuba_pair();
+    let o = declivity(&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "140..144", "--json", "--out", "o"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    for key in [
+        "lines",
+        "matches_rtl",
+        "matches_golden",
+        "identical_lines",
+        "equal_gain_lines",
+        "mismatch_lines",
+        "malformed_lines",
+        "off_schedule_lines",
+        "max_cycles_per_line",
+        "max_cycles_line",
+        "max_engine_period",
+        "cycles",
+        "sim_cycles_per_s",
+        "rule",
+        "dispmax",
+        "rows",
+        "graph",
+    ] {
+        assert!(v.get(key).is_some(), "{key} in {out}");
+    }
+    assert_eq!(v["lines"], 4);
+    assert_eq!(v["identical_lines"], 4, "{out}");
+    assert_eq!(v["mismatch_lines"], 0, "{out}");
+    assert_eq!(v["malformed_lines"], 0, "{out}");
+    assert_eq!(v["off_schedule_lines"], 0, "every marker on rtl::matcher::declivity_matcher::schedule: {out}");
+    assert!(v["max_engine_period"].as_u64().unwrap() > 0, "{out}");
+    assert_eq!(v["rule"], "robust", "the default rule");
+    assert_eq!(v["dispmax"], 16.0);
+    assert_eq!(v["rows"], serde_json::json!([140, 144]));
+    assert_eq!(v["matches_rtl"], v["matches_golden"]);
+    assert!(v["matches_rtl"].as_u64().unwrap() > 40, "tsukuba's rows have tens of matches: {out}");
+    let row = v["max_cycles_line"].as_u64().unwrap();
+    assert!((140..144).contains(&row), "an image row: {out}");
+    assert!(v["max_cycles_per_line"].as_u64().unwrap() > 0 && v["sim_cycles_per_s"].as_f64().unwrap() > 0.0);
+    // The default graph line is the middle of the rows run.
+    let graph = dir.path().join("o/graph_rtl_line_142.png");
+    assert!(v["graph"].as_str().unwrap().ends_with("graph_rtl_line_142.png"), "{out}");
+    let img = image::open(&graph).expect("the matching graph is written").into_rgb8();
+    assert!(img.width() > 200 && img.height() > 200);
+    // Both paths are drawn: golden's rings (green) and the rtl boxes (orange).
+    assert!(img.pixels().any(|p| p.0 == [0, 255, 0]) && img.pixels().any(|p| p.0 == [255, 150, 0]));
+}
+
+#[test]
+fn rtl_match_text_summary_and_graph_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = tsukuba_pair();
+    let o = declivity(&["rtl", "match", &l, &r, "--dispmax", "15.5", "--rows", "10..12", "--graph-line", "10", "--rule", "paper"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(out.contains("identical lines     2 of 2") && out.contains("paper rule"), "{out}");
+    assert!(out.contains("off-schedule lines  0") && out.contains("max engine period"), "{out}");
+    assert!(dir.path().join("declivity-out/rtl-match-left_gray/graph_rtl_line_10.png").is_file(), "{out}");
+}
+
+#[test]
+fn rtl_match_rejects_bad_inputs_with_a_clear_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = tsukuba_pair();
+    std::fs::write(p.join("bad.png"), b"not a png").unwrap();
+    GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
+    let cases: [(&[&str], &str); 10] = [
+        (&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "280..300"], "280..300"),
+        (&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "5..2"], "empty"),
+        (&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "5..8", "--graph-line", "9"], "outside the rows run"),
+        (&["rtl", "match", &l, &r, "--dispmax", "1"], "greater than 1"),
+        (&["rtl", "match", &l, &r, "--dispmax", "nan"], "greater than 1"),
+        (&["rtl", "match", &l, &r, "--dispmax", "inf"], "greater than 1"),
+        (&["rtl", "match", &l, &r, "--dispmax", "2000"], "at most W_MAX"),
+        (&["rtl", "match", &l, &r, "--dispmax", "10.3"], "multiple of 1/16"),
+        (&["rtl", "match", "bad.png", &r, "--dispmax", "16"], "bad.png"),
+        (&["rtl", "match", &l, "small.png", "--dispmax", "16"], "differ in size"),
+    ];
+    for (args, needle) in cases {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    }
+}
+
+#[test]
+fn rtl_depth_writes_a_waveform_from_the_first_pixel_in_to_the_traced_row_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = shifted_pair(40, 3, 4);
+    l.save(p.join("l.png")).unwrap();
+    r.save(p.join("r.png")).unwrap();
+    let o = declivity(&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--vcd", "w.vcd", "--lines", "0..1", "--json", "--out", "o"], p);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    assert_eq!(v["lines_out"], 3, "{out}");
+    let vcd = std::fs::read_to_string(p.join("w.vcd")).expect("the waveform");
+    let times: Vec<u64> = vcd.lines().filter_map(|l| l.strip_prefix('#')).map(|t| t.parse().expect("a timestamp")).collect();
+    assert_eq!(times.first(), Some(&0), "row 0's first pixel enters on clock 0");
+    let first_out = v["latency_cycles"].as_u64().expect("a disparity came out");
+    let last = *times.last().expect("clocks were recorded");
+    assert!(last / 10 >= first_out + 39, "the trace ends at clock {} before row 0's 40 outputs from clock {first_out} left", last / 10);
+    let m_tvalid = vcd.lines().find(|l| l.ends_with(" m_tvalid $end")).and_then(|l| l.split_whitespace().nth(3)).expect("m_tvalid is traced").to_string();
+    assert!(vcd.lines().any(|l| l == format!("1{m_tvalid}")), "m_tvalid rises in the trace");
+}
+
+#[test]
+fn rtl_depth_rejects_a_waveform_outside_the_rows_or_from_verilator() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let (l, r) = tsukuba_pair();
+    let cases: [(&[&str], &str); 3] = [
+        (&["rtl", "depth", &l, &r, "--dispmax", "16", "--rows", "100..104", "--vcd", "w.vcd", "--lines", "3..6"], "not rows of the frame run"),
+        (&["rtl", "depth", &l, &r, "--dispmax", "16", "--rows", "100..104", "--vcd", "w.vcd", "--lines", "0..1", "--engine", "verilator"], "rust-hdl engine only"),
+        (&["rtl", "depth", &l, &r, "--dispmax", "16", "--vcd", "w.vcd"], "--lines"),
+    ];
+    for (args, needle) in cases {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    }
+}

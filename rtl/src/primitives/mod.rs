@@ -1,0 +1,6 @@
+//! Memories and multipliers as ECP5 primitives or logic, each with a rust-hdl model for simulation.
+
+pub mod block_ram;
+pub mod lut_ram;
+pub mod logic_rom;
+pub mod dsp_multiplier;

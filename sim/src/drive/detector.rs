@@ -1,0 +1,475 @@
+//! Cycle-accurate direct drive of the rtl [`DeclivityDetector`] and its
+//! comparison with golden's detector in hardware-parity mode.
+//!
+//! Direct drive (`RUST-HDL-NOTES.md`): the driver sets the inputs, lets the
+//! logic settle, samples the outputs, then raises the clock; no threads and
+//! no testbench, so whole images run in seconds. One [`DetectorSim::cycle`]
+//! is exactly one clock, with the co-simulation harness's cycle semantics
+//! (inputs applied with the clock low, outputs sampled before the edge).
+
+use golden::declivity::Declivity;
+use golden::hardware::{detect_line, LimitedLine};
+
+use crate::formats::hardware_limits;
+use rtl::detector::declivity_detector::DeclivityDetector;
+use rtl::params::{DT_FRAC_BITS, POS_FRAC_BITS, W_MAX};
+use rust_hdl::core::vcd_probe::VCDProbe;
+use rust_hdl::prelude::*;
+use serde::Serialize;
+
+/// One input beat of the AXI4-Stream video port.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PixelBeat {
+    pub tdata: u8,
+    pub tvalid: bool,
+    pub tuser: bool,
+    pub tlast: bool,
+}
+
+/// One output beat: a declivity record, or a line's end marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RecordBeat {
+    pub marker: bool,
+    pub start: u32,
+    pub end: u32,
+    /// `a_i`, sign-extended.
+    pub amplitude: i32,
+    /// `X_i · 2^POS_FRAC_BITS`.
+    pub pos: u32,
+    pub left: [u8; 3],
+    pub right: [u8; 3],
+    /// `d_t · 2^DT_FRAC_BITS`.
+    pub dt: u32,
+    pub count: u32,
+    pub wide: bool,
+    pub full: bool,
+    pub sof: bool,
+}
+
+/// What one line came out as.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct HwLine {
+    pub records: Vec<RecordBeat>,
+    /// Clock of each record.
+    pub record_cycles: Vec<u64>,
+    /// The marker.
+    pub marker: RecordBeat,
+    /// Clock of the marker.
+    pub marker_cycle: u64,
+}
+
+impl HwLine {
+    /// `d_t` in grey levels.
+    pub fn dt(&self) -> f64 {
+        self.marker.dt as f64 / (1u64 << DT_FRAC_BITS) as f64
+    }
+}
+
+/// The detector under direct drive.
+pub struct DetectorSim {
+    pub uut: DeclivityDetector,
+    /// Clocks so far.
+    pub cycle: u64,
+    vcd: Option<VcdState>,
+}
+
+struct VcdState {
+    probe: Option<VCDProbe<std::io::BufWriter<std::fs::File>>>,
+    /// Record clocks in this range only.
+    range: std::ops::Range<u64>,
+}
+
+impl Default for DetectorSim {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl DetectorSim {
+    pub fn new() -> Self {
+        let mut uut = DeclivityDetector::default();
+        uut.connect_all();
+        DetectorSim { uut, cycle: 0, vcd: None }
+    }
+
+    /// Writes a VCD of the clocks in `range` to `path`.
+    pub fn trace_to(&mut self, path: &std::path::Path, range: std::ops::Range<u64>) -> std::io::Result<()> {
+        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        let probe = write_vcd_header(file, &self.uut);
+        self.vcd = Some(VcdState { probe: Some(probe), range });
+        Ok(())
+    }
+
+    /// Ends the VCD: dropping the probe flushes and closes the file.
+    pub fn finish_trace(&mut self) {
+        self.vcd = None;
+    }
+
+    /// One clock: apply `input`, settle, sample; returns whether the pixel
+    /// was accepted (`tvalid && tready`) and the output beat, if any.
+    pub fn cycle(&mut self, input: PixelBeat) -> (bool, Option<RecordBeat>) {
+        let u = &mut self.uut;
+        u.clock.next = false.into();
+        u.s_tdata.next = (input.tdata as u64).into();
+        u.s_tvalid.next = input.tvalid;
+        u.s_tuser.next = input.tuser;
+        u.s_tlast.next = input.tlast;
+        settle(u, SETTLE_LOW);
+        let accepted = input.tvalid && u.s_tready.val();
+        let out = u.m_valid.val().then(|| read_beat(u));
+        if let Some(state) = &mut self.vcd {
+            if state.range.contains(&self.cycle) {
+                if let Some(mut probe) = state.probe.take() {
+                    let _ = probe.timestamp(self.cycle * 10);
+                    probe = write_vcd_change(probe, &self.uut);
+                    state.probe = Some(probe);
+                }
+            }
+        }
+        let u = &mut self.uut;
+        u.clock.next = true.into();
+        settle(u, SETTLE_HIGH);
+        if let Some(state) = &mut self.vcd {
+            if state.range.contains(&self.cycle) {
+                if let Some(mut probe) = state.probe.take() {
+                    let _ = probe.timestamp(self.cycle * 10 + 5);
+                    probe = write_vcd_change(probe, &self.uut);
+                    state.probe = Some(probe);
+                }
+            }
+        }
+        self.cycle += 1;
+        (accepted, out)
+    }
+}
+
+/// Passes over the detector made before `simulate` checks that the logic
+/// settled, after the inputs (clock low) and after a clock edge: one fewer
+/// than the least the detector's logic needs, so that `simulate`'s own
+/// checking pass is never wasted; any further pass is `simulate`'s.
+const SETTLE_LOW: usize = 3;
+const SETTLE_HIGH: usize = 5;
+
+fn settle(u: &mut DeclivityDetector, passes: usize) {
+    crate::drive::settle_block(u, passes, 200, "the detector");
+}
+
+fn read_beat(u: &DeclivityDetector) -> RecordBeat {
+    let amp9 = u.m_amp.val().to_u64() as i32;
+    RecordBeat {
+        marker: u.m_last.val(),
+        start: u.m_start.val().to_u64() as u32,
+        end: u.m_end.val().to_u64() as u32,
+        amplitude: if amp9 >= 256 { amp9 - 512 } else { amp9 },
+        pos: u.m_pos.val().to_u64() as u32,
+        left: [u.m_left0.val(), u.m_left1.val(), u.m_left2.val()].map(|v| v.to_u64() as u8),
+        right: [u.m_right0.val(), u.m_right1.val(), u.m_right2.val()].map(|v| v.to_u64() as u8),
+        dt: u.m_dt.val().to_u64() as u32,
+        count: u.m_count.val().to_u64() as u32,
+        wide: u.m_wide.val(),
+        full: u.m_full.val(),
+        sof: u.m_sof.val(),
+    }
+}
+
+/// The result of streaming lines through the detector.
+#[derive(Debug, Clone, Default)]
+pub struct DetectorRun {
+    pub lines: Vec<HwLine>,
+    /// Clocks until the last marker left.
+    pub cycles: u64,
+    /// Clocks from the first pixel accepted to the last, inclusive.
+    pub input_cycles: u64,
+    /// Pixels accepted.
+    pub pixels: u64,
+    /// Clocks with `tvalid` high and `tready` low.
+    pub stall_cycles: u64,
+    /// Of those, the clocks on a line's second or later pixel (the detector
+    /// documents that it never stalls inside a line).
+    pub stalls_inside_lines: u64,
+    /// Clock at which each line's first pixel was accepted.
+    pub first_pixel_cycle: Vec<u64>,
+    /// Clock at which each line's last pixel was accepted.
+    pub last_pixel_cycle: Vec<u64>,
+}
+
+impl DetectorRun {
+    /// Pixels per clock while the image streamed in.
+    pub fn px_per_clk(&self) -> f64 {
+        if self.input_cycles == 0 {
+            0.0
+        } else {
+            self.pixels as f64 / self.input_cycles as f64
+        }
+    }
+}
+
+/// The detector hung: no marker for too long.
+#[derive(Debug, thiserror::Error)]
+#[error("the detector produced no line marker for {idle} clocks (line {line} of {lines}); it hangs")]
+pub struct DetectorHang {
+    pub idle: u64,
+    pub line: usize,
+    pub lines: usize,
+}
+
+/// Streams `lines` through `sim` back to back (the first pixel carries
+/// `tuser`), with `tvalid` low on the clocks `c` where `gap(c)` says so, and
+/// collects each line's records with their clocks; `progress` is called with
+/// the number of lines done.
+pub fn run_lines(
+    sim: &mut DetectorSim,
+    lines: &[&[u8]],
+    mut gap: impl FnMut(u64) -> bool,
+    mut progress: impl FnMut(usize),
+) -> Result<DetectorRun, DetectorHang> {
+    let mut run = DetectorRun::default();
+    let mut current = HwLine::default();
+    let (mut li, mut xi) = (0usize, 0usize);
+    let mut first_accept = None;
+    let mut last_accept = 0u64;
+    let mut idle = 0u64;
+    // Generous: a line's own length plus the pipeline, for the longest line.
+    let max_idle = 4 * (lines.iter().map(|l| l.len()).max().unwrap_or(0) as u64) + 4096;
+    while run.lines.len() < lines.len() {
+        let mut beat = PixelBeat::default();
+        if li < lines.len() && !gap(sim.cycle) {
+            let line = lines[li];
+            beat = PixelBeat { tdata: line[xi], tvalid: true, tuser: li == 0 && xi == 0, tlast: xi + 1 == line.len() };
+        }
+        let cycle = sim.cycle;
+        let (accepted, out) = sim.cycle(beat);
+        if beat.tvalid && !accepted {
+            run.stall_cycles += 1;
+            run.stalls_inside_lines += (xi > 0) as u64;
+        }
+        if accepted {
+            first_accept.get_or_insert(cycle);
+            if xi == 0 {
+                run.first_pixel_cycle.push(cycle);
+            }
+            last_accept = cycle;
+            run.pixels += 1;
+            xi += 1;
+            if xi == lines[li].len() {
+                run.last_pixel_cycle.push(cycle);
+                li += 1;
+                xi = 0;
+            }
+        }
+        idle += 1;
+        if let Some(out) = out {
+            if out.marker {
+                current.marker = out;
+                current.marker_cycle = cycle;
+                run.lines.push(std::mem::take(&mut current));
+                progress(run.lines.len());
+                idle = 0;
+            } else {
+                current.records.push(out);
+                current.record_cycles.push(cycle);
+            }
+        }
+        if idle > max_idle {
+            return Err(DetectorHang { idle, line: run.lines.len(), lines: lines.len() });
+        }
+    }
+    run.cycles = sim.cycle;
+    run.input_cycles = first_accept.map_or(0, |f| last_accept - f + 1);
+    Ok(run)
+}
+
+/// How one line of rtl records compares with golden in parity mode.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct LineComparison {
+    /// Declivities both found.
+    pub common: usize,
+    /// Found by one side only, with an amplitude within one `d_t` LSB of
+    /// golden's `d_t` (the fixed-point threshold decides them differently).
+    pub borderline: usize,
+    /// Any other difference: a declivity found by one side only, different
+    /// bounds, amplitude, levels or flags, a position off by one LSB or more,
+    /// `d_t` off by one LSB or more.
+    pub mismatches: usize,
+    /// Largest `|X_rtl - X_golden|` in position LSBs.
+    pub max_pos_err_lsb: f64,
+    /// Largest `|d_t,rtl - d_t,golden|` in `d_t` LSBs.
+    pub dt_err_lsb: f64,
+}
+
+/// Compares `hw` with golden's parity-mode result `gold` for one line.
+pub fn compare_line(hw: &HwLine, gold: &LimitedLine) -> LineComparison {
+    let pos_lsb = (1u64 << POS_FRAC_BITS) as f64;
+    let dt_lsb = (1u64 << DT_FRAC_BITS) as f64;
+    let mut c = LineComparison { dt_err_lsb: (hw.dt() - gold.dt).abs() * dt_lsb, ..Default::default() };
+    if c.dt_err_lsb >= 1.0 {
+        c.mismatches += 1;
+    }
+    if hw.marker.wide != gold.wide || hw.marker.full != gold.full || hw.marker.count as usize != hw.records.len() {
+        c.mismatches += 1;
+    }
+    let borderline = |a: i32| ((a.unsigned_abs() as f64) - gold.dt).abs() * dt_lsb <= 1.0;
+    let (mut i, mut j) = (0, 0);
+    let (h, g) = (&hw.records, &gold.declivities);
+    while i < h.len() || j < g.len() {
+        let hk = h.get(i).map(|r| (r.start as usize, r.end as usize));
+        let gk = g.get(j).map(|d| (d.start, d.end));
+        match (hk, gk) {
+            (Some(a), Some(b)) if a == b => {
+                let (r, d) = (&h[i], &g[j]);
+                let err = (r.pos as f64 / pos_lsb - d.position).abs() * pos_lsb;
+                c.max_pos_err_lsb = c.max_pos_err_lsb.max(err);
+                if r.amplitude != d.amplitude || r.left != d.left || r.right != d.right || err >= 1.0 || r.dt != hw.marker.dt {
+                    c.mismatches += 1;
+                } else {
+                    c.common += 1;
+                }
+                i += 1;
+                j += 1;
+            }
+            (Some(a), b) if b.is_none_or(|b| a < b) => {
+                if borderline(h[i].amplitude) {
+                    c.borderline += 1;
+                } else {
+                    c.mismatches += 1;
+                }
+                i += 1;
+            }
+            _ => {
+                if borderline(g[j].amplitude) {
+                    c.borderline += 1;
+                } else {
+                    c.mismatches += 1;
+                }
+                j += 1;
+            }
+        }
+    }
+    c
+}
+
+/// golden's declivities of every line in parity mode.
+pub fn golden_lines(lines: &[&[u8]]) -> Vec<LimitedLine> {
+    let limits = hardware_limits();
+    lines.iter().map(|l| detect_line(l, limits)).collect()
+}
+
+/// A record as golden's [`Declivity`] (position from the fixed point).
+pub fn to_declivity(r: &RecordBeat) -> Declivity {
+    Declivity {
+        start: r.start as usize,
+        end: r.end as usize,
+        amplitude: r.amplitude,
+        position: r.pos as f64 / (1u64 << POS_FRAC_BITS) as f64,
+        left: r.left,
+        right: r.right,
+    }
+}
+
+/// The report of `declivity rtl detect` (its JSON object).
+#[derive(Debug, Clone, Serialize)]
+pub struct DetectReport {
+    pub image: String,
+    pub width: usize,
+    pub lines: usize,
+    pub pixels: u64,
+    /// Clocks until the last line's marker left the detector.
+    pub cycles: u64,
+    /// Pixels per clock while the image streamed in (first to last pixel).
+    pub px_per_clk: f64,
+    pub stall_cycles: u64,
+    pub declivities_rtl: usize,
+    pub declivities_golden: usize,
+    /// Declivities found by one side only whose amplitude is within one
+    /// `d_t` LSB of golden's `d_t`.
+    pub borderline: usize,
+    /// Every other difference (see [`LineComparison`]).
+    pub mismatches: usize,
+    pub max_pos_err_lsb: f64,
+    pub max_dt_err_lsb: f64,
+    /// Lines longer than `W_MAX` / with more than `N_MAX` declivities.
+    pub wide_lines: usize,
+    pub full_lines: usize,
+    /// Clocks from the first line's last pixel to its marker.
+    pub first_line_latency: u64,
+    pub sim_cycles_per_s: f64,
+}
+
+/// Runs every row of `image` through the detector (back to back, no gaps)
+/// and compares each with golden in parity mode. Returns the report and the
+/// per-line records.
+pub fn detect_image(
+    sim: &mut DetectorSim,
+    name: &str,
+    image: &golden::GreyImage,
+    progress: impl FnMut(usize),
+) -> Result<(DetectReport, Vec<HwLine>), DetectorHang> {
+    let lines: Vec<&[u8]> = (0..image.height()).map(|y| image.row(y)).collect();
+    let t0 = std::time::Instant::now();
+    let run = run_lines(sim, &lines, |_| false, progress)?;
+    let secs = t0.elapsed().as_secs_f64();
+    let gold = golden_lines(&lines);
+    let mut report = DetectReport {
+        image: name.to_string(),
+        width: image.width(),
+        lines: lines.len(),
+        pixels: run.pixels,
+        cycles: run.cycles,
+        px_per_clk: run.px_per_clk(),
+        stall_cycles: run.stall_cycles,
+        declivities_rtl: run.lines.iter().map(|l| l.records.len()).sum(),
+        declivities_golden: gold.iter().map(|g| g.declivities.len()).sum(),
+        borderline: 0,
+        mismatches: 0,
+        max_pos_err_lsb: 0.0,
+        max_dt_err_lsb: 0.0,
+        wide_lines: run.lines.iter().filter(|l| l.marker.wide).count(),
+        full_lines: run.lines.iter().filter(|l| l.marker.full).count(),
+        first_line_latency: run.lines.first().map_or(0, |l| l.marker_cycle - run.last_pixel_cycle[0]),
+        sim_cycles_per_s: run.cycles as f64 / secs.max(1e-9),
+    };
+    for (h, g) in run.lines.iter().zip(&gold) {
+        let c = compare_line(h, g);
+        report.borderline += c.borderline;
+        report.mismatches += c.mismatches;
+        report.max_pos_err_lsb = report.max_pos_err_lsb.max(c.max_pos_err_lsb);
+        report.max_dt_err_lsb = report.max_dt_err_lsb.max(c.dt_err_lsb);
+    }
+    Ok((report, run.lines))
+}
+
+/// The records of each line as golden's line features (for the overlay
+/// picture).
+pub fn as_features(lines: &[HwLine]) -> Vec<golden::line::LineFeatures> {
+    lines
+        .iter()
+        .map(|l| golden::line::LineFeatures {
+            sigma: l.dt() / golden::noise::THRESHOLD_FACTOR,
+            dt: l.dt(),
+            declivities: l.records.iter().map(to_declivity).collect(),
+        })
+        .collect()
+}
+
+/// [`rtl::detector::declivity_detector::marker_latency`] for an image `width` wide
+/// (the stored width is at most `W_MAX`).
+pub fn marker_latency_estimate(width: usize) -> u64 {
+    rtl::detector::declivity_detector::marker_latency(width.clamp(1, W_MAX)) as u64
+}
+
+/// The beats of `lines` streamed as one frame (`tuser` on the first pixel,
+/// `tlast` on each line's last), `idle` clocks of `tvalid` low after each
+/// line, and `tvalid` low wherever `gap()` says so.
+pub fn frame_beats(lines: &[&[u8]], idle: usize, mut gap: impl FnMut() -> bool) -> Vec<PixelBeat> {
+    let mut beats = Vec::new();
+    for (y, line) in lines.iter().enumerate() {
+        for (x, &p) in line.iter().enumerate() {
+            while gap() {
+                beats.push(PixelBeat::default());
+            }
+            beats.push(PixelBeat { tdata: p, tvalid: true, tuser: y == 0 && x == 0, tlast: x + 1 == line.len() });
+        }
+        beats.extend(std::iter::repeat_n(PixelBeat::default(), idle));
+    }
+    beats
+}

@@ -1,0 +1,15 @@
+//! The blocks as Verilog: generation ([`verilog`]), the simulation models
+//! of the ECP5 primitives it instantiates ([`primitives`]), co-simulation
+//! of the Verilog against the Rust model under Icarus and Verilator and
+//! Verilator's lint ([`cosim`]), the traces each block's co-simulation
+//! replays ([`traces`]), whole frames through the line processor's Verilog
+//! ([`frame`]), and synthesis for the ECP5 with Yosys and nextpnr
+//! ([`synth`]), each in a work directory of its own ([`workdir`]).
+
+pub mod workdir;
+pub mod primitives;
+pub mod verilog;
+pub mod cosim;
+pub mod traces;
+pub mod frame;
+pub mod synth;

@@ -1,0 +1,52 @@
+//! # primitives — simulation models of the vendor primitives in generated Verilog
+//!
+//! Some blocks instantiate an ECP5 primitive by name (`rtl::primitives::block_ram`: the
+//! `DP16KD` block RAM with its output register, which Yosys never infers;
+//! `rtl::primitives::dsp_multiplier`: the `MULT18X18D` with its input registers;
+//! `rtl::primitives::lut_ram`: the `TRELLIS_DPR16X4` LUT RAM of the gain cells' rows).
+//! Yosys's `synth_ecp5` maps them itself; the co-simulation (Icarus,
+//! Verilator), the lint and the latch check read the behavioural models here
+//! beside the design, as `models.v`.
+
+/// Behavioural model of `DP16KD` as `rtl::primitives::block_ram::BlockRam` uses it.
+pub const DP16KD_MODEL: &str = include_str!("models/ecp5_dp16kd_sim.v");
+
+/// Behavioural model of `MULT18X18D` as `rtl::primitives::dsp_multiplier::DspMultiplier` uses it.
+pub const MULT18X18D_MODEL: &str = include_str!("models/ecp5_mult18x18d_sim.v");
+
+/// Behavioural model of `TRELLIS_DPR16X4` as `rtl::primitives::lut_ram::LutRam` uses it.
+pub const DPR16X4_MODEL: &str = include_str!("models/ecp5_dpr16x4_sim.v");
+
+/// The file the models are written to beside `top.v`.
+pub const MODELS_FILE: &str = "models.v";
+
+/// The models of the primitives `design` instantiates, as one Verilog text
+/// (empty when it instantiates none).
+pub fn models_for(design: &str) -> String {
+    let mut text = String::new();
+    if design.contains("DP16KD #(") {
+        text.push_str(DP16KD_MODEL);
+    }
+    if design.contains("MULT18X18D #(") {
+        text.push_str(MULT18X18D_MODEL);
+    }
+    if design.contains("TRELLIS_DPR16X4 #(") {
+        text.push_str(DPR16X4_MODEL);
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_design_gets_the_model_of_the_primitive_it_instantiates_and_no_other() {
+        assert!(models_for("DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();").contains("module DP16KD("));
+        assert!(!models_for("DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();").contains("module MULT18X18D("));
+        assert!(models_for("MULT18X18D #(\n.REG_INPUTA_CLK(\"CLK0\")) mult ();").contains("module MULT18X18D("));
+        assert!(models_for("TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module TRELLIS_DPR16X4("));
+        assert!(!models_for("TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module DP16KD("));
+        assert_eq!(models_for("module top(clock); endmodule"), "");
+    }
+}

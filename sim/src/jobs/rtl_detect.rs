@@ -1,0 +1,47 @@
+//! `declivity rtl detect`: every row of an image through the rtl declivity
+//! detector, compared with golden, with the records drawn over the image.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use golden::GreyImage;
+use rtl::params::W_MAX;
+
+use crate::drive::detector::{as_features, detect_image, marker_latency_estimate, DetectReport, DetectorSim};
+use crate::error::SimError;
+use crate::eval::pictures;
+
+/// A waveform to write: the file and the rows it covers.
+#[derive(Debug, Clone)]
+pub struct Waveform {
+    pub path: PathBuf,
+    pub rows: Range<usize>,
+}
+
+/// Runs `image` through the detector, writes `declivities_rtl.png` into
+/// `out` (created first, so that a bad folder fails before the
+/// simulation) and, with `vcd`, the waveform of its rows. `progress` is
+/// called with the lines done. Returns the report and the overlay's path.
+pub fn rtl_detect(name: &str, image: &GreyImage, out: &Path, vcd: Option<&Waveform>, progress: impl FnMut(usize)) -> Result<(DetectReport, PathBuf), SimError> {
+    if let Some(v) = vcd {
+        if v.rows.is_empty() || v.rows.end > image.height() {
+            return Err(SimError::Argument(format!("--lines {}..{}: the image has {} rows", v.rows.start, v.rows.end, image.height())));
+        }
+    }
+    std::fs::create_dir_all(out).map_err(|source| SimError::Io { path: out.to_path_buf(), source })?;
+    let mut sim = DetectorSim::new();
+    if let Some(v) = vcd {
+        // Lines stream back to back: row y enters at about y·W clocks and its
+        // records leave within one marker latency.
+        let w = image.width().min(W_MAX) as u64;
+        let range = v.rows.start as u64 * w..v.rows.end as u64 * w + marker_latency_estimate(image.width()) + w;
+        sim.trace_to(&v.path, range).map_err(|source| SimError::Io { path: v.path.clone(), source })?;
+    }
+    let (report, lines) = detect_image(&mut sim, name, image, progress).map_err(|e| SimError::Argument(e.to_string()))?;
+    sim.finish_trace();
+    let features = as_features(&lines);
+    let refs: Vec<_> = features.iter().collect();
+    let overlay = out.join("declivities_rtl.png");
+    pictures::save_png(&pictures::declivity_overlay(image, &refs), &overlay)?;
+    Ok((report, overlay))
+}
