@@ -45,12 +45,20 @@ for step in $STEPS; do
   bench)
     # OpenCV StereoBM/SGBM and golden, one thread each, median of 5 runs, in one run.
     python3 -c "import cv2, numpy" 2>/dev/null || python3 -m pip install -q numpy opencv-python-headless==4.12.0.88
+    # Pair by pair, OpenCV then golden in every mode, so that each pair's ratios are
+    # measured minutes apart at most on a machine whose load drifts.
     work=$(mktemp -d)
-    links "$work"
-    run python3 scripts/opencv_baseline.py "$work" --threads 1 > "$work/opencv.txt"
-    for mode in $MODES; do
-      run "$BIN" eval --json --runs 5 --mode "$mode" "$work"/*/
+    mkdir "$work/all"
+    links "$work/all"
+    for p in $PAIRS; do
+      mkdir "$work/$p.dir"
+      ln -s "$work/all/$p" "$work/$p.dir/$p"
+      run python3 scripts/opencv_baseline.py "$work/$p.dir" --threads 1 > "$work/$p.dir/opencv.txt"
+      for mode in $MODES; do
+        run "$BIN" eval --json --runs 5 --mode "$mode" "$work/all/$p"
+      done
     done > "$work/golden.jsonl"
+    cat "$work"/*.dir/baseline_results_threads1.csv | awk 'NR == 1 || !/^pair,/' > "$work/baseline_results_threads1.csv"
     python3 - "$work" "$OUT/bench.json" <<'PY'
 import csv, json, os, platform, sys
 import cv2
@@ -69,6 +77,7 @@ for line in open(f"{work}/golden.jsonl"):
 json.dump({
     "command": "scripts/doc-data.sh bench",
     "machine": f"{cpu}, {os.cpu_count()} cores",
+    "load_average": round(os.getloadavg()[0], 2),
     "opencv": cv2.__version__,
     "threads": 1,
     "runs": 5,

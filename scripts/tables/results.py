@@ -73,7 +73,7 @@ def bold(s, on=True):
 def readme_results():
     paper, robust = evals("eval-paper.jsonl"), evals("eval-robust.jsonl")
     bm, sgbm = opencv("BM"), opencv("SGBM")
-    rtl = evals("eval-rtl.jsonl")
+    rtl = evals_rtl()
     runs = synth_runs()
     mean_ratio = lambda mode: mean(time_ratio(mode, "BM").values())
     sgbm_ratio = mean(sgbm[p]["ms"] / bm[p]["ms"] for p in PAIRS)
@@ -81,17 +81,17 @@ def readme_results():
         luts = runs[0][1]["luts"]
         fmax = " / ".join(fmt(r["fmax_mhz"], ".1f") for _, r in runs)
         seeds = ", ".join(str(s) for s, _ in runs)
-        hw_speed = f"{fmt(min(r['run']['px_per_clk'] for r in rtl.values()), '.2f')} px/clk; Fmax {fmax} MHz (placer seeds {seeds})"
+        hw_speed = f"{fmt(min(r['px_per_clk'] for r in rtl.values()), '.2f')} px/clk; Fmax {fmax} MHz (placer seeds {seeds})"
         hw_size = f"{fmt(luts, ',')} LUTs ({100 * luts / DEVICE_LUTS:.1f} % of an ECP5-85K)"
     else:
-        hw_speed = f"{fmt(min(r['run']['px_per_clk'] for r in rtl.values()), '.2f')} px/clk; Fmax —"
+        hw_speed = f"{fmt(min(r['px_per_clk'] for r in rtl.values()), '.2f')} px/clk; Fmax —"
         hw_size = "—"
     rows = [
         ["golden, `robust` mode (default)", fmt(mean(r["sparse_acc1"] for r in robust.values()), ".1f"),
          fmt(mean(r["bad2"] for r in robust.values()), ".1f"), f"{mean_ratio('robust'):.2f} × StereoBM's time", "—"],
         ["golden, `paper` mode", fmt(mean(r["sparse_acc1"] for r in paper.values()), ".1f"),
          fmt(mean(r["bad2"] for r in paper.values()), ".1f"), f"{mean_ratio('paper'):.2f} × StereoBM's time", "—"],
-        ["OpenCV StereoBM", "—", fmt(mean(bm[p]["bad2"] for p in PAIRS), ".1f"), "1", "—"],
+        ["OpenCV StereoBM", "—", fmt(mean(bm[p]["bad2"] for p in PAIRS), ".1f"), "1 (the reference)", "—"],
         ["OpenCV StereoSGBM", "—", fmt(mean(sgbm[p]["bad2"] for p in PAIRS), ".1f"), f"{sgbm_ratio:.2f} × StereoBM's time", "—"],
         ["hardware line processor (`robust` mode)", "—", fmt(mean(r["bad2"] for r in rtl.values()), ".1f"), hw_speed, hw_size],
     ]
@@ -235,8 +235,8 @@ def results_speed():
 @table("results-speed-machine")
 def results_speed_machine():
     b = load_jsonl("bench.json")[0]
-    return (f"Measured on {b['machine']}, OpenCV {b['opencv']}, {b['threads']} thread, "
-            f"median of {b['runs']} runs each.\n")
+    return (f"Measured on {b['machine']} (load average {b['load_average']} at the end of the run), "
+            f"OpenCV {b['opencv']}, {b['threads']} thread, median of {b['runs']} runs each.\n")
 
 
 @table("results-rtl")
@@ -244,8 +244,7 @@ def results_rtl():
     rtl = evals_rtl()
     rows = []
     for p in PAIRS:
-        r = rtl[p]
-        run = r["run"]
+        r = run = rtl[p]
         dropped = f"{run['records_dropped']}, {run['lines_dropped']}, {run['pixels_dropped']}"
         rows.append([p, f"{run['width']}×{run['height']}", f"{run['agree_quarter_px']:.4f}", f"{run['px_per_clk']:.4f}",
                      fmt(run["stall_cycles"], ","), fmt(run["latency_cycles"], ","), fmt(r["bad2"], ".2f"),
