@@ -236,7 +236,7 @@ def results_speed():
 def results_speed_machine():
     b = load_jsonl("bench.json")[0]
     return (f"Measured on {b['machine']} (load average {b['load_average']} at the end of the run), "
-            f"OpenCV {b['opencv']}, {b['threads']} thread, median of {b['runs']} runs each.\n")
+            f"OpenCV {b['opencv']}, {b['threads']} thread; times: {b['runs']} runs.\n")
 
 
 @table("results-rtl")
