@@ -81,7 +81,8 @@ def readme_results():
         luts = runs[0][1]["luts"]
         fmax = " / ".join(fmt(r["fmax_mhz"], ".1f") for _, r in runs)
         seeds = ", ".join(str(s) for s, _ in runs)
-        hw_speed = f"{fmt(min(r['px_per_clk'] for r in rtl.values()), '.2f')} px/clk; Fmax {fmax} MHz (placer seeds {seeds})"
+        which = f"placer seed{'s' if len(runs) > 1 else ''} {seeds}"
+        hw_speed = f"{fmt(min(r['px_per_clk'] for r in rtl.values()), '.2f')} px/clk; Fmax {fmax} MHz ({which})"
         hw_size = f"{fmt(luts, ',')} LUTs ({100 * luts / DEVICE_LUTS:.1f} % of an ECP5-85K)"
     else:
         hw_speed = f"{fmt(min(r['px_per_clk'] for r in rtl.values()), '.2f')} px/clk; Fmax —"
