@@ -10,7 +10,6 @@ names the command of every file):
 - rtl-detect.jsonl           `declivity rtl detect PAIR/left_gray.png --json` per pair (detect)
 - synth-stereo-seed{1,2,3}.json  `declivity synth --top stereo --seed N --json` (written by
                              the hardware datasheet's measurements)
-- accuracy-limits.json       the limits study, copied from earlier runs of the sim examples
 """
 import statistics
 
@@ -202,25 +201,6 @@ def results_robustness():
     rows = [[p] + [f"{c[p][0]:+.1f} / {c[p][1]:+.1f}" for c in cols] for p in PAIRS]
     return markdown(["pair", "brighter right camera, paper", "brighter right camera, robust",
                      "noise σ = 3, paper", "noise σ = 3, robust"], rows, ["---"] + ["---:"] * 4)
-
-
-@table("results-limits")
-def results_limits():
-    d = load_jsonl("accuracy-limits.json")[0]
-    rows = [[x["experiment"].replace("|", "\\|"),
-             f"`{x['command'].split('-- ')[-1] if '-- ' in x['command'] else x['command'].split()[-1]}`",
-             x["best_mean_sparse_acc1"], x["pairs_below_paper_match_frac"] or "—", x["bad2"] or "—"]
-            for x in d["experiments"]]
-    return markdown(["experiment", "example", "best mean sparse_acc1 (%)",
-                     "pairs below the paper's match_frac", "mean bad2 (%)"], rows, ["---", "---", "---:", "---:", "---:"])
-
-
-@table("results-medians")
-def results_medians():
-    d = load_jsonl("accuracy-limits.json")[0]["medians"]
-    return markdown(["median rows"] + [str(r["rows"]) for r in d["rows"]],
-                    [["mean bad2, robust mode (%)"] + [fmt(r["mean_bad2"], "") for r in d["rows"]]],
-                    ["---"] + ["---:"] * len(d["rows"]))
 
 
 @table("results-speed")
