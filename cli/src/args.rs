@@ -12,7 +12,7 @@ use sim::jobs::rtl_depth::Engine;
 use sim::SimError;
 
 /// `A..B` (rows A to B-1, not empty).
-pub fn parse_range(s: &str) -> Result<Range<usize>, String> {
+pub(crate) fn parse_range(s: &str) -> Result<Range<usize>, String> {
     let (a, b) = s.split_once("..").ok_or_else(|| format!("`{s}` is not a range A..B"))?;
     let a: usize = a.trim().parse().map_err(|_| format!("`{a}` is not a row number"))?;
     let b: usize = b.trim().parse().map_err(|_| format!("`{b}` is not a row number"))?;
@@ -23,7 +23,7 @@ pub fn parse_range(s: &str) -> Result<Range<usize>, String> {
 }
 
 /// A finite number greater than 0.
-pub fn parse_positive(s: &str) -> Result<f64, String> {
+pub(crate) fn parse_positive(s: &str) -> Result<f64, String> {
     let v: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a number"))?;
     if v.is_finite() && v > 0.0 {
         Ok(v)
@@ -34,7 +34,7 @@ pub fn parse_positive(s: &str) -> Result<f64, String> {
 
 /// The method's options of `depth` and `eval`.
 #[derive(Args, Debug, Clone)]
-pub struct MethodArgs {
+pub(crate) struct MethodArgs {
     /// Variant of the method: `paper` is the paper's exactly; `robust` (the default) adds every
     /// measured improvement; the others add one each (docs/method.md).
     #[arg(long, value_enum, default_value_t = CliMode(Mode::default()))]
@@ -61,7 +61,7 @@ fn hardware_parity_help() -> String {
 
 impl MethodArgs {
     /// golden's parameters for the search bound `dispmax`.
-    pub fn params(&self, dispmax: f64) -> Result<Params, SimError> {
+    pub(crate) fn params(&self, dispmax: f64) -> Result<Params, SimError> {
         let p = Params {
             mode: self.mode.0,
             dispmax,
@@ -82,7 +82,7 @@ impl MethodArgs {
 
 /// A [`Mode`] on the command line: its names and summaries come from golden.
 #[derive(Debug, Clone, Copy)]
-pub struct CliMode(pub Mode);
+pub(crate) struct CliMode(pub Mode);
 
 impl ValueEnum for CliMode {
     fn value_variants<'a>() -> &'a [Self] {
@@ -105,7 +105,7 @@ impl ValueEnum for CliMode {
 
 /// The reference view.
 #[derive(ValueEnum, Debug, Clone, Copy)]
-pub enum CliRef {
+pub(crate) enum CliRef {
     /// Left view (the ground truth in data/stereo is for it).
     Left,
     /// Right view (the paper's choice).
@@ -114,7 +114,7 @@ pub enum CliRef {
 
 /// What the interpolation does at a line's ends.
 #[derive(ValueEnum, Debug, Clone, Copy)]
-pub enum CliEnds {
+pub(crate) enum CliEnds {
     /// Hold the nearest matched disparity out to the line's ends.
     Hold,
     /// Leave the line's ends without disparity.
@@ -123,7 +123,7 @@ pub enum CliEnds {
 
 /// The matcher's gain rule on the command line.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CliRule {
+pub(crate) enum CliRule {
     /// Eq. 4-8 as the paper writes them (golden's `paper` mode).
     Paper,
     /// Offset-compensated distances, one polarity, one-sided nodes (golden's default `robust`
@@ -132,7 +132,7 @@ pub enum CliRule {
 }
 
 impl CliRule {
-    pub fn rule(self) -> GainRule {
+    pub(crate) fn rule(self) -> GainRule {
         match self {
             CliRule::Paper => GainRule::Paper,
             CliRule::Robust => GainRule::Robust,
@@ -142,7 +142,7 @@ impl CliRule {
 
 /// What simulates the line processor clock by clock.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CliEngine {
+pub(crate) enum CliEngine {
     /// The rust-hdl model under direct drive (slow: thousands of clocks per second).
     #[value(name = "rust-hdl")]
     RustHdl,
@@ -153,7 +153,7 @@ pub enum CliEngine {
 }
 
 /// The engine asked for, or the fastest one installed.
-pub fn engine(asked: Option<CliEngine>) -> Engine {
+pub(crate) fn engine(asked: Option<CliEngine>) -> Engine {
     match asked {
         Some(CliEngine::RustHdl) => Engine::RustHdl,
         Some(CliEngine::Verilator) => Engine::Verilator,
@@ -164,7 +164,7 @@ pub fn engine(asked: Option<CliEngine>) -> Engine {
 
 /// A block that `verilog` and `synth` generate.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CliTop {
+pub(crate) enum CliTop {
     /// The declivity detector of one camera.
     Detector,
     /// The matcher: systolic array of gain cells and traceback (--cells, --rule).
@@ -176,7 +176,7 @@ pub enum CliTop {
 }
 
 impl CliTop {
-    pub fn top(self) -> sim::hdl::verilog::Top {
+    pub(crate) fn top(self) -> sim::hdl::verilog::Top {
         use sim::hdl::verilog::Top;
         match self {
             CliTop::Detector => Top::Detector,

@@ -8,7 +8,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// The progress of `len` steps of `unit` (e.g. "lines"), with `message`;
 /// hidden entirely when `quiet` (JSON output).
-pub struct Progress {
+pub(crate) struct Progress {
     bar: ProgressBar,
     message: String,
     start: Instant,
@@ -16,7 +16,7 @@ pub struct Progress {
 }
 
 impl Progress {
-    pub fn new(len: usize, unit: &str, message: impl Into<String>, quiet: bool) -> Progress {
+    pub(crate) fn new(len: usize, unit: &str, message: impl Into<String>, quiet: bool) -> Progress {
         let message = message.into();
         let bar = ProgressBar::new(len as u64);
         let template = format!("{{msg}} [{{bar:40}}] {{pos}}/{{len}} {unit}, {{eta}} left");
@@ -34,7 +34,7 @@ impl Progress {
     }
 
     /// A step of work of unknown length (a build): a spinner on a terminal.
-    pub fn spinner(message: impl Into<String>, quiet: bool) -> Progress {
+    pub(crate) fn spinner(message: impl Into<String>, quiet: bool) -> Progress {
         let message = message.into();
         let bar = ProgressBar::new_spinner();
         bar.set_message(message.clone());
@@ -51,20 +51,20 @@ impl Progress {
         Progress { bar, message, start: Instant::now(), lines }
     }
 
-    pub fn set(&self, done: usize) {
+    pub(crate) fn set(&self, done: usize) {
         self.bar.set_position(done as u64);
     }
 
-    pub fn inc(&self) {
+    pub(crate) fn inc(&self) {
         self.bar.inc(1);
     }
 
     /// Prints `f`'s output without tearing the bar.
-    pub fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
+    pub(crate) fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
         self.bar.suspend(f)
     }
 
-    pub fn finish(self) {
+    pub(crate) fn finish(self) {
         self.bar.finish_and_clear();
         if self.lines {
             eprintln!("{}: done in {:.1} s", self.message, self.start.elapsed().as_secs_f64());

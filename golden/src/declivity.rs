@@ -106,7 +106,7 @@ pub fn declivity_bounds_reference(line: &[u8]) -> DeclivityBounds<'_> {
 /// flat run between that end and the start keeps the end's level, so the
 /// amplitude `I(start) - I(x_i)` is known there and tested against
 /// `threshold`.
-pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
+fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
     let mut spans = Vec::new();
     declivity_spans_into(line, threshold, &mut spans);
     spans
@@ -114,7 +114,7 @@ pub fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
 
 /// [`declivity_spans`] into `spans` (cleared first), so that its allocation
 /// can be reused from line to line.
-pub fn declivity_spans_into(line: &[u8], threshold: u32, spans: &mut Vec<(usize, usize)>) {
+fn declivity_spans_into(line: &[u8], threshold: u32, spans: &mut Vec<(usize, usize)>) {
     spans.clear();
     let n = line.len();
     if n < 2 {
@@ -216,7 +216,7 @@ pub fn declivity_bounds(line: &[u8]) -> Vec<(usize, usize)> {
 
 /// The amplitude threshold of [`declivity_spans`] equivalent to `|a_i| > d_t`:
 /// amplitudes are integers, so `|a| > d_t ⇔ |a| > ⌊d_t⌋` for `d_t ≥ 0`.
-pub fn integer_threshold(dt: f64) -> u32 {
+fn integer_threshold(dt: f64) -> u32 {
     dt.max(0.0).floor().min(u32::MAX as f64) as u32
 }
 
@@ -327,7 +327,7 @@ pub fn characteristic_declivities(line: &[u8], dt: f64) -> Vec<Declivity> {
 
 /// [`characteristic_declivities`] with `spans` as the extrema pass's
 /// working vector (its allocation reused from line to line).
-pub fn characteristic_declivities_with(line: &[u8], dt: f64, spans: &mut Vec<(usize, usize)>) -> Vec<Declivity> {
+pub(crate) fn characteristic_declivities_with(line: &[u8], dt: f64, spans: &mut Vec<(usize, usize)>) -> Vec<Declivity> {
     declivity_spans_into(line, integer_threshold(dt), spans);
     spans.iter().map(|&(s, e)| describe(line, s, e)).collect()
 }

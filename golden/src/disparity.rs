@@ -13,7 +13,7 @@
 use crate::params::EndRule;
 
 /// Value of a pixel without disparity.
-pub const NO_DISPARITY: f64 = 0.0;
+const NO_DISPARITY: f64 = 0.0;
 
 /// A disparity anchored at a sub-pixel position of the reference line.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,7 +88,7 @@ pub fn interpolate_into(anchors: &[Anchor], ends: EndRule, jump: Option<f64>, ou
 /// and a jump is the ramp of slope 0 from the smaller disparity
 /// (`d + 0·(x - x_a) = d`: every disparity is positive), so that neither the
 /// length of a segment nor its kind is a branch per pixel or per segment.
-pub fn interpolate_chunked(anchors: &[Anchor], ends: EndRule, jump: Option<f64>, out: &mut [f64]) {
+pub(crate) fn interpolate_chunked(anchors: &[Anchor], ends: EndRule, jump: Option<f64>, out: &mut [f64]) {
     let (Some(first), Some(last)) = (anchors.first(), anchors.last()) else {
         out.fill(NO_DISPARITY);
         return;
@@ -186,7 +186,7 @@ pub fn vertical_median(disparity: &[f64], width: usize, rows: usize, out_row: &m
 /// `b`; after the 19 of them, in this order, value 4 is the median. Each
 /// line is one step of the hardware's pipeline (`rtl::post::vertical_median`): its
 /// exchanges touch distinct values.
-pub const MEDIAN9_NETWORK: [&[(usize, usize)]; 9] = [
+const MEDIAN9_NETWORK: [&[(usize, usize)]; 9] = [
     &[(1, 2), (4, 5), (7, 8)],
     &[(0, 1), (3, 4), (6, 7)],
     &[(1, 2), (4, 5), (7, 8)],
@@ -200,7 +200,7 @@ pub const MEDIAN9_NETWORK: [&[(usize, usize)]; 9] = [
 
 /// [`MEDIAN9_NETWORK`] on nine values: their median.
 #[inline(always)]
-pub fn median9(mut p: [f64; 9]) -> f64 {
+fn median9(mut p: [f64; 9]) -> f64 {
     let min = |a: f64, b: f64| if a < b { a } else { b };
     let max = |a: f64, b: f64| if a > b { a } else { b };
     for step in MEDIAN9_NETWORK {
@@ -225,7 +225,7 @@ pub fn median9(mut p: [f64; 9]) -> f64 {
 /// `min(a_k, b_{3−k})` holds the four smallest and `max(a_k, b_{3−k})` the
 /// four largest: `c3` is the largest of the first, `c4` the smallest of the
 /// second.
-pub fn median9_of_two_rows(rows: &[&[f64]; 10], out_a: &mut [f64], out_b: &mut [f64]) {
+pub(crate) fn median9_of_two_rows(rows: &[&[f64]; 10], out_a: &mut [f64], out_b: &mut [f64]) {
     let min = |a: f64, b: f64| if a < b { a } else { b };
     let max = |a: f64, b: f64| if a > b { a } else { b };
     let n = out_a.len();
@@ -254,7 +254,7 @@ pub fn median9_of_two_rows(rows: &[&[f64]; 10], out_a: &mut [f64], out_b: &mut [
 /// compare equal are the same bits, so either may be taken on a tie, and
 /// `min`/`max` are written as the single instructions of x86-64 take them
 /// (`a < b ? a : b`, `a > b ? a : b`).
-pub fn median_of_rows(rows: &[&[f64]], out_row: &mut [f64]) {
+fn median_of_rows(rows: &[&[f64]], out_row: &mut [f64]) {
     let min = |a: f64, b: f64| if a < b { a } else { b };
     let max = |a: f64, b: f64| if a > b { a } else { b };
     let median3 = |a: f64, b: f64, c: f64| max(min(a, b), min(max(a, b), c));

@@ -86,7 +86,7 @@ impl GainTable {
     }
 
     /// Sets node `(i, j)` (0-based).
-    pub fn set(&mut self, i: usize, j: usize, g: Option<f64>) {
+    fn set(&mut self, i: usize, j: usize, g: Option<f64>) {
         self.cells[i * self.m + j] = g;
     }
 }
@@ -134,7 +134,7 @@ pub fn literal_best_gain(t: &GainTable) -> f64 {
 /// returns `(P(i,j), choice)` from `G(i,j)` (if a node), `P(i-1,j)` and
 /// `P(i,j-1)`.
 #[inline]
-pub fn cell_step(g: Option<f64>, up: f64, left: f64) -> (f64, Choice) {
+fn cell_step(g: Option<f64>, up: f64, left: f64) -> (f64, Choice) {
     cell_step_g(g.unwrap_or(NO_NODE), up, left)
 }
 
@@ -270,7 +270,7 @@ pub struct BandedGains {
 /// The gain stored for a band cell without a node: the gain rule's value for
 /// a rejected node (`-∞`), which never wins a comparison and stays `-∞` when
 /// a path gain is added to it.
-pub const NO_NODE: f64 = crate::gain::REJECTED;
+const NO_NODE: f64 = crate::gain::REJECTED;
 
 impl BandedGains {
     /// A graph of `m` columns and no rows yet.
@@ -279,7 +279,8 @@ impl BandedGains {
     }
 
     /// Room for `rows` rows and `cells` band cells.
-    pub fn with_capacity(m: usize, rows: usize, cells: usize) -> Self {
+    #[cfg(test)]
+    pub(crate) fn with_capacity(m: usize, rows: usize, cells: usize) -> Self {
         BandedGains { m, rows: Vec::with_capacity(rows), gains: Vec::with_capacity(cells) }
     }
 
@@ -293,7 +294,7 @@ impl BandedGains {
     }
 
     /// Appends the next row: its band starts at column `lo` (0-based).
-    pub fn push_row(&mut self, lo: usize, gains: impl IntoIterator<Item = Option<f64>>) {
+    pub(crate) fn push_row(&mut self, lo: usize, gains: impl IntoIterator<Item = Option<f64>>) {
         let start = self.gains.len();
         self.gains.extend(gains.into_iter().map(|g| g.unwrap_or(NO_NODE)));
         debug_assert!(lo + (self.gains.len() - start) <= self.m, "band inside the table");
@@ -312,7 +313,7 @@ impl BandedGains {
 
     /// Row `i` (0-based): the first column of its band and the band's gains
     /// ([`NO_NODE`] where there is no node).
-    pub fn row(&self, i: usize) -> (usize, &[f64]) {
+    fn row(&self, i: usize) -> (usize, &[f64]) {
         let (lo, start) = self.rows[i];
         let end = self.rows.get(i + 1).map_or(self.gains.len(), |r| r.1);
         (lo, &self.gains[start..end])
@@ -369,7 +370,7 @@ pub fn banded_dp_with(m: usize, bands: &[(usize, usize)], gain: impl FnMut(usize
 /// The working tables of [`banded_dp_in`], kept from one line to the next so
 /// that their allocations are reused; `nodes` holds the last path found.
 #[derive(Debug, Clone, Default)]
-pub struct DpBuffers {
+pub(crate) struct DpBuffers {
     offs: Vec<usize>,
     band_c: Vec<Choice>,
     tails: Vec<f64>,
@@ -380,7 +381,7 @@ pub struct DpBuffers {
 
 /// [`banded_dp_with`] in reused tables: returns the path's gain and leaves
 /// its nodes in `buffers.nodes`.
-pub fn banded_dp_in(buffers: &mut DpBuffers, m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> f64 {
+pub(crate) fn banded_dp_in(buffers: &mut DpBuffers, m: usize, bands: &[(usize, usize)], mut gain: impl FnMut(usize, usize) -> f64) -> f64 {
     let n = bands.len();
     let DpBuffers { offs, band_c, tails, q, nodes } = buffers;
     // Choices of the band cells, row after row; offs[i] = first of row i.

@@ -123,7 +123,7 @@ pub fn confirmed_matches(lines: &[LineResult]) -> Vec<Vec<bool>> {
 
 /// Flags the matches of a row whose disparity differs by more than `jump`
 /// from that of the previous or the next match ([`crate::Features::edge_flag`]).
-pub fn flag_edge_matches(matches: &mut [Match], jump: f64) {
+fn flag_edge_matches(matches: &mut [Match], jump: f64) {
     // A jump between matches k-1 and k flags both; `prev` carries the flag
     // of the jump before k.
     let mut prev = false;
@@ -259,7 +259,7 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
 /// a window's first three matches are checked unconditionally and a loop
 /// runs only when it holds more (rare: matches are seldom closer than
 /// [`CONSISTENT_DX`]).
-pub fn confirmed_flags(lines: &[LineResult]) -> (Vec<bool>, Vec<usize>) {
+fn confirmed_flags(lines: &[LineResult]) -> (Vec<bool>, Vec<usize>) {
     const PAD: usize = 3;
     let total: usize = lines.iter().map(|l| l.matches.len() + PAD).sum();
     let (mut x, mut d) = (Vec::with_capacity(total), Vec::with_capacity(total));

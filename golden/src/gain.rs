@@ -40,7 +40,7 @@ fn sum_abs_diff(a: &[u8; 3], b: &[u8; 3]) -> u32 {
 }
 
 /// The mean of a declivity's two end levels, `(I(x_i) + I(x_{i+1})) / 2`.
-pub fn mid_level(d: &Declivity) -> f64 {
+fn mid_level(d: &Declivity) -> f64 {
     0.5 * (d.left[0] as f64 + d.right[0] as f64)
 }
 
@@ -48,12 +48,12 @@ pub fn mid_level(d: &Declivity) -> f64 {
 /// declivity's levels shifted by `δ = m_ref - m_other` (the difference of the
 /// end-level means) before comparing,
 /// `Σ_{k=0..2} |I_ref(x_i - k) - I_other(x_j - k) - δ|`.
-pub fn lpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
+fn lpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
     shifted_distance(&reference.left, &other.left, mid_level(reference) - mid_level(other))
 }
 
 /// Eq. 5 offset-compensated, as [`lpd_relative`] on the right neighbours.
-pub fn rpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
+fn rpd_relative(reference: &Declivity, other: &Declivity) -> f64 {
     shifted_distance(&reference.right, &other.right, mid_level(reference) - mid_level(other))
 }
 
@@ -65,7 +65,7 @@ fn shifted_distance(a: &[u8; 3], b: &[u8; 3], delta: f64) -> f64 {
 /// The photometric distances `(lpd, rpd)` of a node in `mode`: eq. 4–5, or
 /// their offset-compensated form; `None` when the mode compares only
 /// declivities of one polarity and these differ.
-pub fn photometric_distances(reference: &Declivity, other: &Declivity, mode: Mode) -> Option<(f64, f64)> {
+fn photometric_distances(reference: &Declivity, other: &Declivity, mode: Mode) -> Option<(f64, f64)> {
     if mode.features().relative {
         (reference.polarity() == other.polarity()).then(|| (lpd_relative(reference, other), rpd_relative(reference, other)))
     } else {

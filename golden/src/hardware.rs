@@ -48,7 +48,7 @@ impl Default for HardwareLimits {
 
 /// What the hardware's matcher sees of a line: `d_t` and the declivities
 /// in the detector's fixed-point formats (module doc), as reals.
-pub fn matcher_view(line: &LimitedLine, limits: HardwareLimits) -> (f64, Vec<Declivity>) {
+pub(crate) fn matcher_view(line: &LimitedLine, limits: HardwareLimits) -> (f64, Vec<Declivity>) {
     let unit = (1u64 << limits.pos_frac_bits) as f64;
     let declivities = line.declivities.iter().map(|d| Declivity { position: (d.position * unit).floor() / unit, ..*d }).collect();
     let dt_lsb = (line.dt * (1u64 << limits.dt_frac_bits) as f64).round() as u64;

@@ -4,7 +4,9 @@
 
 use crate::declivity::{characteristic_declivities_with, Declivity};
 use crate::disparity::Anchor;
-use crate::dp::{banded_dp_in, BandedGains, DpBuffers, GainTable};
+use crate::dp::{banded_dp_in, DpBuffers, GainTable};
+#[cfg(test)]
+use crate::dp::BandedGains;
 #[cfg(doc)]
 use crate::dp::{banded_dp, banded_dp_with};
 use crate::gain::{gmax, node_gain, pair_disparity, LineGain, Neighbours};
@@ -26,7 +28,7 @@ pub struct LineFeatures {
 /// those sizes finds them and sends them to the matcher
 /// (`crate::hardware::detect_line`, `crate::hardware::matcher_view`: σ is
 /// then the detector's `d_t / 5.6`, `d_t` and the positions the matcher's).
-pub fn line_features_with(line: &[u8], limits: Option<crate::hardware::HardwareLimits>) -> LineFeatures {
+pub(crate) fn line_features_with(line: &[u8], limits: Option<crate::hardware::HardwareLimits>) -> LineFeatures {
     match limits {
         None => line_features(line),
         Some(limits) => {
@@ -43,7 +45,7 @@ pub fn line_features(line: &[u8]) -> LineFeatures {
 }
 
 /// [`line_features`] with the working vectors of `buffers`.
-pub fn line_features_in(buffers: &mut LineBuffers, line: &[u8]) -> LineFeatures {
+fn line_features_in(buffers: &mut LineBuffers, line: &[u8]) -> LineFeatures {
     let sigma = noise_sigma(line);
     let dt = threshold(sigma);
     LineFeatures { sigma, dt, declivities: characteristic_declivities_with(line, dt, &mut buffers.spans) }
@@ -54,7 +56,7 @@ pub fn line_features_in(buffers: &mut LineBuffers, line: &[u8]) -> LineFeatures 
 /// one per thread) so that a frame does not allocate and free them for
 /// every line. Their contents between calls mean nothing.
 #[derive(Debug, Clone, Default)]
-pub struct LineBuffers {
+pub(crate) struct LineBuffers {
     spans: Vec<(usize, usize)>,
     refs: Vec<f64>,
     others: Vec<f64>,
@@ -162,7 +164,8 @@ fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params, bands: &mu
 
 /// The graph of two lines as bands of nodes with their gains (eq. 4–8); the
 /// columns outside each band are outside the search area (eq. 6).
-pub fn banded_gains(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> BandedGains {
+#[cfg(test)]
+fn banded_gains(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> BandedGains {
     let refs: Vec<f64> = reference.declivities.iter().map(|d| d.position).collect();
     let others: Vec<f64> = other.declivities.iter().map(|d| d.position).collect();
     let g = gmax(reference.dt, other.dt);
@@ -198,12 +201,13 @@ pub fn gain_table(reference: &LineFeatures, other: &LineFeatures, params: &Param
 /// of each matched reference declivity. Returns the matches in reference
 /// order and the path's gain. (The same as [`banded_dp`] on
 /// [`banded_gains`], with the gains computed as the DP sweeps them.)
-pub fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
+#[cfg(test)]
+fn match_lines(reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
     match_lines_in(&mut LineBuffers::default(), reference, other, params)
 }
 
 /// [`match_lines`] with the working vectors of `buffers`.
-pub fn match_lines_in(buffers: &mut LineBuffers, reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
+fn match_lines_in(buffers: &mut LineBuffers, reference: &LineFeatures, other: &LineFeatures, params: &Params) -> (Vec<Match>, f64) {
     let LineBuffers { refs, others, bands, neighbours, dp, .. } = buffers;
     refs.clear();
     refs.extend(reference.declivities.iter().map(|d| d.position));
@@ -244,7 +248,7 @@ pub fn process_line(left: &[u8], right: &[u8], params: &Params) -> LineResult {
 }
 
 /// [`process_line`] with the working vectors of `buffers`.
-pub fn process_line_in(buffers: &mut LineBuffers, left: &[u8], right: &[u8], params: &Params) -> LineResult {
+pub(crate) fn process_line_in(buffers: &mut LineBuffers, left: &[u8], right: &[u8], params: &Params) -> LineResult {
     let mut features = |line: &[u8]| match params.hardware {
         None => line_features_in(buffers, line),
         Some(_) => line_features_with(line, params.hardware),

@@ -18,10 +18,10 @@
 pub const HIST_BINS: usize = 256;
 
 /// The median of |N(0,1)|: `Φ⁻¹(3/4)`.
-pub const MAD_NORMAL: f64 = 0.674_489_750_196_081_7;
+const MAD_NORMAL: f64 = 0.674_489_750_196_081_7;
 
 /// Deviation of uniform quantization noise of one grey level: `1/√12`.
-pub const SIGMA_FLOOR: f64 = 0.288_675_134_594_812_9;
+const SIGMA_FLOOR: f64 = 0.288_675_134_594_812_9;
 
 /// The factor of eq. 2.
 pub const THRESHOLD_FACTOR: f64 = 5.6;
@@ -51,7 +51,7 @@ pub fn interpolated_median(hist: &[u32; HIST_BINS]) -> Option<f64> {
 
 /// [`interpolated_median`] of `n` samples whose histogram is given bin by
 /// bin by `count` (scanned from bin 0 up to the median bin only).
-pub fn interpolated_median_of(n: u64, count: impl Fn(usize) -> u64) -> Option<f64> {
+fn interpolated_median_of(n: u64, count: impl Fn(usize) -> u64) -> Option<f64> {
     if n == 0 {
         return None;
     }
@@ -70,7 +70,7 @@ pub fn interpolated_median_of(n: u64, count: impl Fn(usize) -> u64) -> Option<f6
 
 /// σ from a median `m` of |ΔI| (DESIGN §2.1): `max(m / (0.6745·√2), 1/√12)`;
 /// no median (fewer than two pixels) gives the floor.
-pub fn sigma_from_median(m: Option<f64>) -> f64 {
+fn sigma_from_median(m: Option<f64>) -> f64 {
     match m {
         Some(m) => (m / (MAD_NORMAL * std::f64::consts::SQRT_2)).max(SIGMA_FLOOR),
         None => SIGMA_FLOOR,

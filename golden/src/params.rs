@@ -106,7 +106,7 @@ pub const EDGE_JUMP: f64 = 6.0;
 /// [`Features::edge_flag`] of the modes that use it (px): of 1, 1.5, 2, 2.5,
 /// 3 and 4 px, the smallest that keeps `match_frac` at or above the paper
 /// mode's on every pair.
-pub const EDGE_FLAG_JUMP: f64 = 2.0;
+const EDGE_FLAG_JUMP: f64 = 2.0;
 /// [`Features::median_rows`] of the modes that use it: of 5, 7, 9 and 11
 /// rows (`sim` example `accuracy_limits -- medians`), 9 is the fewest that
 /// brings the robust mode's mean bad2 on the eight pairs below SGBM's.

@@ -2,17 +2,17 @@
 //! that every random case replays; the workspace tests use `rand_chacha`.
 
 /// xorshift64* with a fixed seed.
-pub struct TestRng(u64);
+pub(crate) struct TestRng(u64);
 
 impl TestRng {
     /// A generator seeded with `seed` (non-zero).
-    pub fn new(seed: u64) -> Self {
+    pub(crate) fn new(seed: u64) -> Self {
         assert_ne!(seed, 0, "xorshift needs a non-zero seed");
         TestRng(seed)
     }
 
     /// The next 64 random bits.
-    pub fn next(&mut self) -> u64 {
+    pub(crate) fn next(&mut self) -> u64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;

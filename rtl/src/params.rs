@@ -10,12 +10,12 @@
 pub const PIXEL_BITS: usize = 8;
 
 /// log2 of the maximum line width `W_MAX`.
-pub const W_MAX_BITS: usize = 10;
+pub(crate) const W_MAX_BITS: usize = 10;
 /// `W_MAX`: the widest line the detector stores (pixels beyond it are
 /// dropped and the line is flagged; see [`crate::detector::declivity_detector`]).
 pub const W_MAX: usize = 1 << W_MAX_BITS;
 /// Bits of a pixel index `x < W_MAX`.
-pub const X_BITS: usize = W_MAX_BITS;
+pub(crate) const X_BITS: usize = W_MAX_BITS;
 /// Address bits of the ping-pong line buffer: one bank bit above `x`.
 pub const LINE_BUF_ADDR_BITS: usize = W_MAX_BITS + 1;
 
@@ -25,10 +25,10 @@ pub const LINE_BUF_ADDR_BITS: usize = W_MAX_BITS + 1;
 /// a line are dropped and the line is flagged.
 pub const N_MAX: usize = 128;
 /// Bits of a per-line declivity count `0 ..= N_MAX`.
-pub const COUNT_BITS: usize = 8;
+pub(crate) const COUNT_BITS: usize = 8;
 
 /// Bins of the |ΔI| histogram (one per grey-level difference).
-pub const HIST_BINS: usize = 1 << PIXEL_BITS;
+pub(crate) const HIST_BINS: usize = 1 << PIXEL_BITS;
 /// Address bits of the histogram.
 pub const HIST_ADDR_BITS: usize = PIXEL_BITS;
 /// Bits of a histogram count or a running sum of counts: up to
@@ -36,49 +36,49 @@ pub const HIST_ADDR_BITS: usize = PIXEL_BITS;
 pub const HIST_COUNT_BITS: usize = W_MAX_BITS + 2;
 
 /// Fraction bits of the median's in-bin interpolation `(n/2 - below)/h`.
-pub const MEDIAN_FRAC_BITS: usize = 15;
+pub(crate) const MEDIAN_FRAC_BITS: usize = 15;
 /// Bits of that fraction: it can be exactly 1.
-pub const MEDIAN_Q_BITS: usize = MEDIAN_FRAC_BITS + 1;
+pub(crate) const MEDIAN_Q_BITS: usize = MEDIAN_FRAC_BITS + 1;
 
 /// Fraction bits of `d_t` (the threshold is within one LSB, 1/32 grey level,
 /// of golden's f64 value).
 pub const DT_FRAC_BITS: usize = 5;
 /// Bits of `d_t`: it reaches `5.6/(0.6745·√2) · 255.5 ≈ 1500` grey levels.
-pub const DT_BITS: usize = 16;
+pub(crate) const DT_BITS: usize = 16;
 /// Bits of the integer threshold `⌊d_t⌋`.
-pub const DT_INT_BITS: usize = DT_BITS - DT_FRAC_BITS;
+pub(crate) const DT_INT_BITS: usize = DT_BITS - DT_FRAC_BITS;
 
 /// The factor from the median of |ΔI| to `d_t`: `5.6 / (0.6745·√2)`
 /// (eq. 2 with the MAD estimator of `DESIGN.md` §2.1).
 pub const THRESHOLD_PER_MEDIAN: f64 = 5.6 / (0.674_489_750_196_081_7 * std::f64::consts::SQRT_2);
 /// Fraction bits of `d_t` inside the threshold engine before rounding.
-pub const DT_ACC_FRAC_BITS: usize = 20;
+pub(crate) const DT_ACC_FRAC_BITS: usize = 20;
 /// Bits of the threshold engine's accumulator (`d_t · 2^20 < 2^31`).
-pub const DT_ACC_BITS: usize = 32;
+pub(crate) const DT_ACC_BITS: usize = 32;
 /// `round(K · 2^19)`: `K·(v - ½)·2^20 = (2v - 1)·K_HALF`, added twice per bin
 /// during the histogram scan.
-pub const K_HALF: u64 = 3_077_993;
+pub(crate) const K_HALF: u64 = 3_077_993;
 /// Fraction bits of [`K_FRAC`].
-pub const K_FRAC_BITS: usize = 13;
+pub(crate) const K_FRAC_BITS: usize = 13;
 /// `round(K · 2^13)`: multiplies the in-bin fraction (16×16 product).
-pub const K_FRAC: u64 = 48_094;
+pub(crate) const K_FRAC: u64 = 48_094;
 /// The σ floor of eq. 2's estimator (`1/√12`) as a `d_t` in fixed point:
 /// `round(5.6/√12 · 2^5)`.
-pub const DT_FLOOR: u64 = 52;
+pub(crate) const DT_FLOOR: u64 = 52;
 
 /// Fraction bits of a declivity position `X_i` (eq. 3).
 pub const POS_FRAC_BITS: usize = 4;
 /// Bits of a position `X_i < W_MAX`.
 pub const POS_BITS: usize = W_MAX_BITS + POS_FRAC_BITS;
 /// Bits of a signed amplitude `a_i ∈ [-255, 255]` (two's complement).
-pub const AMP_BITS: usize = PIXEL_BITS + 1;
+pub(crate) const AMP_BITS: usize = PIXEL_BITS + 1;
 /// Bits of `Σ g²` over one declivity: its gradients share a sign and add up
 /// to at most 255, so `Σ g² ≤ 255²`.
-pub const S0_BITS: usize = 2 * PIXEL_BITS;
+pub(crate) const S0_BITS: usize = 2 * PIXEL_BITS;
 /// Bits of `Σ g²·(2x + 1)`: `Σ g² · (2 W_MAX - 1)`.
-pub const S1_BITS: usize = S0_BITS + W_MAX_BITS + 1;
+pub(crate) const S1_BITS: usize = S0_BITS + W_MAX_BITS + 1;
 /// Bits of the eq. 3 dividend `Σ g²(2x+1) · 2^(POS_FRAC_BITS-1)`.
-pub const DIVIDEND_BITS: usize = S1_BITS + POS_FRAC_BITS - 1;
+pub(crate) const DIVIDEND_BITS: usize = S1_BITS + POS_FRAC_BITS - 1;
 
 // ---- The matcher (paper §III–IV, eq. 4–9).
 
@@ -94,13 +94,13 @@ pub const DIAG_BITS: usize = INDEX_BITS + 1;
 /// (`[2, 1022]`), so that a distance is a plain unsigned difference.
 pub const LEVEL_BITS: usize = PIXEL_BITS + 2;
 /// The offset of [`LEVEL_BITS`] levels.
-pub const LEVEL_OFFSET: u64 = 1 << (PIXEL_BITS + 1);
+pub(crate) const LEVEL_OFFSET: u64 = 1 << (PIXEL_BITS + 1);
 /// Bits of a doubled photometric distance `2·lpd` or `2·rpd` (eq. 4–5):
 /// three differences of at most `2·510`.
-pub const DIST_BITS: usize = 12;
+pub(crate) const DIST_BITS: usize = 12;
 /// Bits of the doubled distances subtracted from `f(gmax)` (at most both
 /// sides).
-pub const DIST_SUM_BITS: usize = DIST_BITS + 1;
+pub(crate) const DIST_SUM_BITS: usize = DIST_BITS + 1;
 /// Fraction bits of `d_t` as the matcher uses it: the detector's `d_t`
 /// rounded down to 1/2 grey level. (A threshold of typically 20–100 grey
 /// levels moves by less than half a level; golden's hardware-parity matcher
@@ -112,24 +112,24 @@ pub const MATCH_DT_FRAC_BITS: usize = 1;
 /// `|a_i| > d_t`, and an amplitude of 8-bit pixels is at most 255), so no
 /// node of its pair exists and the saturation changes no match; it bounds
 /// `gmax`, and with it every gain and path register of the array.
-pub const MATCH_DT_INT_BITS: usize = PIXEL_BITS;
+const MATCH_DT_INT_BITS: usize = PIXEL_BITS;
 /// Bits of that `d_t`.
 pub const MATCH_DT_BITS: usize = MATCH_DT_INT_BITS + MATCH_DT_FRAC_BITS;
 /// Fraction bits of a gain: the unit is `2^-(MATCH_DT_FRAC_BITS + 1)` grey
 /// levels, so `2·gmax = d_t,ref + d_t,other` (eq. 8) is exact and every
 /// local gain of eq. 7 is an integer in this unit.
-pub const GAIN_FRAC_BITS: usize = MATCH_DT_FRAC_BITS + 1;
+pub(crate) const GAIN_FRAC_BITS: usize = MATCH_DT_FRAC_BITS + 1;
 /// Bits of the largest local gain, `3·gmax < 3·2^MATCH_DT_INT_BITS` grey
 /// levels (unsigned).
-pub const GAIN_MAX_BITS: usize = MATCH_DT_INT_BITS + 2 + GAIN_FRAC_BITS;
+const GAIN_MAX_BITS: usize = MATCH_DT_INT_BITS + 2 + GAIN_FRAC_BITS;
 /// Bits of a local gain (two's complement): below `2^GAIN_MAX_BITS` above,
 /// `-(2·lpd + 2·rpd)/2 > -2^DIST_BITS` grey levels below.
-pub const GAIN_BITS: usize = max_usize(GAIN_MAX_BITS, DIST_BITS + GAIN_FRAC_BITS) + 1;
+pub(crate) const GAIN_BITS: usize = max_usize(GAIN_MAX_BITS, DIST_BITS + GAIN_FRAC_BITS) + 1;
 /// Bits of a path gain `P(i, j) ≥ 0`: at most `N_MAX` nodes of the largest
 /// gain.
-pub const PATH_BITS: usize = GAIN_MAX_BITS + INDEX_BITS;
+pub(crate) const PATH_BITS: usize = GAIN_MAX_BITS + INDEX_BITS;
 /// Bits of `G(i, j) = g + P(i-1, j-1)` (two's complement).
-pub const SCORE_BITS: usize = PATH_BITS + 1;
+pub(crate) const SCORE_BITS: usize = PATH_BITS + 1;
 /// Bits of the search bound `dispmax` of eq. 6, in the position format
 /// ([`POS_FRAC_BITS`] fraction bits); larger bounds are clamped to the
 /// largest, which no disparity inside a line reaches.
@@ -194,7 +194,7 @@ pub const WIDTH_BITS: usize = W_MAX_BITS + 1;
 pub const EDGE_JUMP_LSB: u64 = 6 << POS_FRAC_BITS;
 /// Fraction bits of the interpolator's weight `t = (x - X_a) / (X_b - X_a)`
 /// between two matches.
-pub const WEIGHT_FRAC_BITS: usize = 16;
+pub(crate) const WEIGHT_FRAC_BITS: usize = 16;
 /// Index bits of the interpolator's reciprocal table: `1 / (X_b - X_a)` from
 /// the distance's [`RECIP_INDEX_BITS`] bits after its leading one (relative
 /// error below `2^-(RECIP_INDEX_BITS + 1) + 2^-15`).
@@ -221,7 +221,7 @@ pub const SEG_ADDR_BITS: usize = INDEX_BITS + 3;
 /// processor keeps at most this many lines between the matcher's input and
 /// the interpolator's output (`rtl::stereo_line_processor`, "Lines in
 /// flight"), so the interpolator never drops one there.
-pub const LINE_QUEUE_BITS: usize = 3;
+pub(crate) const LINE_QUEUE_BITS: usize = 3;
 
 /// Reference declivities per gain cell, at most: cell `c` of `C` holds rows
 /// `c`, `c + C`, `c + 2C` and `c + 3C` of the matching table, one per
@@ -232,13 +232,13 @@ pub const LINE_QUEUE_BITS: usize = 3;
 /// one every four (see `crate::matcher::systolic_matcher`).
 pub const ROWS_PER_CELL: usize = 4;
 /// Bits of a phase `0 .. ROWS_PER_CELL`.
-pub const PHASE_BITS: usize = 2;
+pub(crate) const PHASE_BITS: usize = 2;
 /// Gain cells of the sensor's matcher: `N_MAX / ROWS_PER_CELL`.
 pub const N_CELLS: usize = N_MAX / ROWS_PER_CELL;
 /// Bits of a sweep clock count: up to `4·N_MAX + 3·(2·N_CELLS + 1) +
 /// 4·(N_CELLS - 1)` and a few of pipeline, 844 for `n = m = N_MAX`
 /// (`crate::matcher::declivity_matcher::sweep_cycles`).
-pub const SWEEP_BITS: usize = DIAG_BITS + 2;
+pub(crate) const SWEEP_BITS: usize = DIAG_BITS + 2;
 /// Bits of a reference's or a column's six neighbour levels side by side,
 /// level `k` (left 0–2, then right 0–2) at bit `k·LEVEL_BITS`.
 pub const LEVELS_BITS: usize = 6 * LEVEL_BITS;
@@ -253,14 +253,14 @@ pub const CELLS_PER_CHOICE_WORD: usize = CHOICE_WORD_BITS / 2;
 pub const CHOICE_WORDS: usize = N_MAX / CELLS_PER_CHOICE_WORD;
 /// Bits of a row's group `r / CELLS_PER_CHOICE_WORD`: the choice memory
 /// holds each group's choices of an anti-diagonal in one word.
-pub const ROW_GROUP_BITS: usize = INDEX_BITS - CELLS_PER_CHOICE_WORD.trailing_zeros() as usize;
+pub(crate) const ROW_GROUP_BITS: usize = INDEX_BITS - CELLS_PER_CHOICE_WORD.trailing_zeros() as usize;
 /// Bits of a choice's offset `2·(c mod CELLS_PER_CHOICE_WORD)` in its word.
-pub const PAIR_BITS: usize = 5;
+pub(crate) const PAIR_BITS: usize = 5;
 /// Words of 16 choices (32 bits) of a gain cell's skew delay: with four
 /// phases, cell `c`'s choices wait `2c` clocks, so that every cell writes
 /// one anti-diagonal together (`crate::matcher::gain_cell`); `2·(N_CELLS - 1)`
 /// choices at most.
-pub const SKEW_WORDS: usize = (2 * (N_CELLS - 1)).div_ceil(CELLS_PER_CHOICE_WORD);
+pub(crate) const SKEW_WORDS: usize = (2 * (N_CELLS - 1)).div_ceil(CELLS_PER_CHOICE_WORD);
 
 // ---- The depth stage (paper eq. 1, `rtl::post::depth_stage`).
 
@@ -278,7 +278,7 @@ pub const DEPTH_WEIGHT_BITS: usize = POS_BITS - 1 - DEPTH_INDEX_BITS;
 /// Bits of a depth table entry `round(K / m)` for a normalised disparity
 /// `m ∈ [2^(POS_BITS-1), 2^POS_BITS)`: the numerator `K` is below
 /// [`DEPTH_K_LIMIT`], so an entry lies in `(2^16 - 1, 2^18)`.
-pub const DEPTH_TABLE_BITS: usize = 18;
+pub(crate) const DEPTH_TABLE_BITS: usize = 18;
 /// Bits of an entry's slope, the difference to the next entry (at most
 /// `2^18 / 512 ≈ 512`).
 pub const DEPTH_SLOPE_BITS: usize = 10;
@@ -290,7 +290,7 @@ pub const DEPTH_WORD_BITS: usize = DEPTH_TABLE_BITS + DEPTH_SLOPE_BITS;
 /// then fits [`DEPTH_TABLE_BITS`] bits and has at least 16 significant ones.
 pub const DEPTH_K_LIMIT: u64 = (1 << (POS_BITS - 1 + DEPTH_TABLE_BITS)) - (1 << (POS_BITS - 1));
 /// Bits of the depth stage's shift amounts (`s - 1 - lz`, `0 ..= 15`).
-pub const DEPTH_SHIFT_BITS: usize = 4;
+pub(crate) const DEPTH_SHIFT_BITS: usize = 4;
 /// The smallest scale exponent `s` of a camera: `s = 0` would saturate
 /// every depth (`Z ≥ 2^30 / 2^14 = 65536` mm at the largest disparity).
 pub const DEPTH_SCALE_MIN: u32 = 1;
@@ -332,10 +332,10 @@ pub const ROW_ADDR_BITS: usize = ROW_BANK_BITS + INDEX_BITS;
 /// Bits of a stored match: `X` above the disparity, both [`POS_BITS`].
 pub const ROW_ENTRY_BITS: usize = 2 * POS_BITS;
 /// Bits of a slot index of a neighbour's window ring.
-pub const ROW_WINDOW_BITS: usize = 3;
+pub(crate) const ROW_WINDOW_BITS: usize = 3;
 /// Slots of a neighbour's window ring: the matches of the neighbouring row
 /// from the first one not left of the checked match's window on. A window
 /// `[X - 3 px, X + 3 px]` holds at most 7 matches at least a pixel apart
 /// (as declivities are, so their positions at least 16 LSB apart), and
 /// the eighth slot takes the first match right of it.
-pub const ROW_WINDOW: usize = 1 << ROW_WINDOW_BITS;
+pub(crate) const ROW_WINDOW: usize = 1 << ROW_WINDOW_BITS;

@@ -456,12 +456,6 @@ impl<const N: usize> StereoLineProcessor<N> {
             marker_mask: Constant::new((1u64 << MARKER_BIT).into()),
         })
     }
-
-    /// The default mode's datapath: [`GainRule::Robust`], the edge jump
-    /// [`EDGE_JUMP_LSB`], the default camera.
-    pub fn robust() -> Self {
-        Self::new(GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default()).expect("the default camera fits the depth stage")
-    }
 }
 
 impl<const N: usize> Logic for StereoLineProcessor<N> {

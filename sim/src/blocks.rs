@@ -18,7 +18,7 @@ pub const MATCHER_CELLS: [usize; 5] = [2, 4, 8, 16, 32];
 
 /// Runs `f` on a thread with [`BIG_STACK`] of stack and returns its result;
 /// `what` names the work if it panics.
-pub fn on_big_stack<T: Send + 'static>(what: &str, f: impl FnOnce() -> T + Send + 'static) -> T {
+pub(crate) fn on_big_stack<T: Send + 'static>(what: &str, f: impl FnOnce() -> T + Send + 'static) -> T {
     std::thread::Builder::new()
         .stack_size(BIG_STACK)
         .spawn(f)
@@ -27,7 +27,7 @@ pub fn on_big_stack<T: Send + 'static>(what: &str, f: impl FnOnce() -> T + Send 
 }
 
 /// Builds and connects the matcher of `N` cells for the gain rule `rule`.
-pub fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
+pub(crate) fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
     on_big_stack("building the matcher", move || {
         let mut uut = Box::new(DeclivityMatcher::<N>::new(rule));
         uut.connect_all();
@@ -38,7 +38,7 @@ pub fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>>
 /// Builds and connects the line processor: the matcher of `N` cells for
 /// `rule`, the interpolator's edge jump `jump`, the depth stage for
 /// `camera`.
-pub fn build_stereo<const N: usize>(rule: GainRule, jump: Option<u64>, camera: DepthCamera) -> Result<Box<StereoLineProcessor<N>>, DepthError> {
+pub(crate) fn build_stereo<const N: usize>(rule: GainRule, jump: Option<u64>, camera: DepthCamera) -> Result<Box<StereoLineProcessor<N>>, DepthError> {
     on_big_stack("building the line processor", move || {
         let mut uut = Box::new(StereoLineProcessor::<N>::new(rule, jump, camera)?);
         uut.connect_all();

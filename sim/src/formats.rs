@@ -5,11 +5,11 @@ use golden::hardware::HardwareLimits;
 use rtl::params::{DISPMAX_BITS, DT_FRAC_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_BITS, POS_FRAC_BITS, W_MAX};
 
 /// One pixel in the positions' unit, `1/2^POS_FRAC_BITS` px.
-pub const POSITION_UNIT: f64 = (1u32 << POS_FRAC_BITS) as f64;
+pub(crate) const POSITION_UNIT: f64 = (1u32 << POS_FRAC_BITS) as f64;
 
 /// A position as the detector gives it: `⌊X · 2^POS_FRAC_BITS⌋`
 /// (`rtl::detector::position_divider`).
-pub fn position_lsb(x: f64) -> u32 {
+pub(crate) fn position_lsb(x: f64) -> u32 {
     (x * POSITION_UNIT).floor() as u32
 }
 

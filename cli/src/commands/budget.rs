@@ -11,7 +11,7 @@ use sim::SimError;
 /// Latency budget of the hardware: clocks per line per stage, line period, latency, frame rate, resources.
 #[derive(Args, Debug)]
 #[command(allow_negative_numbers = true, long_about = long_about())]
-pub struct BudgetArgs {
+pub(crate) struct BudgetArgs {
     #[arg(long, help = width_help())]
     width: usize,
     #[arg(long, help = height_help())]
@@ -96,7 +96,7 @@ fn cells_help() -> String {
     )
 }
 
-pub fn run(a: BudgetArgs) -> Result<(), SimError> {
+pub(crate) fn run(a: BudgetArgs) -> Result<(), SimError> {
     let request = BudgetRequest {
         width: a.width,
         height: a.height,

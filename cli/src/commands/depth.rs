@@ -19,7 +19,7 @@ declivities_right.png (photos 3-4: red rising, cyan falling), graph_line_Y.png (
 one line with its optimal path, fig. 4), and with --focal-px and --baseline-m a depth map \
 depth_mm.png (16-bit millimetres) and a point cloud points.ply (eq. 1). Disparity is \
 d = x_left - x_right.")]
-pub struct DepthArgs {
+pub(crate) struct DepthArgs {
     /// Left image of the rectified pair (PNG, PGM/PPM).
     left: PathBuf,
     /// Right image of the rectified pair.
@@ -70,7 +70,7 @@ fn print_summary(s: &DepthSummary) {
 
 /// No arguments: the depth map of the bundled Tsukuba pair, its pictures,
 /// and its scores against the bundled ground truth.
-pub fn main_job() -> Result<(), SimError> {
+pub(crate) fn main_job() -> Result<(), SimError> {
     let out_dir = PathBuf::from("declivity-out").join("tsukuba");
     println!("declivity: depth map of the bundled pair (default mode, search bound = its largest disparity + 1)");
     println!("  {}", sim::eval::bundled::CITATION);
@@ -88,7 +88,7 @@ pub fn main_job() -> Result<(), SimError> {
     Ok(())
 }
 
-pub fn run(a: DepthArgs) -> Result<(), SimError> {
+pub(crate) fn run(a: DepthArgs) -> Result<(), SimError> {
     let params = a.method.params(a.dispmax)?;
     let (left, right, notes) = load_pair_images(&a.left, &a.right)?;
     super::print_notes(&notes);

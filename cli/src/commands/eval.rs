@@ -26,7 +26,7 @@ ms = golden time per frame on one thread, loading excluded, median of --runs run
 With --rtl, each pair runs through the cycle-accurate line processor instead (the default mode in \
 hardware, one pixel per clock per camera) on the fastest engine installed, and the table gives its \
 agreement with golden, its throughput and latency, and its scores.")]
-pub struct EvalArgs {
+pub(crate) struct EvalArgs {
     /// Pair folders (with meta.txt), or folders of pair folders (e.g. data/stereo).
     #[arg(required = true)]
     pairs: Vec<PathBuf>,
@@ -58,7 +58,7 @@ pub struct EvalArgs {
     method: MethodArgs,
 }
 
-pub fn run(a: EvalArgs) -> Result<(), SimError> {
+pub(crate) fn run(a: EvalArgs) -> Result<(), SimError> {
     let params = a.method.params(2.0)?;
     let dirs = expand_pair_dirs(&a.pairs)?;
     if a.rtl {

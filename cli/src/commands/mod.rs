@@ -9,19 +9,19 @@ pub mod synth;
 pub mod verilog;
 
 /// Prints the notes of a loaded input on stderr.
-pub fn print_notes(notes: &[String]) {
+fn print_notes(notes: &[String]) {
     for n in notes {
         eprintln!("note: {n}");
     }
 }
 
 /// `value` as one line of JSON on stdout.
-pub fn print_json<T: serde::Serialize>(value: &T) {
+fn print_json<T: serde::Serialize>(value: &T) {
     println!("{}", serde_json::to_string(value).expect("reports serialize"));
 }
 
 /// `--out`, or `./declivity-out/PREFIX-STEM` for the input `path`.
-pub fn out_dir(out: &Option<std::path::PathBuf>, prefix: &str, path: &std::path::Path) -> std::path::PathBuf {
+fn out_dir(out: &Option<std::path::PathBuf>, prefix: &str, path: &std::path::Path) -> std::path::PathBuf {
     out.clone().unwrap_or_else(|| {
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
         std::path::PathBuf::from("declivity-out").join(format!("{prefix}-{stem}"))

@@ -17,7 +17,7 @@ use crate::progress::Progress;
 
 #[derive(Subcommand, Debug)]
 /// Run the cycle-accurate hardware (rtl) on images and compare it with golden.
-pub enum RtlCommand {
+pub(crate) enum RtlCommand {
     #[command(about = "Stream every row of an image through the rtl declivity detector.", long_about = detect_about())]
     Detect(DetectArgs),
     #[command(about = "Run the rows of a stereo pair through the rtl matcher and compare with golden.", long_about = match_about())]
@@ -99,7 +99,7 @@ depth_mm_rtl.png (its depth in millimetres, 0 = none).",
 }
 
 #[derive(Args, Debug)]
-pub struct DetectArgs {
+pub(crate) struct DetectArgs {
     /// The image (PNG, PGM, ...).
     image: PathBuf,
     /// Print one JSON object instead of text.
@@ -119,7 +119,7 @@ pub struct DetectArgs {
 /// What `rtl match` and `rtl depth` both take: a rectified pair, eq. 6's
 /// bound, the output form.
 #[derive(Args, Debug)]
-pub struct PairArgs {
+struct PairArgs {
     /// Left image of the rectified pair (the reference view).
     left: PathBuf,
     /// Right image of the rectified pair.
@@ -140,7 +140,7 @@ fn dispmax_help() -> String {
 }
 
 #[derive(Args, Debug)]
-pub struct MatchArgs {
+pub(crate) struct MatchArgs {
     #[command(flatten)]
     pair: PairArgs,
     /// Folder for the picture [default: ./declivity-out/rtl-match-LEFT_STEM].
@@ -158,7 +158,7 @@ pub struct MatchArgs {
 }
 
 #[derive(Args, Debug)]
-pub struct DepthArgs {
+pub(crate) struct DepthArgs {
     #[command(flatten)]
     pair: PairArgs,
     /// Folder for the pictures [default: ./declivity-out/rtl-depth-LEFT_STEM].
@@ -183,7 +183,7 @@ pub struct DepthArgs {
     lines: Option<Range<usize>>,
 }
 
-pub fn run(c: RtlCommand) -> Result<(), SimError> {
+pub(crate) fn run(c: RtlCommand) -> Result<(), SimError> {
     match c {
         RtlCommand::Detect(a) => detect(a),
         RtlCommand::Match(a) => match_pair(a),
@@ -194,7 +194,7 @@ pub fn run(c: RtlCommand) -> Result<(), SimError> {
 /// The progress of a frame through the line processor: a bar of its lines
 /// on the rust-hdl engine, a spinner while Verilator or Icarus builds and
 /// runs it.
-pub fn frame_progress(lines: usize, message: String, engine: Engine, json: bool) -> Progress {
+pub(crate) fn frame_progress(lines: usize, message: String, engine: Engine, json: bool) -> Progress {
     match engine {
         Engine::RustHdl => Progress::new(lines, "lines", message, json),
         _ => Progress::spinner(format!("{message} ({}: build, then the frame)", engine.name()), json),

@@ -17,7 +17,7 @@ with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both fr
 critical path, or one JSON object with --json. --seed places the same netlist again with another \
 placer seed. Takes minutes for a block and tens of minutes for --top stereo; \
 docs/hardware/datasheet.md gives the measured figures.")]
-pub struct SynthArgs {
+pub(crate) struct SynthArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: CliTop,
@@ -44,7 +44,7 @@ fn timing_weight_help() -> String {
     )
 }
 
-pub fn run(a: SynthArgs) -> Result<(), SimError> {
+pub(crate) fn run(a: SynthArgs) -> Result<(), SimError> {
     let v = block_verilog(a.top, &a.matcher)?;
     let opts = SynthOptions {
         target_mhz: a.mhz,

@@ -16,7 +16,7 @@ use crate::args::{CliRule, CliTop};
 initial values). The ECP5 primitives it instantiates (DP16KD, MULT18X18D, TRELLIS_DPR16X4) have \
 behavioural models for simulation in sim/src/hdl/models/. The same Verilog is linted by Verilator, \
 checked for latches by Yosys and co-simulated bit-exactly against the Rust model by the tests.")]
-pub struct VerilogArgs {
+pub(crate) struct VerilogArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: CliTop,
@@ -29,7 +29,7 @@ pub struct VerilogArgs {
 
 /// The matcher's generation parameters (`--top matcher` and `stereo`).
 #[derive(Args, Debug)]
-pub struct MatcherArgs {
+pub(crate) struct MatcherArgs {
     #[arg(long, default_value_t = N_CELLS, help = cells_help())]
     pub cells: usize,
     /// Gain rule the matcher is generated for (--top matcher and stereo only).
@@ -45,7 +45,7 @@ fn cells_help() -> String {
 }
 
 /// The Verilog of a block as the command line asks for it.
-pub fn block_verilog(top: CliTop, m: &MatcherArgs) -> Result<String, SimError> {
+pub(crate) fn block_verilog(top: CliTop, m: &MatcherArgs) -> Result<String, SimError> {
     let has_matcher = matches!(top, CliTop::Matcher | CliTop::Stereo);
     if !has_matcher && (m.cells != N_CELLS || m.rule != CliRule::Robust) {
         return Err(SimError::Argument("--cells and --rule apply to --top matcher and --top stereo only".into()));
@@ -54,7 +54,7 @@ pub fn block_verilog(top: CliTop, m: &MatcherArgs) -> Result<String, SimError> {
         .ok_or_else(|| SimError::Argument(format!("--cells {}: the matcher is generated with {MATCHER_CELLS:?} cells", m.cells)))
 }
 
-pub fn run(a: VerilogArgs) -> Result<(), SimError> {
+pub(crate) fn run(a: VerilogArgs) -> Result<(), SimError> {
     std::fs::create_dir_all(&a.out).map_err(|source| SimError::Io { path: a.out.clone(), source })?;
     let path = a.out.join(format!("{}.v", a.top.top().name()));
     let v = block_verilog(a.top, &a.matcher)?;

@@ -72,7 +72,7 @@ const FLOOR_SUM: u64 = (DT_FLOOR << (DT_ACC_FRAC_BITS - DT_FRAC_BITS)) - (1 << (
 const _: () = assert!(FLOOR_SUM < 1 << DT_ACC_BITS);
 
 #[derive(Copy, Clone, Debug, PartialEq, LogicState)]
-pub enum ThresholdState {
+enum ThresholdState {
     Idle,
     Settle,
     Settle2,
@@ -84,7 +84,7 @@ pub enum ThresholdState {
 }
 
 #[derive(LogicBlock)]
-pub struct AdaptiveThreshold {
+pub(crate) struct AdaptiveThreshold {
     pub clock: Signal<In, Clock>,
     pub inc_valid: Signal<In, Bit>,
     pub inc_bank: Signal<In, Bit>,

@@ -47,29 +47,29 @@ use crate::detector::pixel_window::PixelWindow;
 use rust_hdl::prelude::*;
 
 /// The window tap where a pixel's gradient is examined.
-pub const TRACKER_CENTER: usize = crate::detector::pixel_window::WINDOW_CENTER;
+pub(crate) const TRACKER_CENTER: usize = crate::detector::pixel_window::WINDOW_CENTER;
 /// Bits of a grey level plus the integer threshold (no overflow).
 const CMP_BITS: usize = DT_INT_BITS + 1;
 
 /// Where each field sits in the four 32-bit tag lanes of an item.
-pub struct TagLayout;
+pub(crate) struct TagLayout;
 
 impl TagLayout {
     /// Lane 0: `start | end << X_BITS | amplitude << 2·X_BITS`, and the
     /// marker flag above them.
-    pub const END_SHIFT: usize = X_BITS;
-    pub const AMP_SHIFT: usize = 2 * X_BITS;
-    pub const MARKER_SHIFT: usize = 2 * X_BITS + AMP_BITS;
+    pub(crate) const END_SHIFT: usize = X_BITS;
+    pub(crate) const AMP_SHIFT: usize = 2 * X_BITS;
+    pub(crate) const MARKER_SHIFT: usize = 2 * X_BITS + AMP_BITS;
     /// Lane 1: `I(x_i) | I(x_i - 1) << 8 | I(x_i - 2) << 16` for a record;
     /// the count for a marker. Lane 2: the right levels in the same layout
     /// for a record; for a marker `wide | full << 1 | sof << 2`.
-    pub const LEVEL_SHIFT: usize = PIXEL_BITS;
+    pub(crate) const LEVEL_SHIFT: usize = PIXEL_BITS;
     /// Lane 3: `d_t`.
-    pub const DT_LANE: usize = 3;
+    pub(crate) const DT_LANE: usize = 3;
 }
 
 #[derive(LogicBlock)]
-pub struct DeclivityTracker {
+pub(crate) struct DeclivityTracker {
     pub clock: Signal<In, Clock>,
     pub in_valid: Signal<In, Bit>,
     pub in_first: Signal<In, Bit>,

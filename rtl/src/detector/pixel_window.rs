@@ -30,10 +30,10 @@ use crate::params::*;
 use rust_hdl::prelude::*;
 
 /// Taps of the window.
-pub const WINDOW_TAPS: usize = 7;
+const WINDOW_TAPS: usize = 7;
 /// The tap whose gradient is examined: `x + 1`, `x + 2` at taps 3 and 2,
 /// `x - 1`, `x - 2` at taps 5 and 6.
-pub const WINDOW_CENTER: usize = 4;
+pub(crate) const WINDOW_CENTER: usize = 4;
 
 /// One tap's contents.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -50,7 +50,7 @@ struct Tap {
 }
 
 #[derive(LogicBlock)]
-pub struct PixelWindow {
+pub(crate) struct PixelWindow {
     pub clock: Signal<In, Clock>,
     pub in_valid: Signal<In, Bit>,
     pub in_first: Signal<In, Bit>,

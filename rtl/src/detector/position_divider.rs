@@ -45,9 +45,9 @@ use crate::params::*;
 use rust_hdl::prelude::*;
 
 /// Clocks from a division entering to its quotient leaving.
-pub const DIVIDER_LATENCY: usize = POS_BITS;
+pub(crate) const DIVIDER_LATENCY: usize = POS_BITS;
 /// Bits of a trial remainder: one above the divisor.
-pub const TRIAL_BITS: usize = S0_BITS + 1;
+const TRIAL_BITS: usize = S0_BITS + 1;
 /// Entries of the tag delay memories (more than [`DIVIDER_LATENCY`]).
 const TAG_DEPTH: usize = 16;
 /// Address bits of the tag delay memories.
@@ -79,7 +79,7 @@ fn step(valid: bool, rem: u64, lq: u64, den: u64) -> Stage {
 }
 
 #[derive(LogicBlock)]
-pub struct PositionDivider {
+pub(crate) struct PositionDivider {
     pub clock: Signal<In, Clock>,
     pub in_valid: Signal<In, Bit>,
     pub in_dividend: Signal<In, Bits<DIVIDEND_BITS>>,

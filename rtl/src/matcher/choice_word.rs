@@ -46,7 +46,7 @@ pub struct ChoiceWord {
 
 impl ChoiceWord {
     /// The selection for an array of `cells` cells.
-    pub fn new(cells: usize) -> Self {
+    pub(crate) fn new(cells: usize) -> Self {
         assert!(cells <= N_CELLS && CHOICE_WORDS == 8, "eight words");
         let packed = cells < CELLS_PER_CHOICE_WORD;
         assert!(packed || cells % CELLS_PER_CHOICE_WORD == 0, "whole words per phase, or phases packed into words");

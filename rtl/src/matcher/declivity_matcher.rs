@@ -79,12 +79,12 @@ pub enum GainRule {
 impl GainRule {
     /// Distances relative to each declivity's end-level mean, and nodes only
     /// between declivities of one polarity.
-    pub fn relative(self) -> bool {
+    fn relative(self) -> bool {
         matches!(self, GainRule::Robust)
     }
 
     /// One-sided nodes scored on their similar side.
-    pub fn one_sided(self) -> bool {
+    fn one_sided(self) -> bool {
         matches!(self, GainRule::Robust)
     }
 }

@@ -87,21 +87,21 @@ const _: () = assert!(GAIN_BITS <= SCORE_BITS);
 /// Clocks from a column in a cell's slot to its node's `P` on `p` and its
 /// choice on `choice_word` (stages A–H, S between C and D), without the
 /// four-phase skew.
-pub const CELL_DEPTH: usize = 9;
+pub(crate) const CELL_DEPTH: usize = 9;
 
 /// The 2-bit choices, as `golden::dp::Choice` numbers them.
-pub const CHOICE_START: u64 = 0;
+pub(crate) const CHOICE_START: u64 = 0;
 /// `P = G`: the node is taken.
-pub const CHOICE_NODE: u64 = 1;
+pub(crate) const CHOICE_NODE: u64 = 1;
 /// `P = P(i-1, j)`.
-pub const CHOICE_UP: u64 = 2;
+pub(crate) const CHOICE_UP: u64 = 2;
 /// `P = P(i, j-1)`.
-pub const CHOICE_LEFT: u64 = 3;
+pub(crate) const CHOICE_LEFT: u64 = 3;
 
 /// Clocks cell `index` holds its choices back in a four-phase line, so that
 /// the whole array's choices of one anti-diagonal and phase come out on one
 /// clock: `2·index`.
-pub const fn skew(index: usize) -> usize {
+const fn skew(index: usize) -> usize {
     2 * index
 }
 
@@ -295,7 +295,7 @@ fn k<const B: usize>(v: u64) -> Constant<Bits<B>> {
 impl GainCell {
     /// The cell of an array of `cells` that holds reference declivities
     /// `index + k·cells`.
-    pub fn new(index: usize, cells: usize) -> Self {
+    pub(crate) fn new(index: usize, cells: usize) -> Self {
         assert!(index < cells && cells <= N_CELLS, "cell index inside an array of at most N_CELLS");
         assert_eq!(ROWS_PER_CELL, crate::primitives::lut_ram::LUT_RAM_WORDS, "a row per word of the LUT RAM");
         // The skew's last entry, `skew(index) - 1` (entry e is e + 1 clocks

@@ -27,7 +27,7 @@ use crate::params::*;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock, Default)]
-pub struct RecordInput {
+pub(crate) struct RecordInput {
     pub clock: Signal<In, Clock>,
     pub ready: Signal<In, Bit>,
     pub valid: Signal<In, Bit>,

@@ -47,14 +47,14 @@ use rust_hdl::prelude::*;
 /// Clocks from a write on the ports (`w_enable` high) to the clock it is on
 /// the block RAMs' write ports (written at that clock's end): the record as
 /// it comes, the end-level sum, the levels, the register beside the RAMs.
-pub const WRITE_LAG: usize = 4;
+pub(crate) const WRITE_LAG: usize = 4;
 /// Grey levels a record carries: three on each side of the declivity.
 const LEVELS: usize = 6;
 /// Address bits of the position copy: four banks of `N_MAX` positions.
 pub const COPY_ADDR_BITS: usize = INDEX_BITS + 2;
 
 #[derive(LogicBlock)]
-pub struct RecordMemory {
+pub(crate) struct RecordMemory {
     pub clock: Signal<In, Clock>,
     pub relative: Signal<In, Bit>,
     pub w_enable: Signal<In, Bit>,

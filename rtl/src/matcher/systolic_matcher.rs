@@ -80,7 +80,7 @@ use rust_hdl::prelude::*;
 /// registers, less the cell's slot offset `2c` (and, with four phases, its
 /// skew): two into the cell's slot a, the cell's depth, one into the word
 /// register. (The matcher's engine adds its own clocks of record memory.)
-pub const CHOICE_LAG: usize = 2 + CELL_DEPTH + 1;
+pub(crate) const CHOICE_LAG: usize = 2 + CELL_DEPTH + 1;
 
 /// Address bits of the choice memory: the bank above the anti-diagonal.
 pub const CHOICE_ADDR_BITS: usize = DIAG_BITS + 1;

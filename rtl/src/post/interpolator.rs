@@ -118,7 +118,7 @@ pub const LINE_QUEUE: usize = 1 << LINE_QUEUE_BITS;
 /// Free segment places a line needs to be admitted: its at most
 /// `N_MAX - 1` segments and the four of the previous line still on
 /// their way to the memory (stages 1 to 4).
-pub const SEG_RESERVE: usize = N_MAX - 1 + 4;
+pub(crate) const SEG_RESERVE: usize = N_MAX - 1 + 4;
 // A full queue's other lines leave a line room in the segment memory (see
 // Timing).
 const _: () = assert!((LINE_QUEUE - 1) * (N_MAX - 1) + SEG_RESERVE <= 1 << SEG_ADDR_BITS);

@@ -41,7 +41,7 @@ use crate::post::row_check::WIDE;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
-pub struct NeighbourWindow {
+pub(crate) struct NeighbourWindow {
     pub clock: Signal<In, Clock>,
     pub w_enable: Signal<In, Bit>,
     pub w_address: Signal<In, Bits<ROW_ADDR_BITS>>,

@@ -132,7 +132,7 @@ const _: () = assert!(ROW_WINDOW == 8 && CUR_RING == 8 && CUR_RING == 1 << CUR_S
 
 /// Clocks a match that waits for its neighbours' entries costs at most
 /// beyond their reads (see [`row_check_cycles`]).
-pub const ROW_WAIT_LAG: usize = 6;
+const ROW_WAIT_LAG: usize = 6;
 
 /// Clocks from a row's start to its finish (the clock of its marker's
 /// decision), at most, for a row of `n` matches between rows of `above`

@@ -33,7 +33,7 @@ pub const DP16KD_WIDTH: usize = 18;
 pub const DP16KD_ADDR_BITS: usize = 10;
 
 #[derive(LogicBlock, Default)]
-pub struct BlockRam<const D: usize, const A: usize> {
+pub(crate) struct BlockRam<const D: usize, const A: usize> {
     pub clock: Signal<In, Clock>,
     pub write_enable: Signal<In, Bit>,
     pub write_address: Signal<In, Bits<A>>,

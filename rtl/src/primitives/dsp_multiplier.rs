@@ -27,14 +27,14 @@
 use rust_hdl::prelude::*;
 
 /// Operand bits of [`DspMultiplier`] (rust-hdl's product is 16 × 16).
-pub const MUL_OPERAND_BITS: usize = 16;
+pub(crate) const MUL_OPERAND_BITS: usize = 16;
 /// Product bits of [`DspMultiplier`].
-pub const MUL_PRODUCT_BITS: usize = 2 * MUL_OPERAND_BITS;
+pub(crate) const MUL_PRODUCT_BITS: usize = 2 * MUL_OPERAND_BITS;
 /// Operand bits of one `MULT18X18D`.
-pub const MULT18_BITS: usize = 18;
+const MULT18_BITS: usize = 18;
 
 #[derive(LogicBlock, Default)]
-pub struct DspMultiplier {
+pub(crate) struct DspMultiplier {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<MUL_OPERAND_BITS>>,
     pub b: Signal<In, Bits<MUL_OPERAND_BITS>>,

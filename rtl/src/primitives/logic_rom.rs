@@ -28,7 +28,7 @@
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
-pub struct LogicRom<const D: usize, const A: usize> {
+pub(crate) struct LogicRom<const D: usize, const A: usize> {
     pub clock: Signal<In, Clock>,
     pub address: Signal<In, Bits<A>>,
     pub data: Signal<Out, Bits<D>>,
@@ -42,7 +42,7 @@ impl<const D: usize, const A: usize> LogicRom<D, A> {
     /// # Panics
     /// If the table has more than `2^A` words or a word more than `D` bits
     /// (a generation-time parameter error).
-    pub fn new(table: Vec<u64>) -> Self {
+    pub(crate) fn new(table: Vec<u64>) -> Self {
         assert!(table.len() <= 1 << A, "a table of {} words behind a {A}-bit address", table.len());
         assert!(D <= 64 && table.iter().all(|&w| D == 64 || w >> D == 0), "a word wider than {D} bits");
         let mut words = table;

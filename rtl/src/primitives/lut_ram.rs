@@ -26,16 +26,16 @@
 use rust_hdl::prelude::*;
 
 /// Words of the register file.
-pub const LUT_RAM_WORDS: usize = 4;
+pub(crate) const LUT_RAM_WORDS: usize = 4;
 /// Address bits of the register file.
-pub const LUT_RAM_ADDR_BITS: usize = 2;
+const LUT_RAM_ADDR_BITS: usize = 2;
 /// Data bits of one `TRELLIS_DPR16X4`.
 pub const DPR16X4_WIDTH: usize = 4;
 /// Address bits of one `TRELLIS_DPR16X4` (16 words).
 const DPR16X4_ADDR_BITS: usize = 4;
 
 #[derive(LogicBlock, Default)]
-pub struct LutRam<const D: usize> {
+pub(crate) struct LutRam<const D: usize> {
     pub clock: Signal<In, Clock>,
     pub write_enable: Signal<In, Bit>,
     pub write_address: Signal<In, Bits<LUT_RAM_ADDR_BITS>>,

@@ -45,11 +45,11 @@ use rust_hdl::prelude::*;
 pub const RECORD_FIFO_LANES: usize = 5;
 /// Address bits of the queue: one `DP16KD` deep (1024 beats, eight lines
 /// of `N_MAX` records).
-pub const RECORD_FIFO_ADDR_BITS: usize = DP16KD_ADDR_BITS;
+const RECORD_FIFO_ADDR_BITS: usize = DP16KD_ADDR_BITS;
 /// Beats the queue holds.
 pub const RECORD_FIFO_DEPTH: usize = 1 << RECORD_FIFO_ADDR_BITS;
 /// Registers the reads go ahead into.
-pub const RECORD_FIFO_AHEAD: usize = 4;
+const RECORD_FIFO_AHEAD: usize = 4;
 /// Clocks from a beat's write into an empty queue to its being on the
 /// outputs: the write, the RAM's read and output registers, the ring.
 pub const RECORD_FIFO_LAG: usize = 4;
@@ -60,7 +60,7 @@ const PTR_BITS: usize = RECORD_FIFO_ADDR_BITS + 1;
 const RING_BITS: usize = 3;
 
 /// One lane's word.
-pub type Lane = Bits<DP16KD_WIDTH>;
+type Lane = Bits<DP16KD_WIDTH>;
 
 #[derive(LogicBlock)]
 pub struct RecordFifo {

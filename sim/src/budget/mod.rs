@@ -253,12 +253,12 @@ pub struct Term {
 
 impl Term {
     /// An addend.
-    pub fn new(text: impl Into<String>, value: usize) -> Self {
+    fn new(text: impl Into<String>, value: usize) -> Self {
         Term { text: text.into(), value: value as i64 }
     }
 
     /// A subtrahend.
-    pub fn minus(text: impl Into<String>, value: usize) -> Self {
+    fn minus(text: impl Into<String>, value: usize) -> Self {
         Term { text: text.into(), value: -(value as i64) }
     }
 }
@@ -291,23 +291,23 @@ fn render(terms: &[Term]) -> (u64, String) {
 }
 
 /// The detector's ping-pong line buffer.
-pub const LINE_BUFFER: &str = "line buffer";
+const LINE_BUFFER: &str = "line buffer";
 /// The detector's |ΔI| histogram.
-pub const HISTOGRAM: &str = "|ΔI| histogram";
+const HISTOGRAM: &str = "|ΔI| histogram";
 /// The record queues between the detectors and the matcher.
-pub const RECORD_QUEUE: &str = "record queue";
+const RECORD_QUEUE: &str = "record queue";
 /// The matcher's record memories.
-pub const RECORD_MEMORY: &str = "record memory";
+const RECORD_MEMORY: &str = "record memory";
 /// The copy of the record memories' positions the traceback reads.
-pub const POSITION_COPY: &str = "position copy";
+const POSITION_COPY: &str = "position copy";
 /// The matcher's choice memory.
-pub const CHOICE_MEMORY: &str = "choice memory";
+const CHOICE_MEMORY: &str = "choice memory";
 /// The row check's memories of matches.
-pub const ROW_MEMORY: &str = "row memory";
+const ROW_MEMORY: &str = "row memory";
 /// The vertical median's line buffers.
-pub const MEDIAN_LINE_BUFFER: &str = "median line buffer";
+const MEDIAN_LINE_BUFFER: &str = "median line buffer";
 /// The depth stage's table.
-pub const DEPTH_TABLE: &str = "depth table";
+const DEPTH_TABLE: &str = "depth table";
 
 /// The fewest rows of a frame the budget models: row `y`'s output waits for
 /// rows `y + 1` (the row check) and `y + MEDIAN_HALF` (the vertical
@@ -318,16 +318,16 @@ pub const MIN_HEIGHT: usize = MEDIAN_HALF + 2;
 /// `DP16KD`s of one `rtl::primitives::block_ram::BlockRam` of `words` words of
 /// `word_bits` bits: one per [`DP16KD_WIDTH`] bits of width and
 /// `2^DP16KD_ADDR_BITS` words (`rtl::primitives::block_ram`).
-pub const fn dp16kd_of(word_bits: usize, words: usize) -> usize {
+const fn dp16kd_of(word_bits: usize, words: usize) -> usize {
     word_bits.div_ceil(DP16KD_WIDTH) * words.div_ceil(1 << DP16KD_ADDR_BITS)
 }
 
 /// Bits of a reference row in a gain cell's LUT RAM: the position and its
 /// polarity, and the six levels (`rtl::matcher::gain_cell`).
-pub const REFERENCE_ROW_BITS: usize = POS_BITS + 1 + LEVELS_BITS;
+const REFERENCE_ROW_BITS: usize = POS_BITS + 1 + LEVELS_BITS;
 /// `TRELLIS_DPR16X4`s of one gain cell's rows: one per four bits of each of
 /// its two LUT RAMs (`rtl::primitives::lut_ram`).
-pub const REFERENCE_ROW_DPR16X4: usize = (POS_BITS + 1).div_ceil(DPR16X4_WIDTH) + LEVELS_BITS.div_ceil(DPR16X4_WIDTH);
+const REFERENCE_ROW_DPR16X4: usize = (POS_BITS + 1).div_ceil(DPR16X4_WIDTH) + LEVELS_BITS.div_ceil(DPR16X4_WIDTH);
 
 /// One memory of a block, as rtl declares it.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -481,7 +481,7 @@ impl RowLoad {
     /// Every row the worst for `n` declivities per side: the matcher's
     /// worst line ([`worst_matcher_line`]) and its `n` matches checked
     /// against rows of `n` matches, at the bound `row_check_cycles`.
-    pub const fn worst(n: usize) -> Self {
+    const fn worst(n: usize) -> Self {
         let (n, m, stop_diag, k) = worst_matcher_line(n);
         RowLoad {
             n,
@@ -495,14 +495,14 @@ impl RowLoad {
     }
 
     /// `line_cycles(n, m, s, k, cells)`.
-    pub const fn line_cycles(&self, cells: usize) -> usize {
+    const fn line_cycles(&self, cells: usize) -> usize {
         line_cycles(self.n, self.m, self.stop_diag, self.k, cells)
     }
 }
 
 /// The sizes a budget is made for, validated.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sizes {
+struct Sizes {
     /// Pixels offered per line (`W`).
     pub width: usize,
     /// Pixels stored per line, `W' = min(W, W_MAX)`.
@@ -544,11 +544,11 @@ impl Sizes {
 }
 
 /// A stage of the pipeline: its budget for the given sizes.
-pub type Stage = fn(&Sizes) -> StageBudget;
+type Stage = fn(&Sizes) -> StageBudget;
 
 /// The line processor's stages in pipeline order (a row passes them one
 /// after the other; the scanline's latency is the sum of theirs).
-pub const STAGES: [Stage; 7] =
+const STAGES: [Stage; 7] =
     [detector_stage, record_queue_stage, matcher_stage, row_check_stage, interpolator_stage, vertical_median_stage, depth_stage];
 
 /// Lines of one width run through [`line_starts`] to see the detector's
@@ -564,28 +564,28 @@ const WARM_UP_LINES: usize = 4;
 /// (`rtl::detector::declivity_detector::line_starts`): `W` from
 /// [`MIN_LINE_PERIOD`] on, more for shorter lines (the σ scan,
 /// `THRESHOLD_LATENCY + 1` clocks per line, and the ping-pong banks).
-pub fn detector_cycles_per_line(width: usize) -> u64 {
+fn detector_cycles_per_line(width: usize) -> u64 {
     let starts = line_starts(&[width; STEADY_LINES]);
     starts.windows(2).skip(WARM_UP_LINES).map(|w| w[1] - w[0]).max().unwrap_or(width as u64)
 }
 
 /// The matcher's worst line for `n` declivities per side on `cells` cells:
 /// `(n, m, stop_diag, k)` = `(N, N, 0, N)` (see the module's doc).
-pub const fn worst_matcher_line(n: usize) -> (usize, usize, usize, usize) {
+const fn worst_matcher_line(n: usize) -> (usize, usize, usize, usize) {
     (n, n, 0, n)
 }
 
 /// `rtl::matcher::declivity_matcher::sweep_cycles` as text: two phases for `n ≤
 /// 2·K`, four for longer lines.
-pub const SWEEP_FORMULA: &str = "sweep_cycles(n, m, K) = 2·(n + m) + [n > K] + ENGINE_LAG − 3 for n ≤ 2·K (two phases, an anti-diagonal every 2 clocks); 4·m + (p − 1)·(2·K + 1) + max(4·c + 2·K + 1, 4·(K − 1)) + ENGINE_LAG − 3 for n > 2·K (four phases, every 4 clocks; the last row n − 1 = c + p·K is cell c's of phase p)";
+const SWEEP_FORMULA: &str = "sweep_cycles(n, m, K) = 2·(n + m) + [n > K] + ENGINE_LAG − 3 for n ≤ 2·K (two phases, an anti-diagonal every 2 clocks); 4·m + (p − 1)·(2·K + 1) + max(4·c + 2·K + 1, 4·(K − 1)) + ENGINE_LAG − 3 for n > 2·K (four phases, every 4 clocks; the last row n − 1 = c + p·K is cell c's of phase p)";
 /// `rtl::matcher::declivity_matcher::line_period` as text: the matcher's clocks per
 /// line, back to back.
-pub const LINE_PERIOD_FORMULA: &str = "line_period(n, m, s, k, K) = max(sweep_cycles(n, m, K), traceback_cycles(n, m, s, k)) + 1";
+const LINE_PERIOD_FORMULA: &str = "line_period(n, m, s, k, K) = max(sweep_cycles(n, m, K), traceback_cycles(n, m, s, k)) + 1";
 /// `rtl::matcher::traceback::traceback_cycles` as text (`k > 0`).
-pub const TRACEBACK_FORMULA: &str = "traceback_cycles(n, m, s, k) = WALK_LEAD + 1 + (n + m − 2 − s) + (k + 2)";
+const TRACEBACK_FORMULA: &str = "traceback_cycles(n, m, s, k) = WALK_LEAD + 1 + (n + m − 2 − s) + (k + 2)";
 
 /// The two declivity detectors (one per camera, identical, side by side).
-pub fn detector_stage(s: &Sizes) -> StageBudget {
+fn detector_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "declivity detector";
     let cycles = detector_cycles_per_line(s.width);
     let formula = if cycles == s.width as u64 {
@@ -629,7 +629,7 @@ pub fn detector_stage(s: &Sizes) -> StageBudget {
 
 /// The record queues, one per camera (`rtl::stream::record_fifo`): a line's
 /// records wait there while the matcher is busy with a heavier line.
-pub fn record_queue_stage(s: &Sizes) -> StageBudget {
+fn record_queue_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "record queues";
     let beats = s.load.n.max(s.load.m) + 1;
     let formula = if s.worst {
@@ -652,7 +652,7 @@ pub fn record_queue_stage(s: &Sizes) -> StageBudget {
 }
 
 /// The matcher: systolic array, traceback, record and choice memories.
-pub fn matcher_stage(s: &Sizes) -> StageBudget {
+fn matcher_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "matcher";
     let l = &s.load;
     let (n, m, stop, k) = (l.n, l.m, l.stop_diag, l.k);
@@ -713,7 +713,7 @@ pub fn matcher_stage(s: &Sizes) -> StageBudget {
 /// The row check stage's name.
 const ROW_CHECK_NAME: &str = "row check";
 
-pub fn row_check_stage(s: &Sizes) -> StageBudget {
+fn row_check_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = ROW_CHECK_NAME;
     let c = s.load.check;
     let check = s.check_text("row_check_cycles(N, N, N)", "c (the row's measured clocks)");
@@ -747,7 +747,7 @@ pub fn row_check_stage(s: &Sizes) -> StageBudget {
 
 /// The interpolator: one disparity per reference pixel per clock
 /// (`rtl::post::interpolator`).
-pub fn interpolator_stage(s: &Sizes) -> StageBudget {
+fn interpolator_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "interpolator";
     let latency_terms = vec![
         Term::new("CHECK_REGISTER_LAG", CHECK_REGISTER_LAG),
@@ -770,7 +770,7 @@ pub fn interpolator_stage(s: &Sizes) -> StageBudget {
 
 /// The vertical median of nine rows (`rtl::post::vertical_median`):
 /// `MEDIAN_HALF` = 4 lines of delay.
-pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
+fn vertical_median_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "vertical median";
     let latency_terms = vec![
         Term::new("INTERP_REGISTER_LAG", INTERP_REGISTER_LAG),
@@ -795,7 +795,7 @@ pub fn vertical_median_stage(s: &Sizes) -> StageBudget {
 
 /// The depth stage (`rtl::post::depth_stage`, eq. 1): one depth per disparity per
 /// clock.
-pub fn depth_stage(s: &Sizes) -> StageBudget {
+fn depth_stage(s: &Sizes) -> StageBudget {
     const NAME: &str = "depth stage";
     let latency_terms = vec![
         Term::new("MEDIAN_REGISTER_LAG", MEDIAN_REGISTER_LAG),
@@ -962,7 +962,7 @@ pub struct Budget {
 
 /// Checks a request and gives the sizes its budget is made for (every row
 /// the worst).
-pub fn validate(r: &BudgetRequest) -> Result<Sizes, BudgetError> {
+fn validate(r: &BudgetRequest) -> Result<Sizes, BudgetError> {
     if r.width == 0 {
         return Err(BudgetError::ZeroWidth);
     }

@@ -93,7 +93,7 @@ impl DetectorSim {
     }
 
     /// Writes a VCD of the clocks in `range` to `path`.
-    pub fn trace_to(&mut self, path: &std::path::Path, range: std::ops::Range<u64>) -> std::io::Result<()> {
+    pub(crate) fn trace_to(&mut self, path: &std::path::Path, range: std::ops::Range<u64>) -> std::io::Result<()> {
         let file = std::io::BufWriter::new(std::fs::File::create(path)?);
         let probe = write_vcd_header(file, &self.uut);
         self.vcd = Some(VcdState { probe: Some(probe), range });
@@ -101,13 +101,13 @@ impl DetectorSim {
     }
 
     /// Ends the VCD: dropping the probe flushes and closes the file.
-    pub fn finish_trace(&mut self) {
+    pub(crate) fn finish_trace(&mut self) {
         self.vcd = None;
     }
 
     /// One clock: apply `input`, settle, sample; returns whether the pixel
     /// was accepted (`tvalid && tready`) and the output beat, if any.
-    pub fn cycle(&mut self, input: PixelBeat) -> (bool, Option<RecordBeat>) {
+    fn cycle(&mut self, input: PixelBeat) -> (bool, Option<RecordBeat>) {
         let u = &mut self.uut;
         u.clock.next = false.into();
         u.s_tdata.next = (input.tdata as u64).into();
@@ -355,7 +355,7 @@ pub fn golden_lines(lines: &[&[u8]]) -> Vec<LimitedLine> {
 }
 
 /// A record as golden's [`Declivity`] (position from the fixed point).
-pub fn to_declivity(r: &RecordBeat) -> Declivity {
+fn to_declivity(r: &RecordBeat) -> Declivity {
     Declivity {
         start: r.start as usize,
         end: r.end as usize,
@@ -398,7 +398,7 @@ pub struct DetectReport {
 /// Runs every row of `image` through the detector (back to back, no gaps)
 /// and compares each with golden in parity mode. Returns the report and the
 /// per-line records.
-pub fn detect_image(
+pub(crate) fn detect_image(
     sim: &mut DetectorSim,
     name: &str,
     image: &golden::GreyImage,
@@ -440,7 +440,7 @@ pub fn detect_image(
 
 /// The records of each line as golden's line features (for the overlay
 /// picture).
-pub fn as_features(lines: &[HwLine]) -> Vec<golden::line::LineFeatures> {
+pub(crate) fn as_features(lines: &[HwLine]) -> Vec<golden::line::LineFeatures> {
     lines
         .iter()
         .map(|l| golden::line::LineFeatures {
@@ -453,7 +453,7 @@ pub fn as_features(lines: &[HwLine]) -> Vec<golden::line::LineFeatures> {
 
 /// [`rtl::detector::declivity_detector::marker_latency`] for an image `width` wide
 /// (the stored width is at most `W_MAX`).
-pub fn marker_latency_estimate(width: usize) -> u64 {
+pub(crate) fn marker_latency_estimate(width: usize) -> u64 {
     rtl::detector::declivity_detector::marker_latency(width.clamp(1, W_MAX)) as u64
 }
 

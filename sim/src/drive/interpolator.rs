@@ -57,7 +57,7 @@ pub struct InterpolatorSim {
 /// One clock's input beat: an anchor (`x`, `d`) or, with `last`, a line's
 /// marker (`width`, `sof`); nothing when `valid` is low.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct Beat {
+pub(crate) struct Beat {
     pub valid: bool,
     pub last: bool,
     pub x: u32,
@@ -155,7 +155,7 @@ fn beats(lines: &[AnchorLine], period: usize) -> (Vec<Beat>, Vec<usize>) {
 }
 
 /// [`beats`] with a period of its own for each line.
-pub fn timed_beats(lines: &[(&AnchorLine, usize)]) -> (Vec<Beat>, Vec<usize>) {
+pub(crate) fn timed_beats(lines: &[(&AnchorLine, usize)]) -> (Vec<Beat>, Vec<usize>) {
     let mut beats: Vec<Beat> = Vec::new();
     let mut marker_at: Vec<usize> = Vec::with_capacity(lines.len());
     for &(l, period) in lines {

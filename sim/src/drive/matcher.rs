@@ -262,7 +262,7 @@ fn read_beat<const N: usize>(u: &DeclivityMatcher<N>) -> MatchBeat {
 }
 
 /// The golden mode whose gain rule the matcher was generated for.
-pub fn golden_mode(rule: GainRule) -> Mode {
+pub(crate) fn golden_mode(rule: GainRule) -> Mode {
     match rule {
         GainRule::Paper => Mode::Paper,
         GainRule::Robust => Mode::Robust,
@@ -273,7 +273,7 @@ pub fn golden_mode(rule: GainRule) -> Mode {
 /// rounded down to `POS_FRAC_BITS` fraction bits (as the eq. 3 divider
 /// does), `d_t` rounded to `DT_FRAC_BITS`; at most `N_MAX` records (the
 /// detector's limit).
-pub fn quantize_line(f: &LineFeatures) -> MatchLine {
+fn quantize_line(f: &LineFeatures) -> MatchLine {
     let records = f
         .declivities
         .iter()
@@ -298,7 +298,7 @@ pub fn quantize_line(f: &LineFeatures) -> MatchLine {
 /// down to `MATCH_DT_FRAC_BITS` fraction bits and saturated at
 /// `MATCH_DT_BITS` (255.5: a line whose `d_t` reaches 255 has no
 /// declivity, so real lines never meet the saturation).
-pub fn dequantize(line: &MatchLine) -> (Vec<Declivity>, f64) {
+pub(crate) fn dequantize(line: &MatchLine) -> (Vec<Declivity>, f64) {
     let decls = line
         .records
         .iter()
@@ -491,7 +491,7 @@ pub struct LineOutcome {
 }
 
 /// Runs every line pair through the matcher and golden and compares them.
-pub fn match_lines<const N: usize>(
+fn match_lines<const N: usize>(
     sim: &mut MatcherSim<N>,
     rule: GainRule,
     name: &str,

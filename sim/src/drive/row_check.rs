@@ -225,7 +225,7 @@ pub fn frame_rows(frame: &[Vec<FixedMatch>], period: usize, gap: usize) -> Vec<T
 
 /// golden's rows for the same fixed-point matches: `x_ref = x / 16`,
 /// `disparity = d / 16` (exact in `f64`), as `confirmed_matches` reads them.
-pub fn golden_lines(frame: &[Vec<FixedMatch>]) -> Vec<LineResult> {
+fn golden_lines(frame: &[Vec<FixedMatch>]) -> Vec<LineResult> {
     let unit = (1u64 << POS_FRAC_BITS) as f64;
     let empty = LineFeatures { sigma: 1.0, dt: 1.0, declivities: vec![] };
     frame

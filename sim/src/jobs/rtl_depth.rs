@@ -103,7 +103,7 @@ impl Engine {
 /// in the range to the file, as [`StereoSim::trace_lines_to`]); returns the
 /// report, the rtl's map and golden's (px, row-major, 0 = none) and the
 /// rtl's depths (mm, row-major, 0 = none).
-pub fn run_pair(
+fn run_pair(
     name: &str,
     left: &GreyImage,
     right: &GreyImage,

@@ -9,19 +9,19 @@ use thiserror::Error;
 
 
 /// The command that installs the simulators, named by [`CosimError::ToolMissing`].
-pub const INSTALL_COMMAND: &str = "apt-get install -y iverilog verilator";
+const INSTALL_COMMAND: &str = "apt-get install -y iverilog verilator";
 
 /// Iterations [`record`] allows rust-hdl's `simulate` to settle one half cycle.
-pub const MAX_SETTLE_ITERS: usize = 1000;
+pub(crate) const MAX_SETTLE_ITERS: usize = 1000;
 
 /// Environment variable that makes [`committed_trace`] (re)write the vector
 /// file from the fresh trace: `COSIM_BLESS=1 cargo test ...`.
-pub const BLESS_ENV: &str = "COSIM_BLESS";
+pub(crate) const BLESS_ENV: &str = "COSIM_BLESS";
 
 /// The name of the top module and of its clock input in generated Verilog.
-pub const TOP_MODULE: &str = "top";
+pub(crate) const TOP_MODULE: &str = "top";
 /// The clock input of the top module; it is not part of a trace's inputs.
-pub const CLOCK_PORT: &str = "clock";
+pub(crate) const CLOCK_PORT: &str = "clock";
 
 /// What can go wrong in a co-simulation.
 #[derive(Debug, Error)]

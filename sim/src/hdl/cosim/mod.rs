@@ -97,7 +97,6 @@ pub use trace::*;
 pub use ports::*;
 pub use record::*;
 pub use compare::*;
-pub use testbench::*;
 pub use run::*;
 pub use vectors::*;
 pub use lint::*;

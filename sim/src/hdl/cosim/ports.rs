@@ -124,7 +124,7 @@ fn range_width(r: &str) -> Option<u32> {
 
 /// Checks that the design's `top` has the clock input and exactly the
 /// trace's ports (by name and width; order does not matter).
-pub fn check_design_ports(design: &str, trace: &Trace) -> Result<(), CosimError> {
+pub(crate) fn check_design_ports(design: &str, trace: &Trace) -> Result<(), CosimError> {
     let (ins, outs) = top_ports(design)?;
     let mut problems = Vec::new();
     match ins.iter().find(|p| p.name == CLOCK_PORT) {

@@ -7,9 +7,9 @@ use super::error::*;
 use super::trace::*;
 
 /// The file the testbench reads its inputs from (in its work directory).
-pub const TB_INPUT_FILE: &str = "cosim_inputs.txt";
+pub(crate) const TB_INPUT_FILE: &str = "cosim_inputs.txt";
 /// The file the testbench writes the sampled outputs to.
-pub const TB_OUTPUT_FILE: &str = "cosim_outputs.txt";
+pub(crate) const TB_OUTPUT_FILE: &str = "cosim_outputs.txt";
 
 /// A Verilog testbench (module `tb`) that instantiates `top`, reads
 /// [`TB_INPUT_FILE`] (a decimal cycle count, then one line of hex input
@@ -18,7 +18,7 @@ pub const TB_OUTPUT_FILE: &str = "cosim_outputs.txt";
 /// [`TB_OUTPUT_FILE`] (one line of zero-padded hex values per cycle, in
 /// `outputs` order). It prints `COSIM-DONE <cycles>` at the end, or a line
 /// starting with `COSIM-ERROR`. Works under Icarus 11 and Verilator 5.006.
-pub fn testbench(inputs: &[Port], outputs: &[Port]) -> String {
+pub(crate) fn testbench(inputs: &[Port], outputs: &[Port]) -> String {
     let mut s = String::new();
     let decl = |w: u32| {
         if w == 1 {

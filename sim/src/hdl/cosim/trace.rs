@@ -17,7 +17,7 @@ pub struct Port {
 impl Port {
     /// A port; panics on a width outside 1..=64 or a name that is not a
     /// plain Verilog identifier (both are programming errors).
-    pub fn new(name: &str, width: u32) -> Port {
+    fn new(name: &str, width: u32) -> Port {
         Port::checked(name, width).unwrap_or_else(|e| panic!("{e}"))
     }
 
@@ -44,7 +44,7 @@ impl Port {
     }
 
     /// The largest value the port holds.
-    pub fn max(&self) -> u64 {
+    fn max(&self) -> u64 {
         if self.width == 64 {
             u64::MAX
         } else {
@@ -147,23 +147,13 @@ impl Trace {
         self.cycles.len()
     }
 
-    /// Whether the trace has no cycles.
-    pub fn is_empty(&self) -> bool {
-        self.cycles.is_empty()
-    }
-
-    /// The input values of every cycle, as a stimulus for [`record`].
-    pub fn stimulus(&self) -> impl Iterator<Item = Vec<u64>> + '_ {
-        self.cycles.iter().map(|c| c.inputs.clone())
-    }
-
     /// The output values of every cycle (what a simulator must reproduce).
     pub fn expected(&self) -> Vec<Vec<u64>> {
         self.cycles.iter().map(|c| c.outputs.clone()).collect()
     }
 
     /// Checks port lists and every value's width (for traces built by hand).
-    pub fn validate(&self) -> Result<(), CosimError> {
+    pub(crate) fn validate(&self) -> Result<(), CosimError> {
         check_port_list(&self.inputs, &self.outputs)?;
         for (k, c) in self.cycles.iter().enumerate() {
             check_values(&self.inputs, &c.inputs, "input", k)?;
