@@ -300,9 +300,11 @@ def hw_synth_blocks():
             title, f"`{top}`", _lut_share(r), _n(r["ffs"]), _n(r["lutram"]), r["brams"], r["dsps"],
             f"**{r['fmax_mhz']:.1f} MHz**" if r["meets_target"] else f"{r['fmax_mhz']:.1f} MHz",
             r["io_mode"],
+            _short_path(r.get("critical_path") or []),
         ])
-    return markdown(["block", "--top", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "IOs"],
-                    rows, ["---", "---", "--:", "--:", "--:", "--:", "--:", "--:", "---"])
+    return markdown(["block", "--top", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "IOs",
+                     "critical path"],
+                    rows, ["---", "---", "--:", "--:", "--:", "--:", "--:", "--:", "---", "---"])
 
 
 @table("hw-synth-stereo")
@@ -318,30 +320,40 @@ def hw_synth_stereo():
             f"{r['seconds'] / 60:.0f} min",
             _short_path(path),
         ])
-    return markdown(["seed", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "run", "critical path (from → to)"],
+    return markdown(["seed", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "run time", "critical path"],
                     rows, ["--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"])
 
 
 def _short_path(path):
-    """The critical path's first and last lines, as nextpnr names them (shortened)."""
+    """The critical path in one line: its delay (logic, routing) from the report's summary,
+    and the register it starts from and the one it ends on (the cells of its first and last
+    steps, without nextpnr's suffixes)."""
     if not path:
         return "—"
-    ends = [path[0], path[-1]] if len(path) > 1 else path
-    return " → ".join(re.sub(r"\s+", " ", e).replace("|", "\\|") for e in ends)
+    m = re.match(r"\s*([\d.]+ ns).*\(logic ([\d.]+ ns), routing ([\d.]+ ns)\)", path[0])
+    head = f"{m.group(1)} ({m.group(2)} logic, {m.group(3)} routing)" if m else path[0].strip()
+    steps = [re.split(r"\s{2,}", s.strip()) for s in path[1:]]
+    cells = [s[-1].split()[0] for s in steps if len(s) >= 3]
+    if len(cells) >= 2:
+        def reg(c):
+            return re.sub(r"(_TRELLIS_FF_Q|_LUT4|_DP16KD|_MULT18X18D)\S*$", "", c.rsplit(".", 1)[0] if c.endswith((".Q", ".DI", ".CE", ".LSR", ".M")) else c)
+        head += f": `{reg(cells[0])}` → `{reg(cells[-1])}`"
+    return head.replace("|", "\\|")
 
 
 @table("hw-synth-tools")
 def hw_synth_tools():
-    """The flow's tools and options as the reports record them."""
-    rows = []
+    """The flow's tools and options as the reports record them, one row per distinct set."""
+    groups = {}
     for top, _ in SYNTH_BLOCKS:
         for seed in (1, 2, 3):
-            f = DATA / f"synth-{top}-seed{seed}.json"
-            if not f.exists():
+            if not (DATA / f"synth-{top}-seed{seed}.json").exists():
                 continue
             r = _synth(top, seed)
-            rows.append([f"`{top}`", seed, r["device"], f"{r['target_mhz']:.0f} MHz", r["timing_weight"], r["tools"]])
-    return markdown(["--top", "seed", "device", "target", "placer timing weight", "tools"], rows)
+            key = (r["tools"], r["device"], f"{r['target_mhz']:.0f} MHz", r["timing_weight"])
+            groups.setdefault(key, []).append(f"`{top}` seed {seed}")
+    rows = [[*key, ", ".join(runs)] for key, runs in groups.items()]
+    return markdown(["tools", "device", "target", "placer timing weight", "runs"], rows)
 
 
 if __name__ == "__main__":
