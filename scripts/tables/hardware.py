@@ -105,6 +105,8 @@ def _ports(name="ports-stereo.json"):
 @table("hw-ports")
 def hw_ports():
     """The top's ports, grouped, with widths from the generated Verilog."""
+    # docs/data/ports-stereo.json: declivity verilog --top stereo --out DIR;
+    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
     data = _ports()
     by_name = {p["name"]: p for p in data["ports"]}
     described = {n for _, g in PORT_GROUPS for n in g}
@@ -125,6 +127,8 @@ def hw_ports():
 def hw_tdata():
     """The bit map of m_tdata, from the Verilog: the width of m_tdata, the top's shift of the
     depth (`sh_depth`) and the width of a disparity (`dispmax`'s, the position format)."""
+    # docs/data/ports-stereo.json: declivity verilog --top stereo --out DIR;
+    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
     data = _ports()
     by_name = {p["name"]: p for p in data["ports"]}
     width = by_name["m_tdata"]["width"]
@@ -199,6 +203,9 @@ def _esc(text):
 @table("hw-budget-examples")
 def hw_budget_examples():
     """One row per budget example: the line period, latency, frame end, blanking, rate."""
+    # docs/data/budget-*.json: declivity budget --width W --height H --n-max N --dispmax D
+    #   --clock-mhz 125 [--hblank C] --json > docs/data/budget-WxH-nN[-dispmaxD][-hblankC].json
+    #   (dispmax 64 unless the name says otherwise; see BUDGET_EXAMPLES)
     rows = []
     for name, title in BUDGET_EXAMPLES:
         b = load_jsonl(name)[0]
@@ -229,6 +236,8 @@ def hw_budget_examples():
 @table("hw-budget-stages")
 def hw_budget_stages():
     """The stages of one example (512×512, N = 128): clocks per line and latency terms."""
+    # docs/data/budget-512x512-n128.json: declivity budget --width 512 --height 512 --n-max 128
+    #   --dispmax 64 --clock-mhz 125 --json
     b = load_jsonl("budget-512x512-n128.json")[0]
     rows = []
     for s in b["stages"]:
@@ -249,6 +258,8 @@ def hw_budget_stages():
 @table("hw-memories")
 def hw_memories():
     """The memories as generated (the same in every budget: generation-time sizes)."""
+    # docs/data/budget-512x512-n128.json: declivity budget --width 512 --height 512 --n-max 128
+    #   --dispmax 64 --clock-mhz 125 --json
     b = load_jsonl("budget-512x512-n128.json")[0]
     r = b["resources"]
     rows = []
@@ -293,6 +304,8 @@ def _lut_share(r):
 @table("hw-synth-blocks")
 def hw_synth_blocks():
     """Each block alone and the top, placer seed 1."""
+    # docs/data/synth-<top>-seed1.json: declivity synth --top <top> --seed 1 --json
+    #   (top: detector, matcher, interpolator, stereo)
     rows = []
     for top, title in SYNTH_BLOCKS:
         r = _synth(top, 1)
@@ -310,6 +323,7 @@ def hw_synth_blocks():
 @table("hw-synth-stereo")
 def hw_synth_stereo():
     """The top on placer seeds 1, 2, 3 (the same netlist), with each run's critical path."""
+    # docs/data/synth-stereo-seed<N>.json: declivity synth --top stereo --seed N --json (N = 1, 2, 3)
     rows = []
     for seed in (1, 2, 3):
         r = _synth("stereo", seed)
@@ -344,6 +358,7 @@ def _short_path(path):
 @table("hw-synth-tools")
 def hw_synth_tools():
     """The flow's tools and options as the reports record them, one row per distinct set."""
+    # docs/data/synth-<top>-seed<N>.json: declivity synth --top <top> --seed N --json
     groups = {}
     for top, _ in SYNTH_BLOCKS:
         for seed in (1, 2, 3):
