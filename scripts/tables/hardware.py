@@ -217,7 +217,7 @@ def hw_budget_examples():
             b["hblank"],
             f"{_n(matcher['cycles_per_line'])} / {_n(check['cycles_per_line'])}",
             f"{_n(b['line_period_cycles'])} ({b['slowest_stage']})" if over else f"{_n(b['line_period_cycles'])} (the input)",
-            f"{_n(over)} (hblank ≥ {_n(b['min_hblank_cycles'])})" if over else "0",
+            f"{_n(over)} (hblank ≥ {_n(b['min_hblank_cycles'])} paces the input)" if over else "0",
             f"{_n(b['latency_cycles'])} clk = {b['latency_us']:.2f} µs",
             _n(b["flush_cycles"]),
             f"{b['vblank_lines']} ({b['vblank_lines_any_rows']})",
@@ -226,7 +226,7 @@ def hw_budget_examples():
         ])
     return markdown(
         ["example (125 MHz, 32 cells)", "hblank", "matcher / row check, worst clk per line", "line period P",
-         "input held per line", "latency (first pixel in → first disparity out)", "flush (last pixel in → last out)",
+         "slowest stage over W + hblank, clk per line", "latency (first pixel in → first disparity out)", "flush (last pixel in → last out)",
          "vertical blanking, lines (any rows)", "frame", "frames/s"],
         rows,
         ["---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"],
