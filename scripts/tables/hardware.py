@@ -1,0 +1,385 @@
+"""The tables of the hardware datasheet (docs/hardware/datasheet.md).
+
+Every table reads JSON under docs/data/; each function names the command that writes its
+files. Run as a script, this file also writes the port list of a generated Verilog top:
+
+    declivity verilog --top stereo --out DIR
+    python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+"""
+import json
+import pathlib
+import re
+import sys
+
+if __name__ == "__main__":
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent))
+
+from tables import DATA, fmt, load_jsonl, markdown, table  # noqa: E402
+
+# The ECP5-85K's LUT4s (nextpnr's TRELLIS_COMB sites), for the share of the device.
+ECP5_85K_LUTS = 83_640
+
+# ---------------------------------------------------------------------------------------
+# Ports
+
+
+def parse_ports(verilog_text, module="top"):
+    """The ports of `module` in a rust-hdl Verilog file: [{name, direction, width}] in
+    declaration order, and the module's localparams {name: value}."""
+    m = re.search(rf"^module {re.escape(module)}\((.*?)\);(.*?)^endmodule", verilog_text, re.S | re.M)
+    if not m:
+        raise SystemExit(f"no module {module} in the Verilog")
+    order = [p.strip() for p in m.group(1).split(",")]
+    body = m.group(2)
+    decl = {}
+    for d in re.finditer(r"^\s*(input|output)\s+(?:wire|reg)?\s*(?:\[(\d+):(\d+)\])?\s*(\w+);", body, re.M):
+        direction, hi, lo, name = d.groups()
+        width = int(hi) - int(lo) + 1 if hi is not None else 1
+        decl[name] = {"name": name, "direction": direction, "width": width}
+    params = {}
+    for p in re.finditer(r"^\s*localparam\s+(\w+)\s*=\s*(\d+)'([bhd])([0-9a-fA-F_]+);", body, re.M):
+        name, _bits, base, digits = p.groups()
+        params[name] = int(digits.replace("_", ""), {"b": 2, "h": 16, "d": 10}[base])
+    return [decl[n] for n in order], params
+
+
+# What each port of the top is, from rtl/src/stereo_line_processor.rs's "Ports" (the widths
+# come from the Verilog: a port missing here, or described but not generated, fails).
+PORT_GROUPS = [
+    ("Clock", {
+        "clock": "The one clock; every register samples on its rising edge. No reset port: "
+                 "registers start from their initial values (FPGA configuration).",
+    }),
+    ("Left camera, AXI4-Stream video in (the reference view)", {
+        "l_tdata": "Grey level of the pixel.",
+        "l_tvalid": "A pixel is offered.",
+        "l_tuser": "Start of frame: high on the frame's first pixel (read on a line's first pixel).",
+        "l_tlast": "End of line: high on the line's last pixel.",
+        "l_tready": "The pixel is taken (`tvalid && tready`). A register (the input's register "
+                    "slice): high except between lines shorter than `MIN_LINE_PERIOD`, a clock "
+                    "after the detector's own ready.",
+    }),
+    ("Right camera, AXI4-Stream video in", {
+        "r_tdata": "Grey level of the pixel.",
+        "r_tvalid": "A pixel is offered.",
+        "r_tuser": "Start of frame, as `l_tuser`.",
+        "r_tlast": "End of line, as `l_tlast`.",
+        "r_tready": "The pixel is taken; as `l_tready`.",
+    }),
+    ("Run-time inputs", {
+        "dispmax": "Eq. 6's search bound: a node exists for `0 < d < dispmax`. Unsigned, 4 "
+                   "fraction bits (1/16 px). Hold it during a frame.",
+        "height": "Rows of the frame: its last row ends the frame for the row check and the "
+                  "median, which then flush it. Registered: set it before the frame and keep it "
+                  "to the frame's last pixel out of the interpolator.",
+    }),
+    ("Output, AXI4-Stream video without back-pressure (one beat per reference pixel)", {
+        "m_tvalid": "A beat: one disparity (and depth) of the left view. No `m_tready`: the "
+                    "sink takes a beat on every clock it is offered.",
+        "m_tdata": "Depth and disparity of the pixel (bit map below).",
+        "m_tuser": "Start of frame: the frame's first pixel.",
+        "m_tlast": "End of line: the line's last pixel. A line has the reference line's width.",
+    }),
+    ("Status: counters that wrap (each counts its event two clocks after it)", {
+        "records_dropped": "Detector beats (records) that found a record queue full.",
+        "lines_dropped": "Lines the row check had no room for (rows arriving faster than it "
+                         "checks them), or the interpolator (ruled out by the limit on lines in "
+                         "flight); their pixels are not sent.",
+        "pixels_dropped": "Pixels that reached the vertical median while it flushed a frame's "
+                          "last four rows (vertical blanking too short).",
+        "lines_full": "Line pairs with more than `N_MAX` characteristic declivities on a side: "
+                      "the first `N_MAX` are matched.",
+        "lines_wide": "Line pairs with a side wider than `W_MAX`: the first `W_MAX` pixels "
+                      "are processed.",
+    }),
+]
+
+
+def _ports(name="ports-stereo.json"):
+    # docs/data/ports-stereo.json:
+    #   declivity verilog --top stereo --out DIR
+    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+    return load_jsonl(name)[0]
+
+
+@table("hw-ports")
+def hw_ports():
+    """The top's ports, grouped, with widths from the generated Verilog."""
+    # docs/data/ports-stereo.json: declivity verilog --top stereo --out DIR;
+    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+    data = _ports()
+    by_name = {p["name"]: p for p in data["ports"]}
+    described = {n for _, g in PORT_GROUPS for n in g}
+    missing = set(by_name) - described
+    extra = described - set(by_name)
+    if missing or extra:
+        raise SystemExit(f"hw-ports: ports not described {sorted(missing)}, described but not generated {sorted(extra)}")
+    rows = []
+    for title, group in PORT_GROUPS:
+        rows.append([f"**{title}**", "", "", ""])
+        for name, text in group.items():
+            p = by_name[name]
+            rows.append([f"`{name}`", p["direction"], p["width"], text])
+    return markdown(["port", "direction", "width", "description"], rows, ["---", "---", "--:", "---"])
+
+
+@table("hw-tdata")
+def hw_tdata():
+    """The bit map of m_tdata, from the Verilog: the width of m_tdata, the top's shift of the
+    depth (`sh_depth`) and the width of a disparity (`dispmax`'s, the position format)."""
+    # docs/data/ports-stereo.json: declivity verilog --top stereo --out DIR;
+    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+    data = _ports()
+    by_name = {p["name"]: p for p in data["ports"]}
+    width = by_name["m_tdata"]["width"]
+    shift = data["localparams"]["sh_depth"]
+    pos_bits = by_name["dispmax"]["width"]
+    rows = [
+        [f"{width - 1}..{shift}", width - shift, "depth `Z` in mm, unsigned, rounded; 0 = no depth (disparity 0); "
+         f"{(1 << (width - shift)) - 1} = that far or farther (saturated)"],
+    ]
+    if pos_bits < shift:
+        rows.append([f"{shift - 1}..{pos_bits}", shift - pos_bits, "0"])
+    rows.append([f"{pos_bits - 1}..0", pos_bits, "disparity `d = x_left − x_right`, unsigned, 4 fraction bits "
+                 "(1/16 px: `d = value / 16`); 0 = no disparity"])
+    return markdown(["bits", "width", "field"], rows, ["---", "--:", "---"])
+
+
+# ---------------------------------------------------------------------------------------
+# The simulated trace of the timing diagrams
+
+
+@table("hw-trace")
+def hw_trace():
+    """The run the timing diagrams are cut from."""
+    # docs/hardware/wave/trace-run.json: scripts/timing-diagrams.sh DECLIVITY (its summary of
+    #   declivity rtl depth data/stereo/tsukuba/left_gray.png data/stereo/tsukuba/right_gray.png
+    #     --dispmax 15 --rows 100..110 --hblank 24 --vcd FILE --lines 0..10 --json)
+    r = json.loads((DATA.parent / "hardware" / "wave" / "trace-run.json").read_text())
+    status = ", ".join(str(r[k]) for k in ("records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide"))
+    rows = [[
+        f"`{r['image']}`, rows {r['rows']}",
+        f"{r['width']}×{r['height']}",
+        f"{r['dispmax']:g}",
+        r["hblank"],
+        _n(r["cycles"]),
+        f"{r['px_per_clk']:.4f}",
+        r["stall_cycles"],
+        _n(r["latency_cycles"]),
+        r["lines_out"],
+        f"{r['agree_quarter_px']:.4f}",
+        status,
+    ]]
+    return markdown(["pair", "frame", "dispmax (px)", "hblank", "clocks", "px/clk (incl. blanking)", "stall clocks",
+                     "latency, first pixel in → first out (clk)", "lines out", "within 1/4 px of golden",
+                     "status counters (records, lines, pixels dropped; full, wide)"],
+                    rows, ["---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"])
+
+
+# ---------------------------------------------------------------------------------------
+# Latency budget examples
+
+# docs/data/budget-*.json, each written by
+#   declivity budget --width W --height H --n-max N --dispmax D --clock-mhz 125 [--hblank C] --json
+# with the values of its name (dispmax 64 unless the name says otherwise):
+BUDGET_EXAMPLES = [
+    ("budget-512x512-n56-dispmax60.json", "the paper's rig: 512×512, dispmax 60 px, N = 56"),
+    ("budget-512x512-n128.json", "512×512, N = 128"),
+    ("budget-512x512-n128-hblank648.json", "512×512, N = 128, input paced"),
+    ("budget-1024x768-n128.json", "1024×768, N = 128"),
+    ("budget-1024x768-n128-hblank320.json", "1024×768, N = 128, XGA timing"),
+]
+
+
+def _n(v):
+    return fmt(v, ",")
+
+
+def _esc(text):
+    """A cell's text with its pipes escaped (`|ΔI|`)."""
+    return str(text).replace("|", "\\|")
+
+
+@table("hw-budget-examples")
+def hw_budget_examples():
+    """One row per budget example: the line period, latency, frame end, blanking, rate."""
+    # docs/data/budget-*.json: declivity budget --width W --height H --n-max N --dispmax D
+    #   --clock-mhz 125 [--hblank C] --json > docs/data/budget-WxH-nN[-dispmaxD][-hblankC].json
+    #   (dispmax 64 unless the name says otherwise; see BUDGET_EXAMPLES)
+    rows = []
+    for name, title in BUDGET_EXAMPLES:
+        b = load_jsonl(name)[0]
+        matcher = next(s for s in b["stages"] if s["name"] == "matcher")
+        check = next(s for s in b["stages"] if s["name"] == "row check")
+        over = b["stall_cycles_per_line"]
+        rows.append([
+            title,
+            b["hblank"],
+            f"{_n(matcher['cycles_per_line'])} / {_n(check['cycles_per_line'])}",
+            f"{_n(b['line_period_cycles'])} ({b['slowest_stage']})" if over else f"{_n(b['line_period_cycles'])} (the input)",
+            f"{_n(over)} (hblank ≥ {_n(b['min_hblank_cycles'])} paces the input)" if over else "0",
+            f"{_n(b['latency_cycles'])} clk = {b['latency_us']:.2f} µs",
+            _n(b["flush_cycles"]),
+            f"{b['vblank_lines']} ({b['vblank_lines_any_rows']})",
+            f"{b['frame_time_ms']:.3f} ms",
+            f"{b['fps']:.1f}",
+        ])
+    return markdown(
+        ["example (125 MHz, 32 cells)", "hblank", "matcher / row check, worst clk per line", "line period P",
+         "slowest stage over W + hblank, clk per line", "latency (first pixel in → first disparity out)", "flush (last pixel in → last out)",
+         "vertical blanking, lines (any rows)", "frame", "frames/s"],
+        rows,
+        ["---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"],
+    )
+
+
+@table("hw-budget-stages")
+def hw_budget_stages():
+    """The stages of one example (512×512, N = 128): clocks per line and latency terms."""
+    # docs/data/budget-512x512-n128.json: declivity budget --width 512 --height 512 --n-max 128
+    #   --dispmax 64 --clock-mhz 125 --json
+    b = load_jsonl("budget-512x512-n128.json")[0]
+    rows = []
+    for s in b["stages"]:
+        inst = f" ×{s['instances']}" if s["instances"] > 1 else ""
+        rows.append([
+            s["name"] + inst,
+            _n(s["cycles_per_line"]),
+            _n(s["latency_cycles"]),
+            _esc(s["latency_span"]),
+            "`" + s["latency_formula"] + "`",
+        ])
+    rows.append(["**scanline**", f"**P = {_n(b['line_period_cycles'])}**", f"**{_n(b['latency_cycles'])}**",
+                 "a row's first pixel in → its first disparity out", ""])
+    return markdown(["stage", "clk per worst line", "latency, clk", "from → to", "latency formula = values"],
+                    rows, ["---", "--:", "--:", "---", "---"])
+
+
+@table("hw-memories")
+def hw_memories():
+    """The memories as generated (the same in every budget: generation-time sizes)."""
+    # docs/data/budget-512x512-n128.json: declivity budget --width 512 --height 512 --n-max 128
+    #   --dispmax 64 --clock-mhz 125 --json
+    b = load_jsonl("budget-512x512-n128.json")[0]
+    r = b["resources"]
+    rows = []
+    for m in r["memories"]:
+        dp = m.get("dp16kd")
+        rows.append([
+            m["stage"], _esc(m["name"]),
+            f"{m['copies']} × {m['banks']} × {_n(m['words_per_bank'])} × {m['word_bits']}",
+            _n(m["bits"]),
+            dp if dp is not None else "inferred (LUT RAM / logic)",
+        ])
+    rows.append(["**all of the above**", "", "", f"**{_n(r['memory_bits'])}**", f"**{r['dp16kd_instances']}**"])
+    per_row = r["reference_row_bits"] // (r["pe_count"] * r["rows_per_cell"])
+    rows.append(["matcher", "gain cells' reference rows", f"{r['pe_count']} × 1 × {r['rows_per_cell']} × {per_row}",
+                 _n(r["reference_row_bits"]), f"— (LUT RAM: {r['reference_row_dpr16x4']} TRELLIS_DPR16X4)"])
+    return markdown(["stage", "memory", "copies × banks × words × bits", "bits", "DP16KD"], rows,
+                    ["---", "---", "--:", "--:", "--:"])
+
+
+# ---------------------------------------------------------------------------------------
+# Synthesis
+
+# docs/data/synth-<top>-seed<N>.json, each written (from the repository's root) by
+#   declivity synth --top <top> --seed <N> --json > docs/data/synth-<top>-seed<N>.json
+# (Yosys synth_ecp5 + nextpnr-ecp5 for the LFE5U-85F-6, 125 MHz asked, placer timing weight 25).
+SYNTH_BLOCKS = [
+    ("detector", "declivity detector (one camera)"),
+    ("matcher", "matcher (32 gain cells × 4 rows, traceback)"),
+    ("interpolator", "interpolator"),
+    ("stereo", "**line processor (the top)**"),
+]
+
+
+def _synth(top, seed):
+    return load_jsonl(f"synth-{top}-seed{seed}.json")[0]
+
+
+def _lut_share(r):
+    return f"{_n(r['luts'])} ({100 * r['luts'] / ECP5_85K_LUTS:.1f} %)"
+
+
+@table("hw-synth-blocks")
+def hw_synth_blocks():
+    """Each block alone and the top, placer seed 1."""
+    # docs/data/synth-<top>-seed1.json: declivity synth --top <top> --seed 1 --json
+    #   (top: detector, matcher, interpolator, stereo)
+    rows = []
+    for top, title in SYNTH_BLOCKS:
+        r = _synth(top, 1)
+        rows.append([
+            title, f"`{top}`", _lut_share(r), _n(r["ffs"]), _n(r["lutram"]), r["brams"], r["dsps"],
+            f"**{r['fmax_mhz']:.1f} MHz**" if r["meets_target"] else f"{r['fmax_mhz']:.1f} MHz",
+            r["io_mode"],
+            _short_path(r.get("critical_path") or []),
+        ])
+    return markdown(["block", "--top", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "IOs",
+                     "critical path"],
+                    rows, ["---", "---", "--:", "--:", "--:", "--:", "--:", "--:", "---", "---"])
+
+
+@table("hw-synth-stereo")
+def hw_synth_stereo():
+    """The top on placer seeds 1, 2, 3 (the same netlist), with each run's critical path."""
+    # docs/data/synth-stereo-seed<N>.json: declivity synth --top stereo --seed N --json (N = 1, 2, 3)
+    rows = []
+    for seed in (1, 2, 3):
+        r = _synth("stereo", seed)
+        path = r.get("critical_path") or []
+        rows.append([
+            seed, _lut_share(r), _n(r["ffs"]), _n(r["lutram"]), r["brams"], r["dsps"],
+            f"**{r['fmax_mhz']:.1f} MHz**" if r["meets_target"] else f"{r['fmax_mhz']:.1f} MHz",
+            f"{r['seconds'] / 60:.0f} min",
+            _short_path(path),
+        ])
+    return markdown(["seed", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "run time", "critical path"],
+                    rows, ["--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"])
+
+
+def _short_path(path):
+    """The critical path in one line: its delay (logic, routing) from the report's summary,
+    and the register it starts from and the one it ends on (the cells of its first and last
+    steps, without nextpnr's suffixes)."""
+    if not path:
+        return "—"
+    m = re.match(r"\s*([\d.]+ ns).*\(logic ([\d.]+ ns), routing ([\d.]+ ns)\)", path[0])
+    head = f"{m.group(1)} ({m.group(2)} logic, {m.group(3)} routing)" if m else path[0].strip()
+    steps = [re.split(r"\s{2,}", s.strip()) for s in path[1:]]
+    cells = [s[-1].split()[0] for s in steps if len(s) >= 3]
+    if len(cells) >= 2:
+        def reg(c):
+            return re.sub(r"(_TRELLIS_FF_Q|_LUT4|_DP16KD|_MULT18X18D)\S*$", "", c.rsplit(".", 1)[0] if c.endswith((".Q", ".DI", ".CE", ".LSR", ".M")) else c)
+        head += f": `{reg(cells[0])}` → `{reg(cells[-1])}`"
+    return head.replace("|", "\\|")
+
+
+@table("hw-synth-tools")
+def hw_synth_tools():
+    """The flow's tools and options as the reports record them, one row per distinct set."""
+    # docs/data/synth-<top>-seed<N>.json: declivity synth --top <top> --seed N --json
+    groups = {}
+    for top, _ in SYNTH_BLOCKS:
+        for seed in (1, 2, 3):
+            if not (DATA / f"synth-{top}-seed{seed}.json").exists():
+                continue
+            r = _synth(top, seed)
+            key = (r["tools"], r["device"], f"{r['target_mhz']:.0f} MHz", r["timing_weight"])
+            groups.setdefault(key, []).append(f"`{top}` seed {seed}")
+    rows = [[*key, ", ".join(runs)] for key, runs in groups.items()]
+    return markdown(["tools", "device", "target", "placer timing weight", "runs"], rows)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "ports":
+        ports, params = parse_ports(pathlib.Path(sys.argv[2]).read_text())
+        doc = {
+            "source": "declivity verilog --top stereo --out DIR; DIR/stereo.v, module top",
+            "module": "top",
+            "ports": ports,
+            "localparams": params,
+        }
+        print(json.dumps(doc, indent=1))
+    else:
+        sys.exit(__doc__)
