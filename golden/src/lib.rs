@@ -20,6 +20,10 @@
 //! whole image pair, over all cores with `rayon` (results identical to one
 //! thread).
 
+// The docs describe the design down to private items and link to them:
+// read them with `cargo doc --document-private-items`.
+#![allow(rustdoc::private_intra_doc_links)]
+
 pub mod declivity;
 pub mod disparity;
 pub mod dp;

@@ -24,6 +24,10 @@
 //! arithmetic whose operands and result have the same width, so that Verilog's
 //! context-sized expressions compute exactly what the Rust simulation does.
 
+// The docs describe the design down to private items and link to them:
+// read them with `cargo doc --document-private-items`.
+#![allow(rustdoc::private_intra_doc_links)]
+
 pub mod params;
 pub mod stream;
 pub mod detector;

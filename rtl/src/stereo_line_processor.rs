@@ -54,8 +54,8 @@
 //!   interpolator, which the limit on lines in flight below rules out:
 //!   their pixels are not sent),
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
-//!   frame's last rows: the vertical blanking must last up to
-//!   [`MEDIAN_HALF`] lines, `declivity budget` gives the number),
+//!   frame's last rows: the vertical blanking must last the lines
+//!   `declivity budget` gives, `vblank_lines`, about [`MEDIAN_HALF`]),
 //!   `lines_full` (lines with more than `ROWS_PER_CELL·N` ([`N_MAX`] in the
 //!   sensor's [`N_CELLS`] cells) declivities on a side: the first are
 //!   matched),
@@ -84,8 +84,10 @@
 //! latency is more by the largest backlog of the matcher so far in the
 //! frame (see "Lines in flight"). After the frame's last line the row check
 //! and the median flush their last rows by themselves; the next frame may
-//! start once they have (up to [`MEDIAN_HALF`] lines of vertical blanking,
-//! fewer when the line period is longer than the line: `declivity budget`).
+//! start once they have: about [`MEDIAN_HALF`] lines of vertical blanking,
+//! a line or two more when the row check's first and last rows take longer
+//! than the others, fewer when the line period is longer than the line
+//! (`declivity budget` gives the number, `vblank_lines`).
 //!
 //! No reset: every block's registers start from their Verilog initial
 //! values (queues empty, engines idle, status counters at zero), so the

@@ -18,6 +18,10 @@
 //! 6. [`jobs`]: what each command of the CLI does, as functions that take
 //!    their inputs and return their reports.
 
+// The docs describe the design down to private items and link to them:
+// read them with `cargo doc --document-private-items`.
+#![allow(rustdoc::private_intra_doc_links)]
+
 pub mod formats;
 pub mod blocks;
 pub mod rng;

@@ -2,5 +2,5 @@
 
 pub mod block_ram;
 pub mod lut_ram;
-pub mod logic_rom;
-pub mod dsp_multiplier;
+pub(crate) mod logic_rom;
+pub(crate) mod dsp_multiplier;

@@ -6,8 +6,8 @@
 //! ([`frame`]), and synthesis for the ECP5 with Yosys and nextpnr
 //! ([`synth`]), each in a work directory of its own ([`workdir`]).
 
-pub mod workdir;
-pub mod primitives;
+pub(crate) mod workdir;
+pub(crate) mod primitives;
 pub mod verilog;
 pub mod cosim;
 pub mod traces;
