@@ -81,8 +81,8 @@ with golden's default mode in hardware parity.
 
 --engine verilator runs the processor's generated Verilog under Verilator (the default when \
 `verilator` is installed; its build is kept in the temporary directory, keyed by the design, for later \
-runs), rust-hdl the model itself (the default otherwise; slow, thousands of clocks per second), icarus \
-the Verilog under Icarus Verilog (slowest). --rows runs a band (as a frame of its own).
+runs), rust-hdl the model itself (the default with --vcd or without Verilator; slow, thousands of \
+clocks per second), icarus the Verilog under Icarus Verilog (slowest). --rows runs a band (as a frame of its own).
 
 Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels, cycles, \
 px_per_clk, stall_cycles, latency_cycles (first pixel in to first disparity out), agree_quarter_px \
@@ -170,7 +170,8 @@ pub(crate) struct DepthArgs {
     /// Rows to run, as A..B (rows A to B-1, a frame of their own) [default: all].
     #[arg(long, value_parser = parse_range)]
     rows: Option<Range<usize>>,
-    /// What simulates the line processor clock by clock [default: verilator if installed, else rust-hdl].
+    /// What simulates the line processor clock by clock [default: rust-hdl with --vcd, else
+    /// verilator if installed, else rust-hdl].
     #[arg(long, value_enum)]
     engine: Option<CliEngine>,
     /// Write a VCD waveform of every signal of the line processor (a clock of 10 ns) while the
@@ -287,7 +288,12 @@ fn match_pair(a: MatchArgs) -> Result<(), SimError> {
 fn depth(a: DepthArgs) -> Result<(), SimError> {
     let (left, right, notes) = load_pair_images(&a.pair.left, &a.pair.right)?;
     super::print_notes(&notes);
-    let engine = engine(a.engine);
+    // A waveform comes from the rust-hdl engine only, so asking for one picks it
+    // unless an engine is named.
+    let engine = match (a.engine, &a.vcd) {
+        (None, Some(_)) => Engine::RustHdl,
+        (asked, _) => engine(asked),
+    };
     let rows = a.rows.clone().unwrap_or(0..left.height());
     let job = RtlDepthJob {
         dispmax: a.pair.dispmax,
