@@ -52,8 +52,10 @@ pub(crate) struct MethodArgs {
 fn hardware_parity_help() -> String {
     format!(
         "Run as the hardware does: declivities of the first W_MAX = {W_MAX} pixels of a line, the first \
-         N_MAX = {N_MAX} kept, and matched on the detector's fixed-point formats (positions rounded down to \
-         1/{} px, d_t to 1/{} grey level), as `rtl depth` compares with",
+         N_MAX = {N_MAX} kept, found and placed with the detector's fixed-point values (d_t in 1/{} grey \
+         level, positions the eq. 3 divider's quotients in 1/{} px: the records `rtl detect` sends), and \
+         matched with d_t rounded down to 1/{} grey level, as `rtl depth` compares with",
+        1u32 << rtl::params::DT_FRAC_BITS,
         1u32 << POS_FRAC_BITS,
         1u32 << rtl::params::MATCH_DT_FRAC_BITS
     )

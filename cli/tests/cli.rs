@@ -199,10 +199,12 @@ fn rtl_detect_json_reports_agreement_throughput_and_writes_the_overlay_and_wavef
     assert_eq!(v["pixels"], 384 * 288);
     assert_eq!(v["mismatches"], 0, "{out}");
     assert_eq!(v["px_per_clk"], 1.0, "{out}");
-    // The records are golden's but for the few whose amplitude sits on d_t.
+    // The records are golden's hardware parity's, every one.
     let (rtl, gold) = (v["declivities_rtl"].as_u64().unwrap(), v["declivities_golden"].as_u64().unwrap());
-    assert!(rtl > 10_000 && rtl.abs_diff(gold) <= v["borderline"].as_u64().unwrap(), "{out}");
-    assert!(v["max_pos_err_lsb"].as_f64().unwrap() < 1.0);
+    assert!(rtl > 10_000 && rtl == gold, "{out}");
+    assert_eq!(v["borderline"], 0, "{out}");
+    assert_eq!(v["max_pos_err_lsb"].as_f64(), Some(0.0), "{out}");
+    assert_eq!(v["max_dt_err_lsb"].as_f64(), Some(0.0), "{out}");
     // The image streams in `pixels` clocks; the last line's records follow
     // within one marker latency.
     let cycles = v["cycles"].as_u64().unwrap();

@@ -268,7 +268,7 @@ const POSITION_WINDOW: usize = 8;
 /// next, so no mispredicted exit. `Σ g²(2x+1)` is taken as
 /// `(2·start+1)·Σ g² + 2·Σ k·g²` with `x = start + k`.
 #[inline]
-fn position_sums_windowed(line: &[u8], start: usize, end: usize) -> (u64, u64) {
+pub(crate) fn position_sums_windowed(line: &[u8], start: usize, end: usize) -> (u64, u64) {
     let Some(w) = line.get(start..start + POSITION_WINDOW + 1).filter(|_| end - start <= POSITION_WINDOW) else {
         return position_sums(line, start, end);
     };

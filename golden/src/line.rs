@@ -26,8 +26,10 @@ pub struct LineFeatures {
 
 /// [`line_features`], or with `Some(limits)` as the streaming detector of
 /// those sizes finds them and sends them to the matcher
-/// (`crate::hardware::detect_line`, `crate::hardware::matcher_view`: σ is
-/// then the detector's `d_t / 5.6`, `d_t` and the positions the matcher's).
+/// (`crate::hardware::detect_line`, `crate::hardware::matcher_view`): `d_t`
+/// and the positions are then the matcher's, and σ the one the detector's
+/// fixed-point `d_t` stands for, `d_t / 5.6` (the hardware computes no σ
+/// of its own).
 pub(crate) fn line_features_with(line: &[u8], limits: Option<crate::hardware::HardwareLimits>) -> LineFeatures {
     match limits {
         None => line_features(line),

@@ -31,10 +31,11 @@ fn detect_about() -> String {
         "Stream every row of an 8-bit grey image (colour is converted with ITU-R 601 luma) through the \
 cycle-accurate declivity detector (rtl::detector::declivity_detector, W_MAX = {W_MAX}, N_MAX = {N_MAX}), \
 back to back at one pixel per clock, and compare each line's records with golden's detector in \
-hardware-parity mode. Prints lines, pixels, cycles, px_per_clk, declivities_rtl, declivities_golden, \
-borderline (declivities one side keeps because its fixed-point d_t rounds the other way), mismatches \
-(any other difference), max_pos_err_lsb (position error in 1/{} px), max_dt_err_lsb (d_t error in 1/{} \
-grey level) and sim_cycles_per_s, or one JSON object with --json. Writes declivities_rtl.png (the rtl \
+hardware-parity mode, which computes the detector's fixed-point values exactly. Prints lines, pixels, \
+cycles, px_per_clk, declivities_rtl, declivities_golden, mismatches (every difference in a record or a \
+line's d_t, flags or count; 0 when they agree), borderline (of the mismatches, declivities one side \
+only keeps whose |a| is floor(d_t) or floor(d_t) + 1), max_pos_err_lsb (position error in 1/{} px), \
+max_dt_err_lsb (d_t error in 1/{} grey level) and sim_cycles_per_s, or one JSON object with --json. Writes declivities_rtl.png (the rtl \
 records over the image) into --out, and with --vcd a waveform of the clocks during which --lines \
 stream through.",
         1u32 << POS_FRAC_BITS,
@@ -221,8 +222,8 @@ fn detect(a: DetectArgs) -> Result<(), SimError> {
     println!("{}: {} lines of {} px, {} pixels in {} clocks", r.image, r.lines, r.width, r.pixels, r.cycles);
     println!("  px_per_clk          {:.4} ({} stall clocks)", r.px_per_clk, r.stall_cycles);
     println!("  declivities         rtl {}, golden {}", r.declivities_rtl, r.declivities_golden);
-    println!("  borderline          {} (amplitude within one d_t LSB of golden's d_t)", r.borderline);
-    println!("  mismatches          {}", r.mismatches);
+    println!("  mismatches          {} (every difference from golden's hardware parity)", r.mismatches);
+    println!("  borderline          {} (of those, one side only with |a| at floor(d_t) or floor(d_t) + 1)", r.borderline);
     println!("  max position error  {:.3} LSB (1/{} px)", r.max_pos_err_lsb, 1u32 << POS_FRAC_BITS);
     println!("  max d_t error       {:.3} LSB (1/{} grey level)", r.max_dt_err_lsb, 1u32 << DT_FRAC_BITS);
     println!("  wide / full lines   {} / {}", r.wide_lines, r.full_lines);

@@ -279,36 +279,40 @@ pub fn run_lines(
     Ok(run)
 }
 
-/// How one line of rtl records compares with golden in parity mode.
+/// How one line of rtl records compares with golden in parity mode, which
+/// computes the detector's values exactly (`golden::hardware`): every
+/// field of every record must be equal.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct LineComparison {
-    /// Declivities both found.
+    /// Declivities both found, identical in every field.
     pub common: usize,
-    /// Found by one side only, with an amplitude within one `d_t` LSB of
-    /// golden's `d_t` (the fixed-point threshold decides them differently).
+    /// Of the mismatches, the declivities found by one side only whose
+    /// `|a|` is one of the two integers either side of golden's threshold,
+    /// `⌊d_t⌋` or `⌊d_t⌋ + 1` (a disagreement on the threshold test).
     pub borderline: usize,
-    /// Any other difference: a declivity found by one side only, different
-    /// bounds, amplitude, levels or flags, a position off by one LSB or more,
-    /// `d_t` off by one LSB or more.
+    /// Every difference: a declivity found by one side only, different
+    /// bounds, amplitude, levels or position, a record's `d_t` not its
+    /// line's, the line's `d_t`, flags or count.
     pub mismatches: usize,
-    /// Largest `|X_rtl - X_golden|` in position LSBs.
+    /// Largest `|X_rtl - X_golden|` in position LSBs over the declivities
+    /// both found.
     pub max_pos_err_lsb: f64,
-    /// Largest `|d_t,rtl - d_t,golden|` in `d_t` LSBs.
+    /// `|d_t,rtl - d_t,golden|` in `d_t` LSBs.
     pub dt_err_lsb: f64,
 }
 
 /// Compares `hw` with golden's parity-mode result `gold` for one line.
 pub fn compare_line(hw: &HwLine, gold: &LimitedLine) -> LineComparison {
-    let pos_lsb = (1u64 << POS_FRAC_BITS) as f64;
-    let dt_lsb = (1u64 << DT_FRAC_BITS) as f64;
-    let mut c = LineComparison { dt_err_lsb: (hw.dt() - gold.dt).abs() * dt_lsb, ..Default::default() };
-    if c.dt_err_lsb >= 1.0 {
+    let pos_unit = (1u64 << POS_FRAC_BITS) as f64;
+    let mut c = LineComparison { dt_err_lsb: hw.marker.dt.abs_diff(gold.dt_lsb) as f64, ..Default::default() };
+    if hw.marker.dt != gold.dt_lsb {
         c.mismatches += 1;
     }
     if hw.marker.wide != gold.wide || hw.marker.full != gold.full || hw.marker.count as usize != hw.records.len() {
         c.mismatches += 1;
     }
-    let borderline = |a: i32| ((a.unsigned_abs() as f64) - gold.dt).abs() * dt_lsb <= 1.0;
+    let threshold = gold.dt_lsb >> DT_FRAC_BITS;
+    let borderline = |a: i32| a.unsigned_abs() == threshold || a.unsigned_abs() == threshold + 1;
     let (mut i, mut j) = (0, 0);
     let (h, g) = (&hw.records, &gold.declivities);
     while i < h.len() || j < g.len() {
@@ -317,9 +321,11 @@ pub fn compare_line(hw: &HwLine, gold: &LimitedLine) -> LineComparison {
         match (hk, gk) {
             (Some(a), Some(b)) if a == b => {
                 let (r, d) = (&h[i], &g[j]);
-                let err = (r.pos as f64 / pos_lsb - d.position).abs() * pos_lsb;
+                // Both are multiples of 1/2^POS_FRAC_BITS: the difference is
+                // exact, and any golden position off that grid shows.
+                let err = (r.pos as f64 - d.position * pos_unit).abs();
                 c.max_pos_err_lsb = c.max_pos_err_lsb.max(err);
-                if r.amplitude != d.amplitude || r.left != d.left || r.right != d.right || err >= 1.0 || r.dt != hw.marker.dt {
+                if r.amplitude != d.amplitude || r.left != d.left || r.right != d.right || err != 0.0 || r.dt != hw.marker.dt {
                     c.mismatches += 1;
                 } else {
                     c.common += 1;
@@ -328,19 +334,13 @@ pub fn compare_line(hw: &HwLine, gold: &LimitedLine) -> LineComparison {
                 j += 1;
             }
             (Some(a), b) if b.is_none_or(|b| a < b) => {
-                if borderline(h[i].amplitude) {
-                    c.borderline += 1;
-                } else {
-                    c.mismatches += 1;
-                }
+                c.mismatches += 1;
+                c.borderline += borderline(h[i].amplitude) as usize;
                 i += 1;
             }
             _ => {
-                if borderline(g[j].amplitude) {
-                    c.borderline += 1;
-                } else {
-                    c.mismatches += 1;
-                }
+                c.mismatches += 1;
+                c.borderline += borderline(g[j].amplitude) as usize;
                 j += 1;
             }
         }
@@ -380,12 +380,16 @@ pub struct DetectReport {
     pub stall_cycles: u64,
     pub declivities_rtl: usize,
     pub declivities_golden: usize,
-    /// Declivities found by one side only whose amplitude is within one
-    /// `d_t` LSB of golden's `d_t`.
+    /// Of the mismatches, declivities found by one side only with `|a|`
+    /// at `⌊d_t⌋` or `⌊d_t⌋ + 1` (see [`LineComparison`]); 0 when golden
+    /// and the detector agree.
     pub borderline: usize,
-    /// Every other difference (see [`LineComparison`]).
+    /// Every difference (see [`LineComparison`]); 0 when they agree.
     pub mismatches: usize,
+    /// Largest position difference, 1/2^POS_FRAC_BITS px LSBs; 0 when they
+    /// agree.
     pub max_pos_err_lsb: f64,
+    /// Largest `d_t` difference, 1/2^DT_FRAC_BITS LSBs; 0 when they agree.
     pub max_dt_err_lsb: f64,
     /// Lines longer than `W_MAX` / with more than `N_MAX` declivities.
     pub wide_lines: usize,
