@@ -22,6 +22,10 @@
 use crate::declivity::{characteristic_declivities, Declivity};
 use crate::noise::line_threshold;
 
+pub mod depth;
+pub mod interpolate;
+pub mod row_check;
+
 /// The sizes of the hardware (its generation-time parameters).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct HardwareLimits {
