@@ -436,6 +436,61 @@ mod tests {
         }
     }
 
+    /// A textured pair (the right view the left shifted by 4 px; the rows
+    /// one texture with a little noise, so that they confirm each other)
+    /// of rows wider than a small hardware's `w_max`.
+    fn shifted_pair(w: usize, h: usize, seed: u64) -> (GreyImage, GreyImage) {
+        let mut rng = crate::test_rng::TestRng::new(seed);
+        let mut level = 128i32;
+        let texture: Vec<i32> = (0..w + 4)
+            .map(|_| {
+                level = (level + (rng.next() % 61) as i32 - 30).clamp(2, 253);
+                level
+            })
+            .collect();
+        let (mut l, mut r) = (Vec::new(), Vec::new());
+        for _ in 0..h {
+            let row: Vec<u8> = texture.iter().map(|&v| (v + (rng.next() % 5) as i32 - 2) as u8).collect();
+            l.extend_from_slice(&row[..w]);
+            r.extend_from_slice(&row[4..]);
+        }
+        (GreyImage::new(w, h, l).unwrap(), GreyImage::new(w, h, r).unwrap())
+    }
+
+    #[test]
+    fn parity_frames_take_the_hardware_steps_alike_on_one_thread_and_all() {
+        use crate::params::Mode;
+        let (w, h) = (150, 21);
+        let (left, right) = shifted_pair(w, h, 0x9a21_7e57_0000_0001);
+        let limits = HardwareLimits { w_max: 128, ..HardwareLimits::default() };
+        let unit = (1u64 << limits.pos_frac_bits) as f64;
+        for mode in [Mode::Robust, Mode::Edges, Mode::Paper] {
+            let params = Params { hardware: Some(limits), ..Params::with_mode(mode, 12.0).unwrap() };
+            let one = process_frame(&left, &right, &params, Threads::One).unwrap();
+            let all = process_frame(&left, &right, &params, Threads::All).unwrap();
+            assert_eq!(one, all, "{mode:?}");
+            assert!(one.matches() > 5 * h, "{mode:?}: the rows match: {}", one.matches());
+            // The hardware's values (multiples of 1/16 px) on its line of
+            // w_max pixels, none beyond.
+            for row in one.disparity.chunks(w) {
+                assert!(row.iter().all(|&d| (d * unit).fract() == 0.0), "{mode:?}");
+                assert!(row[limits.w_max..].iter().all(|&d| d == 0.0), "{mode:?}");
+                assert!(row[..limits.w_max].iter().any(|&d| d > 0.0), "{mode:?}");
+            }
+            // Without the median, each row is the interpolator's on the
+            // row's (kept) matches.
+            if one.params.mode.features().median_rows == 1 {
+                let interpolator = Interpolator::of_features(limits, &mode.features());
+                for (line, row) in one.lines.iter().zip(one.disparity.chunks(w)) {
+                    let mut lsb = vec![0u16; limits.w_max];
+                    interpolator.row(&fixed_matches(&line.matches, limits), &mut lsb);
+                    let want: Vec<f64> = lsb.iter().map(|&d| d as f64 / unit).collect();
+                    assert_eq!(&row[..limits.w_max], &want[..], "{mode:?}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn matches_next_to_a_disparity_jump_are_flagged() {
         // Disparities 5, 5.5, 9 (a jump of 3.5 > 2), 9.5, 9.5: the two sides of
