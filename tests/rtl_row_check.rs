@@ -1,11 +1,12 @@
-//! The rtl row check (`rtl::post::row_check`) against golden's check across
-//! neighbouring rows (`golden::frame::confirmed_matches`), on generated
-//! frames and on every row of real pairs, and its timing against the
-//! constants in its doc comment.
+//! The rtl row check (`rtl::post::row_check`) against golden's
+//! hardware-parity row check (`golden::hardware::row_check`, the check
+//! across neighbouring rows of `golden::frame::confirmed_matches` on the
+//! matcher's fixed-point values), on generated frames and on every row of
+//! real pairs (also against the matches golden's parity frame keeps), and
+//! its timing against the constants in its doc comment.
 //!
-//! Both get the same fixed-point matches (`sim::drive::row_check`): golden checks
-//! them as reals (`x / 16`, `d / 16`, exact), so the kept matches must be
-//! exactly equal.
+//! Both get the same fixed-point matches (`sim::drive::row_check`), so the
+//! kept matches must be exactly equal.
 //!
 //! Run in release mode (`cargo test --release -p declivity-tests --test
 //! rtl_row_check`).
@@ -312,8 +313,8 @@ fn the_thresholds_are_golden_consistency_bounds() {
 /// golden's robust-mode matches of every row of `pair` before the check
 /// across rows, quantised as the matcher emits them, one row per `width`
 /// clocks (a sensor's line period): every row's kept matches are golden's
-/// `confirmed_matches` of the same values, on the documented clocks,
-/// nothing dropped.
+/// parity row check of the same values and the matches golden's parity
+/// frame keeps, on the documented clocks, nothing dropped.
 fn real_pair(pair: &str) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
@@ -332,6 +333,18 @@ fn real_pair(pair: &str) {
     let max_n = frame.iter().map(Vec::len).max().unwrap_or(0);
     eprintln!("{pair}: {} rows, {n} matches, {kept} kept, at most {max_n} per row, at most {worst} clocks a row (line {w}), {} clocks", frame.len(), sim.cycle);
     assert!(kept > n / 2 && kept < n, "{pair}: the check keeps most but not all");
+    // golden's frame in hardware parity keeps the same matches.
+    let limits = sim::formats::hardware_limits();
+    let golden_frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
+    for (y, (line, out)) in golden_frame.lines.iter().zip(&run.rows).enumerate() {
+        let kept: Vec<FixedMatch> = line
+            .matches
+            .iter()
+            .map(|m| golden::hardware::row_check::FixedMatch::of(m, limits))
+            .map(|m| (m.x as u64, m.d as u64))
+            .collect();
+        assert_eq!(kept, out.kept, "{pair} row {y}: golden's parity frame keeps other matches");
+    }
 }
 
 #[test]

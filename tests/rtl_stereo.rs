@@ -1,14 +1,17 @@
 //! The whole line processor (`rtl::stereo_line_processor`) on a band of a
 //! real pair: two camera streams in, the disparity and depth map out, equal
-//! to its blocks run one after the other and within 1/4 px of golden.
+//! to its blocks run one after the other, equal after the matcher to
+//! golden's hardware parity on the matcher's matches (the row check, the
+//! interpolator, the median, the depth), and compared with golden's
+//! hardware parity from the pixels on.
 
 use rtl::matcher::declivity_matcher::GainRule;
 use rtl::post::depth_stage::DepthCamera;
 use rtl::post::interpolator::LINE_QUEUE;
 use rtl::params::{EDGE_JUMP_LSB, N_CELLS};
 use rtl::stereo_line_processor::LINES_IN_FLIGHT;
-use sim::drive::stereo::{golden_map, StereoSim};
-use sim::eval::scores::agree_quarter_px;
+use sim::drive::stereo::{blocks_one_after_the_other, golden_after_matcher, golden_depth_map, golden_map, BlocksRun, StereoRun, StereoSim};
+use sim::eval::scores::{agree_quarter_px, exact_share};
 
 /// Rows `rows` of both images of `pair`.
 fn crop(img: &golden::GreyImage, rows: std::ops::Range<usize>) -> golden::GreyImage {
@@ -16,34 +19,58 @@ fn crop(img: &golden::GreyImage, rows: std::ops::Range<usize>) -> golden::GreyIm
     golden::GreyImage::new(w, rows.len(), img.pixels()[rows.start * w..rows.end * w].to_vec()).expect("a crop")
 }
 
+/// The line processor's output is its blocks' run one after the other, row
+/// for row; and from the matcher's matches on, golden's hardware parity,
+/// every disparity and depth.
+fn check_blocks_and_golden_after_matcher(run: &StereoRun, blocks: &BlocksRun, width: usize) {
+    assert_eq!(blocks.disparity.len(), run.rows.len());
+    for (y, (a, b)) in run.rows.iter().zip(&blocks.disparity).enumerate() {
+        assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
+    }
+    assert_eq!(run.depth_rows, blocks.depth, "the depths differ from the depth stage's on the same map");
+    let (disparity, depth) = golden_after_matcher(&blocks.matches, width, &DepthCamera::default());
+    for (y, ((row, depths), (want, want_depth))) in run.rows.iter().zip(&run.depth_rows).zip(disparity.chunks(width).zip(depth.chunks(width))).enumerate() {
+        for x in 0..width {
+            assert_eq!(row[x] as f64 / 16.0, want[x], "({x}, {y}): the disparity differs from golden's parity on the matcher's matches");
+            assert_eq!(depths[x], want_depth[x], "({x}, {y}): the depth differs from golden's parity on the matcher's matches");
+        }
+    }
+}
+
+/// The line processor against golden's hardware parity from the pixels on:
+/// the shares of pixels with the same disparity and the same depth, and
+/// within 1/4 px.
+fn against_golden(run: &StereoRun, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> (f64, f64, f64) {
+    let golden = golden_map(left, right, dispmax).expect("golden runs");
+    let rtl = run.disparity_px(left.height());
+    let mut depth = vec![0u16; rtl.len()];
+    for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
+        dst.copy_from_slice(row);
+    }
+    let golden_depth = golden_depth_map(&golden, &DepthCamera::default());
+    (exact_share(&rtl, &golden), exact_share(&depth, &golden_depth), agree_quarter_px(&rtl, &golden))
+}
+
 #[test]
-fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_other() {
+fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_other_and_golden_parity() {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
     let (left, right) = (crop(&data.left, 100..116), crop(&data.right, 100..116));
     let dispmax = data.dispmax + 1.0;
     let run = run_and_report("tsukuba rows 100..116", &left, &right, dispmax);
-    let golden = golden_map(&left, &right, dispmax).expect("golden runs");
-    let agree = agree_quarter_px(&run.disparity_px(left.height()), &golden);
-    eprintln!("tsukuba rows 100..116: agree {agree:.4}, latency {:?}, px/clk {:.4}", run.latency_cycles(), run.px_per_clk());
+    let (exact, exact_depth, agree) = against_golden(&run, &left, &right, dispmax);
+    eprintln!("tsukuba rows 100..116: exact {exact:.4}, exact depth {exact_depth:.4}, agree {agree:.4}, latency {:?}, px/clk {:.4}", run.latency_cycles(), run.px_per_clk());
     assert_eq!(run.rows.len(), left.height());
     assert_eq!((run.records_dropped, run.lines_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
-    let (blocks, depth) =
-        sim::drive::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
-    assert_eq!(blocks.len(), run.rows.len());
-    for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
-        assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
-    }
-    assert_eq!(run.depth_rows, depth, "the depths differ from the depth stage's on the same map");
-    // Issue 6's target, against golden's hardware parity (the detector's
-    // limits and the formats the matcher sees: parity needs the formats, as
-    // a position moved by less than 1/16 px changes a near tie of eq. 9).
-    assert!(agree >= 0.995, "{agree}");
+    let blocks = blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
+    check_blocks_and_golden_after_matcher(&run, &blocks, left.width());
+    // From the pixels on, golden's hardware parity (the detector's formats
+    // and the steps after the matcher): every pixel.
+    assert_eq!((exact, exact_depth), (1.0, 1.0), "agree {agree}");
 }
-
 
 /// Runs the pair through the default line processor (`dispmax` px) and
 /// prints what came out, the speed and the queues' peaks.
-fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> sim::drive::stereo::StereoRun {
+fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> StereoRun {
     let mut sim = StereoSim::<N_CELLS>::robust(sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
     let t = std::time::Instant::now();
     let run = sim.run(left, right, 0, |_| {});
@@ -70,7 +97,7 @@ fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImag
 
 /// Prints the probe's state on each dropped line and the lines' clocks
 /// through the stages around it (diagnostics).
-fn print_probe(what: &str, run: &sim::drive::stereo::StereoRun, width: usize) {
+fn print_probe(what: &str, run: &StereoRun, width: usize) {
     let p = &run.probe;
     eprintln!("{what}: peaks {:?} (interpolator's lines at clock {})", p.peak, p.peak_interp_cycle);
     for d in &p.drops {
@@ -100,12 +127,11 @@ fn venus_after_its_slow_stretch_loses_no_line() {
     let dispmax = data.dispmax + 1.0;
     let run = run_and_report(&format!("venus rows {rows:?}"), &left, &right, dispmax);
     let peak = run.probe.peak;
-    let golden = golden_map(&left, &right, dispmax).expect("golden runs");
-    let agree = agree_quarter_px(&run.disparity_px(left.height()), &golden);
-    eprintln!("venus rows {rows:?}: agree {agree:.4}");
+    let (exact, exact_depth, agree) = against_golden(&run, &left, &right, dispmax);
+    eprintln!("venus rows {rows:?}: exact {exact:.4}, exact depth {exact_depth:.4}, agree {agree:.4}");
     assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
     assert_eq!(run.rows.len(), left.height());
-    assert!(agree >= 0.995, "{agree}");
+    assert_eq!((exact, exact_depth), (1.0, 1.0), "agree {agree}");
     assert!(peak.in_flight as usize <= LINES_IN_FLIGHT && peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
     // The band stresses the queue: more than four lines at once.
     assert!(peak.interp_lines > 4, "the band no longer fills the interpolator's queue: {peak:?}");
@@ -160,11 +186,6 @@ fn lines_after_a_backlog_are_held_in_the_record_queues_not_dropped() {
     assert_eq!(peak.in_flight as usize, LINES_IN_FLIGHT, "{peak:?}");
     assert!(peak.held_clocks > 0, "{peak:?}");
     assert!(peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
-    let (blocks, depth) =
-        sim::drive::stereo::blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
-    assert_eq!(blocks.len(), run.rows.len());
-    for (y, (a, b)) in run.rows.iter().zip(&blocks).enumerate() {
-        assert_eq!(a, b, "row {y}: the line processor differs from its blocks run one after the other");
-    }
-    assert_eq!(run.depth_rows, depth);
+    let blocks = blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
+    check_blocks_and_golden_after_matcher(&run, &blocks, width);
 }

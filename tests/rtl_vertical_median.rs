@@ -11,8 +11,10 @@
 //! Run in release mode (`cargo test --release -p declivity-tests --test
 //! rtl_vertical_median`).
 
-use golden::disparity::{interpolate_into, vertical_median, Anchor};
-use golden::params::{EndRule, EDGE_JUMP, MEDIAN_ROWS};
+use golden::disparity::vertical_median;
+use golden::hardware::interpolate::Interpolator;
+use golden::hardware::row_check::FixedMatch;
+use golden::params::MEDIAN_ROWS;
 use proptest::prelude::*;
 use rtl::params::{MEDIAN_HALF, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, POS_BITS, W_MAX};
 use rtl::post::vertical_median::MEDIAN_LAG;
@@ -235,18 +237,23 @@ fn the_median_has_golden_default_mode_rows_and_one_buffer_per_row_above() {
 
 /// The robust mode's dense map of `pair` before its median (hardware
 /// parity): golden's matches after the neighbouring-row check and the edge
-/// flag, interpolated as its step 4 does. Checked: golden's median of it is
-/// golden's final map.
+/// flag, interpolated as its step 4 does (the line processor's
+/// interpolator, `golden::hardware::interpolate`: multiples of 1/16 px).
+/// Checked: golden's median of it is golden's final map.
 fn robust_map_before_median(pair: &str) -> (Vec<f64>, usize) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
     params.hardware = Some(sim::formats::hardware_limits());
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = frame.width;
+    let limits = sim::formats::hardware_limits();
+    let interpolator = Interpolator::of_features(limits, &params.mode.features());
     let mut map = vec![0.0; w * frame.height];
     for (line, out) in frame.lines.iter().zip(map.chunks_mut(w)) {
-        let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
-        interpolate_into(&anchors, EndRule::Hold, Some(EDGE_JUMP), out);
+        let matches: Vec<FixedMatch> = line.matches.iter().map(|m| FixedMatch::of(m, limits)).collect();
+        let mut lsb = vec![0u16; w];
+        interpolator.row(&matches, &mut lsb);
+        out.iter_mut().zip(&lsb).for_each(|(o, &d)| *o = d as f64 / 16.0);
     }
     let mut medianed = vec![0.0; w * frame.height];
     for (y, out) in medianed.chunks_mut(w).enumerate() {

@@ -4,6 +4,9 @@ use rayon::prelude::*;
 
 use crate::disparity::{interpolate_chunked, interpolate_into, median9_of_two_rows, vertical_median, Anchor};
 use crate::error::GoldenError;
+use crate::hardware::interpolate::Interpolator;
+use crate::hardware::row_check::{row_check, FixedMatch};
+use crate::hardware::HardwareLimits;
 use crate::line::{process_line_in, LineBuffers, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
 
@@ -165,15 +168,33 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
 /// The steps of [`process_frame`] after the lines are matched, as the mode
 /// asks: the check of matches against the neighbouring rows, the flag on
 /// matches next to a depth edge, interpolation along each reference row of
-/// `w` pixels, and a vertical median over the `h` rows.
+/// `w` pixels, and a vertical median over the `h` rows. In hardware parity
+/// (`params.hardware`), the check and the interpolation are the line
+/// processor's on the matcher's fixed-point matches
+/// ([`crate::hardware::row_check`], [`crate::hardware::interpolate`]): the
+/// disparities are then the hardware's, multiples of `2^-pos_frac_bits`
+/// px, and [`crate::hardware::depth::DepthStage::depth_map_mm`] gives the
+/// hardware's depths of them.
 pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Params, threads: Threads) -> FrameResult {
     let features = params.mode.features();
-    // 2. Matches confirmed by a neighbouring row.
+    // 2. Matches confirmed by a neighbouring row (in hardware parity, by
+    // the line processor's row check on the matcher's fixed-point matches).
     if features.consistent {
-        let (kept, first) = confirmed_flags(&lines);
-        for (line, &first) in lines.iter_mut().zip(&first) {
-            let mut k = kept[first..].iter();
-            line.matches.retain(|_| *k.next().expect("a flag per match"));
+        match params.hardware {
+            Some(limits) => {
+                let rows: Vec<Vec<FixedMatch>> = lines.iter().map(|l| fixed_matches(&l.matches, limits)).collect();
+                for (line, kept) in lines.iter_mut().zip(row_check(&rows, limits)) {
+                    let mut k = kept.into_iter();
+                    line.matches.retain(|_| k.next().expect("a flag per match"));
+                }
+            }
+            None => {
+                let (kept, first) = confirmed_flags(&lines);
+                for (line, &first) in lines.iter_mut().zip(&first) {
+                    let mut k = kept[first..].iter();
+                    line.matches.retain(|_| *k.next().expect("a flag per match"));
+                }
+            }
         }
     }
     // 3. Matches next to a disparity jump flagged.
@@ -188,10 +209,17 @@ pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Par
         Threads::One => interpolate_and_median(&lines, w, params),
         Threads::All => {
             let mut disparity = vec![0.0; w * h];
-            lines.par_iter().zip(disparity.par_chunks_mut(w)).for_each(|(line, out)| {
-                let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
-                interpolate_into(&anchors, params.ends, features.edge_jump, out);
-            });
+            let rows = lines.par_iter().zip(disparity.par_chunks_mut(w));
+            match params.hardware {
+                None => rows.for_each(|(line, out)| {
+                    let anchors: Vec<Anchor> = line.matches.iter().map(|m| m.anchor()).collect();
+                    interpolate_into(&anchors, params.ends, features.edge_jump, out);
+                }),
+                Some(limits) => {
+                    let interpolator = Interpolator::of_features(limits, &features);
+                    rows.for_each_init(HardwareRow::default, |row, (line, out)| row.interpolate(&interpolator, limits, line, out));
+                }
+            }
             if features.median_rows > 1 {
                 let src = std::mem::replace(&mut disparity, vec![0.0; w * h]);
                 disparity.par_chunks_mut(w).enumerate().for_each(|(y, out)| vertical_median(&src, w, features.median_rows, out, y));
@@ -200,6 +228,40 @@ pub fn finish_frame(mut lines: Vec<LineResult>, w: usize, h: usize, params: &Par
         }
     };
     FrameResult { width: w, height: h, params: *params, lines, disparity }
+}
+
+/// A row's matches in the matcher's format ([`FixedMatch::of`]).
+fn fixed_matches(matches: &[Match], limits: HardwareLimits) -> Vec<FixedMatch> {
+    matches.iter().map(|m| FixedMatch::of(m, limits)).collect()
+}
+
+/// Step 4 of [`finish_frame`] in hardware parity, with its working rows:
+/// the line processor's interpolator ([`Interpolator::row`]) on the
+/// matcher's fixed-point matches (every match anchors it, as in the f64
+/// mode), over the hardware's line, the row's first `w_max` pixels (the
+/// others stay 0: the hardware sends none), in px (`LSB / 2^f`, exact).
+/// The vertical median of step 5 then takes these values as the
+/// hardware's median takes their LSBs: a median is one of its inputs, and
+/// `LSB ↦ LSB / 2^f` is monotone and exact.
+#[derive(Debug, Default)]
+struct HardwareRow {
+    matches: Vec<FixedMatch>,
+    lsb: Vec<u16>,
+}
+
+impl HardwareRow {
+    fn interpolate(&mut self, interpolator: &Interpolator, limits: HardwareLimits, line: &LineResult, out: &mut [f64]) {
+        self.matches.clear();
+        self.matches.extend(line.matches.iter().map(|m| FixedMatch::of(m, limits)));
+        let width = out.len().min(limits.w_max);
+        self.lsb.resize(width, 0);
+        interpolator.row(&self.matches, &mut self.lsb);
+        let unit = (1u64 << limits.pos_frac_bits) as f64;
+        for (o, &d) in out.iter_mut().zip(&self.lsb) {
+            *o = d as f64 / unit;
+        }
+        out[width..].fill(0.0);
+    }
 }
 
 /// Steps 4 and 5 of [`finish_frame`] on one thread, row by row: each row is
@@ -211,10 +273,15 @@ fn interpolate_and_median(lines: &[LineResult], w: usize, params: &Params) -> Ve
     let features = params.mode.features();
     let (h, rows) = (lines.len(), features.median_rows);
     let mut anchors: Vec<Anchor> = Vec::new();
-    let mut interpolate = |line: &LineResult, out: &mut [f64]| {
-        anchors.clear();
-        anchors.extend(line.matches.iter().map(|m| m.anchor()));
-        interpolate_chunked(&anchors, params.ends, features.edge_jump, out);
+    let hardware = params.hardware.map(|limits| (limits, Interpolator::of_features(limits, &features)));
+    let mut row = HardwareRow::default();
+    let mut interpolate = |line: &LineResult, out: &mut [f64]| match &hardware {
+        None => {
+            anchors.clear();
+            anchors.extend(line.matches.iter().map(|m| m.anchor()));
+            interpolate_chunked(&anchors, params.ends, features.edge_jump, out);
+        }
+        Some((limits, interpolator)) => row.interpolate(interpolator, *limits, line, out),
     };
     let mut disparity = Vec::with_capacity(w * h);
     if rows <= 1 {
@@ -366,6 +433,61 @@ mod tests {
             let got: Vec<bool> =
                 lines.iter().zip(&first).flat_map(|(l, &f)| flags[f..f + l.matches.len()].iter().copied()).collect();
             assert_eq!(got, want, "case {case}");
+        }
+    }
+
+    /// A textured pair (the right view the left shifted by 4 px; the rows
+    /// one texture with a little noise, so that they confirm each other)
+    /// of rows wider than a small hardware's `w_max`.
+    fn shifted_pair(w: usize, h: usize, seed: u64) -> (GreyImage, GreyImage) {
+        let mut rng = crate::test_rng::TestRng::new(seed);
+        let mut level = 128i32;
+        let texture: Vec<i32> = (0..w + 4)
+            .map(|_| {
+                level = (level + (rng.next() % 61) as i32 - 30).clamp(2, 253);
+                level
+            })
+            .collect();
+        let (mut l, mut r) = (Vec::new(), Vec::new());
+        for _ in 0..h {
+            let row: Vec<u8> = texture.iter().map(|&v| (v + (rng.next() % 5) as i32 - 2) as u8).collect();
+            l.extend_from_slice(&row[..w]);
+            r.extend_from_slice(&row[4..]);
+        }
+        (GreyImage::new(w, h, l).unwrap(), GreyImage::new(w, h, r).unwrap())
+    }
+
+    #[test]
+    fn parity_frames_take_the_hardware_steps_alike_on_one_thread_and_all() {
+        use crate::params::Mode;
+        let (w, h) = (150, 21);
+        let (left, right) = shifted_pair(w, h, 0x9a21_7e57_0000_0001);
+        let limits = HardwareLimits { w_max: 128, ..HardwareLimits::default() };
+        let unit = (1u64 << limits.pos_frac_bits) as f64;
+        for mode in [Mode::Robust, Mode::Edges, Mode::Paper] {
+            let params = Params { hardware: Some(limits), ..Params::with_mode(mode, 12.0).unwrap() };
+            let one = process_frame(&left, &right, &params, Threads::One).unwrap();
+            let all = process_frame(&left, &right, &params, Threads::All).unwrap();
+            assert_eq!(one, all, "{mode:?}");
+            assert!(one.matches() > 5 * h, "{mode:?}: the rows match: {}", one.matches());
+            // The hardware's values (multiples of 1/16 px) on its line of
+            // w_max pixels, none beyond.
+            for row in one.disparity.chunks(w) {
+                assert!(row.iter().all(|&d| (d * unit).fract() == 0.0), "{mode:?}");
+                assert!(row[limits.w_max..].iter().all(|&d| d == 0.0), "{mode:?}");
+                assert!(row[..limits.w_max].iter().any(|&d| d > 0.0), "{mode:?}");
+            }
+            // Without the median, each row is the interpolator's on the
+            // row's (kept) matches.
+            if one.params.mode.features().median_rows == 1 {
+                let interpolator = Interpolator::of_features(limits, &mode.features());
+                for (line, row) in one.lines.iter().zip(one.disparity.chunks(w)) {
+                    let mut lsb = vec![0u16; limits.w_max];
+                    interpolator.row(&fixed_matches(&line.matches, limits), &mut lsb);
+                    let want: Vec<f64> = lsb.iter().map(|&d| d as f64 / unit).collect();
+                    assert_eq!(&row[..limits.w_max], &want[..], "{mode:?}");
+                }
+            }
         }
     }
 

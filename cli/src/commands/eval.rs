@@ -25,7 +25,8 @@ ms = golden time per frame on one thread, loading excluded, median of --runs run
 
 With --rtl, each pair runs through the cycle-accurate line processor instead (the default mode in \
 hardware, one pixel per clock per camera) on the fastest engine installed, and the table gives its \
-agreement with golden, its throughput and latency, and its scores.")]
+agreement with golden's hardware parity (exact_px, exact_depth_px: shares of pixels whose disparity, \
+depth, equals it exactly; agree_quarter_px: within 1/4 px), its throughput and latency, and its scores.")]
 pub(crate) struct EvalArgs {
     /// Pair folders (with meta.txt), or folders of pair folders (e.g. data/stereo).
     #[arg(required = true)]
@@ -47,8 +48,8 @@ pub(crate) struct EvalArgs {
     #[arg(long, value_name = "DIR", conflicts_with = "rtl")]
     out: Option<PathBuf>,
     /// Run each pair through the cycle-accurate line processor instead (the default mode in
-    /// hardware) and report its agree_quarter_px, px_per_clk, stall_cycles, latency_cycles,
-    /// bad2, nonocc_bad2 and golden's bad2 with the same stages.
+    /// hardware) and report its exact_px, exact_depth_px, agree_quarter_px, px_per_clk,
+    /// stall_cycles, latency_cycles, bad2, nonocc_bad2 and golden's bad2 with the same stages.
     #[arg(long, conflicts_with_all = ["mode", "ref_view", "ends", "hardware_parity"])]
     rtl: bool,
     /// With --rtl: what simulates the line processor [default: verilator if installed, else rust-hdl].

@@ -86,8 +86,9 @@ runs), rust-hdl the model itself (the default with --vcd or without Verilator; s
 clocks per second), icarus the Verilog under Icarus Verilog (slowest). --rows runs a band (as a frame of its own).
 
 Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels, cycles, \
-px_per_clk, stall_cycles, latency_cycles (first pixel in to first disparity out), agree_quarter_px \
-(share of pixels within 1/4 px of golden), sim_cycles_per_s, seconds, engine, build_seconds, \
+px_per_clk, stall_cycles, latency_cycles (first pixel in to first disparity out), exact_px (share \
+of pixels whose disparity equals golden's hardware parity exactly), exact_depth_px (the same for \
+the depth), agree_quarter_px (share of pixels within 1/4 px of golden), sim_cycles_per_s, seconds, engine, build_seconds, \
 lines_out, and the status counters records_dropped, lines_dropped, pixels_dropped, lines_full, \
 lines_wide. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one scale), \
 disparity16_rtl.png (the output word's disparity: 16-bit, value = d x {unit}, 0 = none) and \
@@ -321,6 +322,8 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
         Some(c) => println!("  latency             {c} clocks (first pixel in to first disparity out)"),
         None => println!("  latency             no disparity came out"),
     }
+    println!("  exact_px            {:.4} (share of disparities equal to golden's hardware parity)", r.exact_px);
+    println!("  exact_depth_px      {:.4} (share of depths equal to golden's hardware parity)", r.exact_depth_px);
     println!("  agree_quarter_px    {:.4} (share within 1/4 px of golden)", r.agree_quarter_px);
     println!(
         "  status              {} lines out, {} records dropped, {} lines dropped, {} pixels dropped, {} lines full, {} lines wide",

@@ -26,8 +26,15 @@
 //!
 //! The amplitude, bounds and neighbour levels of a declivity are golden's
 //! integers ([`crate::declivity`]), which the tracker computes the same way.
+//!
+//! After the matcher, [`row_check`], [`interpolate`] and [`depth`] take the
+//! row check, the interpolator and the depth stage in their fixed-point
+//! formats.
 
+pub mod depth;
+pub mod interpolate;
 pub mod position;
+pub mod row_check;
 pub mod threshold;
 
 use crate::declivity::{amplitude, declivity_spans, neighbour_levels, Declivity};

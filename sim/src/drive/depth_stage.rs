@@ -1,11 +1,12 @@
-//! Direct drive of the rtl depth stage (`rtl::post::depth_stage`) and golden's
-//! depth (`golden::reconstruct::depth`, eq. 1) of the same fixed-point
-//! disparities.
+//! Direct drive of the rtl depth stage (`rtl::post::depth_stage`) and
+//! golden's depths of the same fixed-point disparities: its
+//! hardware-parity depth stage (`golden::hardware::depth`), which must be
+//! equal, and its eq. 1 in f64 (`golden::reconstruct::depth`).
 //!
 //! A disparity comes in the position format (`POS_FRAC_BITS` fraction
-//! bits, 0 = none); golden computes the depth of the same value as a real
-//! (`d = D / 16` px, the baseline in metres), in millimetres here.
+//! bits, 0 = none).
 
+use golden::hardware::depth as parity;
 use golden::reconstruct::{depth, Camera};
 use rtl::post::depth_stage::{DepthCamera, DepthError, DepthStage};
 use rtl::params::POS_FRAC_BITS;
@@ -127,9 +128,31 @@ impl DepthStageSim {
     }
 }
 
-/// golden's depth (eq. 1) in millimetres of the disparity `d_lsb`
-/// (`POS_FRAC_BITS` fraction bits) for `camera`; `None` for 0.
-pub fn golden_depth_mm(d_lsb: u64, camera: &DepthCamera) -> Option<f64> {
+/// golden's camera of the depth stage: the same focal length and baseline.
+pub fn golden_camera(camera: &DepthCamera) -> parity::DepthCamera {
+    parity::DepthCamera { focal_px: camera.focal_px, baseline_mm: camera.baseline_mm }
+}
+
+/// golden's hardware-parity depth stage for `camera`
+/// (`golden::hardware::depth::DepthStage`).
+pub fn golden_stage(camera: &DepthCamera) -> Result<parity::DepthStage, parity::DepthRangeError> {
+    parity::DepthStage::new(&golden_camera(camera), crate::formats::hardware_limits())
+}
+
+/// golden's hardware-parity depth in millimetres of the disparity `d_lsb`
+/// (`POS_FRAC_BITS` fraction bits) for `camera`, as the stage outputs it
+/// (0 = none, 65535 = that far or farther).
+///
+/// # Panics
+/// If the camera is outside the stage's range (no stage is built for it).
+pub fn golden_depth_mm(d_lsb: u64, camera: &DepthCamera) -> u16 {
+    golden_stage(camera).expect("a camera in the stage's range").depth_mm(d_lsb as u32)
+}
+
+/// golden's eq. 1 in `f64`, in millimetres, of the disparity `d_lsb`
+/// (`POS_FRAC_BITS` fraction bits, `d = D / 16` px) for `camera`; `None`
+/// for 0.
+pub fn golden_eq1_mm(d_lsb: u64, camera: &DepthCamera) -> Option<f64> {
     let cam = Camera { focal_px: camera.focal_px, baseline_m: camera.baseline_mm / 1000.0, cx: 0.0, cy: 0.0 };
     depth(d_lsb as f64 / (1u64 << POS_FRAC_BITS) as f64, &cam).map(|z| z * 1000.0)
 }

@@ -1,15 +1,16 @@
 //! Direct drive of the rtl interpolator (`rtl::post::interpolator`) and its
-//! comparison with golden's interpolation (`golden::disparity`).
+//! comparison with golden's hardware-parity interpolation
+//! (`golden::hardware::interpolate`).
 //!
 //! A line's anchors are the matcher's outputs: the reference position and
-//! the disparity, both with `POS_FRAC_BITS` fraction bits. golden
-//! interpolates the same anchors as reals (`x / 16`, `d / 16`), so the two
-//! differ only by the interpolator's arithmetic.
+//! the disparity, both with `POS_FRAC_BITS` fraction bits. golden's parity
+//! interpolator takes the same fixed-point anchors and computes what the
+//! hardware computes, so the two are equal on every pixel.
 
-use golden::disparity::{interpolate_into, Anchor};
-use golden::params::EndRule;
+use golden::hardware::interpolate;
+use golden::hardware::row_check::FixedMatch;
 use rtl::post::interpolator::Interpolator;
-use rtl::params::{EDGE_JUMP_LSB, POS_FRAC_BITS, W_MAX};
+use rtl::params::{EDGE_JUMP_LSB, W_MAX};
 use rtl::rust_hdl::prelude::*;
 
 /// One fixed-point anchor: the position `X` and the disparity, both with
@@ -169,15 +170,16 @@ pub(crate) fn timed_beats(lines: &[(&AnchorLine, usize)]) -> (Vec<Beat>, Vec<usi
     (beats, marker_at)
 }
 
-/// golden's interpolation (ends held, edge jump `jump` in
-/// `POS_FRAC_BITS` fixed point) of the same anchors, in `POS_FRAC_BITS`
-/// units.
-pub fn golden_line(line: &AnchorLine, jump: Option<u64>) -> Vec<f64> {
-    let unit = (1u32 << POS_FRAC_BITS) as f64;
-    let anchors: Vec<Anchor> = line.anchors.iter().map(|a| Anchor { x: a.x as f64 / unit, d: a.d as f64 / unit }).collect();
-    let mut out = vec![0.0; line.width];
-    interpolate_into(&anchors, EndRule::Hold, jump.map(|j| j as f64 / unit), &mut out);
-    out.iter().map(|v| v * unit).collect()
+/// golden's hardware-parity interpolation (`golden::hardware::interpolate`,
+/// ends held, edge jump `jump` in `POS_FRAC_BITS` fixed point) of the same
+/// anchors: one disparity per pixel in `POS_FRAC_BITS` units, 0 = none.
+pub fn golden_line(line: &AnchorLine, jump: Option<u64>) -> Vec<u32> {
+    let limits = crate::formats::hardware_limits();
+    let interpolator = interpolate::Interpolator::new(limits, jump.map(|j| j as u32));
+    let matches: Vec<FixedMatch> = line.anchors.iter().map(|a| FixedMatch { x: a.x, d: a.d }).collect();
+    let mut out = vec![0u16; line.width];
+    interpolator.row(&matches, &mut out);
+    out.into_iter().map(u32::from).collect()
 }
 
 /// The anchors the matcher would emit for golden's matches of a line: the

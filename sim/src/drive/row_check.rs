@@ -1,15 +1,14 @@
 //! Direct drive of the rtl row check (`rtl::post::row_check`) and its comparison
-//! with golden's check against neighbouring rows
-//! (`golden::frame::confirmed_matches`).
+//! with golden's hardware-parity row check (`golden::hardware::row_check`,
+//! the check against neighbouring rows of `golden::frame::confirmed_matches`
+//! on the matcher's fixed-point matches).
 //!
 //! A row's matches are the matcher's outputs: `(x, d)`, the reference
 //! position and the disparity, both with `POS_FRAC_BITS` fraction bits.
-//! golden checks the same matches as reals (`x / 16`, `d / 16`, exact in
-//! `f64`), so the two must keep exactly the same matches.
+//! golden checks the same matches, so the two must keep exactly the same
+//! matches.
 
-use golden::frame::confirmed_matches;
-use golden::line::{LineFeatures, LineResult, Match};
-use rtl::params::POS_FRAC_BITS;
+use golden::hardware::row_check::{row_check, FixedMatch as GoldenMatch};
 use rtl::post::row_check::RowCheck;
 use rtl::rust_hdl::prelude::*;
 
@@ -223,30 +222,10 @@ pub fn frame_rows(frame: &[Vec<FixedMatch>], period: usize, gap: usize) -> Vec<T
         .collect()
 }
 
-/// golden's rows for the same fixed-point matches: `x_ref = x / 16`,
-/// `disparity = d / 16` (exact in `f64`), as `confirmed_matches` reads them.
-fn golden_lines(frame: &[Vec<FixedMatch>]) -> Vec<LineResult> {
-    let unit = (1u64 << POS_FRAC_BITS) as f64;
-    let empty = LineFeatures { sigma: 1.0, dt: 1.0, declivities: vec![] };
-    frame
-        .iter()
-        .map(|row| {
-            let matches = row
-                .iter()
-                .enumerate()
-                .map(|(i, &(x, d))| {
-                    let (xr, dr) = (x as f64 / unit, d as f64 / unit);
-                    Match { ref_index: i, other_index: i, x_ref: xr, x_other: xr - dr, disparity: dr, gain: 0.0, edge: false }
-                })
-                .collect();
-            LineResult { reference: empty.clone(), other: empty.clone(), matches, path_gain: 0.0 }
-        })
-        .collect()
-}
-
-/// The matches golden's `confirmed_matches` keeps of each row.
+/// The matches golden's hardware-parity row check keeps of each row.
 pub fn golden_kept(frame: &[Vec<FixedMatch>]) -> Vec<Vec<FixedMatch>> {
-    let keep = confirmed_matches(&golden_lines(frame));
+    let rows: Vec<Vec<GoldenMatch>> = frame.iter().map(|r| r.iter().map(|&(x, d)| GoldenMatch { x: x as u32, d: d as u32 }).collect()).collect();
+    let keep = row_check(&rows, crate::formats::hardware_limits());
     frame.iter().zip(keep).map(|(row, k)| row.iter().zip(k).filter(|(_, k)| *k).map(|(&m, _)| m).collect()).collect()
 }
 

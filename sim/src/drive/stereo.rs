@@ -431,11 +431,36 @@ impl<const N: usize> StereoSim<N> {
 
 /// golden's disparity map of the pair for what the line processor computes:
 /// the default mode (its row check, edge jump and vertical median) in
-/// hardware parity, left reference, `dispmax` px.
+/// hardware parity, left reference, `dispmax` px. Its values are multiples
+/// of `1/2^POS_FRAC_BITS` px: the line processor's output must equal it.
 pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmax: f64) -> Result<Vec<f64>, golden::GoldenError> {
     let mut params = golden::Params::new(dispmax)?;
     params.hardware = Some(crate::formats::hardware_limits());
     Ok(golden::process_frame(left, right, &params, golden::Threads::All)?.disparity)
+}
+
+/// golden's hardware-parity depths (mm, 0 = none) of a map from
+/// [`golden_map`] for the depth stage's `camera`
+/// (`golden::hardware::depth::DepthStage::depth_map_mm`).
+///
+/// # Panics
+/// If the camera is outside the depth stage's range (no line processor is
+/// built for it).
+pub fn golden_depth_map(disparity: &[f64], camera: &DepthCamera) -> Vec<u16> {
+    let stage = crate::drive::depth_stage::golden_stage(camera).expect("a camera in the depth stage's range");
+    stage.depth_map_mm(disparity, crate::formats::hardware_limits())
+}
+
+/// What [`blocks_one_after_the_other`] gives: the matcher's matches before
+/// the row check, and the output rows.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct BlocksRun {
+    /// The matcher's matches of each row, `(X, d)` in `1/2^POS_FRAC_BITS` px.
+    pub matches: Vec<Vec<crate::drive::row_check::FixedMatch>>,
+    /// The disparity rows out of the median, `1/2^POS_FRAC_BITS` px.
+    pub disparity: Vec<Vec<u32>>,
+    /// The depth rows, mm.
+    pub depth: Vec<Vec<u16>>,
 }
 
 /// The line processor's blocks run one after the other, each under its own
@@ -445,7 +470,7 @@ pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmax: f64) -> Result<V
 /// map and the depth stage (`camera`) over that. The line processor joins
 /// exactly these blocks, so its output must equal this, line for line and
 /// pixel for pixel; timing differs (here each block waits for the one
-/// before). Returns the disparity rows and the depth rows.
+/// before).
 pub fn blocks_one_after_the_other<const N: usize>(
     left: &GreyImage,
     right: &GreyImage,
@@ -453,7 +478,7 @@ pub fn blocks_one_after_the_other<const N: usize>(
     jump: Option<u64>,
     camera: DepthCamera,
     dispmax: u32,
-) -> (Vec<Vec<u32>>, Vec<Vec<u16>>) {
+) -> BlocksRun {
     use crate::drive::detector::{run_lines, DetectorSim};
     use crate::drive::interpolator::{AnchorLine, FixedAnchor, InterpolatorSim};
     use crate::drive::matcher::{MatchLine, MatchRecord, MatcherSim};
@@ -487,5 +512,40 @@ pub fn blocks_one_after_the_other<const N: usize>(
     let map: Vec<Vec<u64>> = pixels.into_iter().map(|p| p.d.into_iter().map(u64::from).collect()).collect();
     let (medianed, _) = crate::drive::vertical_median::VerticalMedianSim::new().run(&map, width).expect("a map of one width");
     let depth = crate::drive::depth_stage::DepthStageSim::new(camera).expect("the camera fits").run(&medianed, width);
-    (medianed.into_iter().map(|r| r.into_iter().map(|d| d as u32).collect()).collect(), depth.z)
+    BlocksRun { matches: frame, disparity: medianed.into_iter().map(|r| r.into_iter().map(|d| d as u32).collect()).collect(), depth: depth.z }
+}
+
+/// golden's steps after the matcher in hardware parity (the default mode's
+/// row check, edge jump and median: `golden::frame::finish_frame`, and the
+/// depth of `camera`) on the matcher's matches of each row (`(X, d)` in
+/// `1/2^POS_FRAC_BITS` px), for rows of `width` pixels: the disparity map
+/// in px and the depths in mm, row-major. Given the rtl matcher's matches,
+/// this is what the line processor must output whatever golden's detector
+/// does.
+pub fn golden_after_matcher(matches: &[Vec<crate::drive::row_check::FixedMatch>], width: usize, camera: &DepthCamera) -> (Vec<f64>, Vec<u16>) {
+    use golden::line::{LineFeatures, LineResult, Match};
+    let limits = crate::formats::hardware_limits();
+    let unit = (1u64 << POS_FRAC_BITS) as f64;
+    let empty = LineFeatures { sigma: 0.0, dt: 0.0, declivities: Vec::new() };
+    let lines: Vec<LineResult> = matches
+        .iter()
+        .map(|row| LineResult {
+            reference: empty.clone(),
+            other: empty.clone(),
+            matches: row
+                .iter()
+                .enumerate()
+                .map(|(i, &(x, d))| {
+                    let (x, d) = (x as f64 / unit, d as f64 / unit);
+                    Match { ref_index: i, other_index: i, x_ref: x, x_other: x - d, disparity: d, gain: 0.0, edge: false }
+                })
+                .collect(),
+            path_gain: 0.0,
+        })
+        .collect();
+    // dispmax is not read after the matcher.
+    let params = golden::Params { hardware: Some(limits), ..golden::Params::new(2.0).expect("a valid bound") };
+    let frame = golden::frame::finish_frame(lines, width, matches.len(), &params, golden::Threads::All);
+    let depth = golden_depth_map(&frame.disparity, camera);
+    (frame.disparity, depth)
 }

@@ -190,7 +190,10 @@ pub fn frame_beats(frame: &[Vec<u64>], period: usize) -> Result<Vec<MedianBeat>,
 }
 
 /// golden's vertical median (`MEDIAN_ROWS` rows) of the same fixed-point
-/// values, back in `POS_FRAC_BITS` units.
+/// values, back in `POS_FRAC_BITS` units: the median golden's frame takes
+/// in hardware parity (`golden::frame::finish_frame`, step 5) of the
+/// interpolator's values `d / 16`, exact in `f64` (a median is one of its
+/// inputs).
 pub fn golden_median(frame: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, MedianInputError> {
     let width = check_frame(frame)?;
     let unit = (1u64 << POS_FRAC_BITS) as f64;

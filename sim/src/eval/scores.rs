@@ -87,6 +87,14 @@ pub fn agree_quarter_px(rtl: &[f64], golden: &[f64]) -> f64 {
     close as f64 / rtl.len().max(1) as f64
 }
 
+/// The share of `rtl`'s pixels exactly equal to `golden`'s (both row-major
+/// maps of one size: disparities in px, exact multiples of
+/// `1/2^POS_FRAC_BITS` on both sides, or depths in mm).
+pub fn exact_share<T: PartialEq>(rtl: &[T], golden: &[T]) -> f64 {
+    let equal = rtl.iter().zip(golden).filter(|(a, b)| a == b).count();
+    equal as f64 / rtl.len().max(1) as f64
+}
+
 /// Sparse accuracy: `(correct, evaluated)` matched reference declivities at
 /// valid-GT pixels (position rounded to the nearest pixel), correct when
 /// `|d - gt| ≤ 1`.

@@ -5,10 +5,10 @@
 use golden::GreyImage;
 use rtl::params::{N_CELLS, W_MAX};
 
-use crate::drive::stereo::{golden_map, StereoSim};
+use crate::drive::stereo::{golden_depth_map, golden_map, StereoSim};
 use crate::error::SimError;
 use crate::eval::io::PairData;
-use crate::eval::scores::{agree_quarter_px, dense_scores};
+use crate::eval::scores::{agree_quarter_px, dense_scores, exact_share};
 use crate::formats::dispmax_lsb;
 use crate::hdl::cosim::{Options, Simulator};
 use crate::hdl::frame::run_frame;
@@ -38,6 +38,12 @@ pub struct StereoReport {
     /// Share of pixels within 1/4 px of golden (hardware parity, the same
     /// stages).
     pub agree_quarter_px: f64,
+    /// Share of pixels whose disparity equals golden hardware parity's
+    /// exactly (both in 1/16 px).
+    pub exact_px: f64,
+    /// Share of pixels whose depth (mm) equals golden hardware parity's
+    /// depth of its own disparity exactly (the same camera).
+    pub exact_depth_px: f64,
     /// Clocks simulated per second of wall time (the build excluded).
     pub sim_cycles_per_s: f64,
     pub seconds: f64,
@@ -146,6 +152,11 @@ fn run_pair(
     };
     let rtl = run.disparity_px(left.height());
     let gold = golden_map(left, right, dispmax)?;
+    let mut depth = vec![0u16; left.width() * left.height()];
+    for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
+        dst.iter_mut().zip(row).for_each(|(d, &z)| *d = z);
+    }
+    let gold_depth = golden_depth_map(&gold, &rtl::post::depth_stage::DepthCamera::default());
     let report = StereoReport {
         image: name.to_string(),
         width: left.width(),
@@ -158,6 +169,8 @@ fn run_pair(
         stall_cycles: run.stall_cycles,
         latency_cycles: run.latency_cycles(),
         agree_quarter_px: agree_quarter_px(&rtl, &gold),
+        exact_px: exact_share(&rtl, &gold),
+        exact_depth_px: exact_share(&depth, &gold_depth),
         sim_cycles_per_s: run.cycles as f64 / seconds.max(1e-9),
         seconds,
         engine: engine.name(),
@@ -171,10 +184,6 @@ fn run_pair(
         lines_in_flight_peak: (engine == Engine::RustHdl).then_some(run.probe.peak.in_flight),
         held_cycles: (engine == Engine::RustHdl).then_some(run.probe.peak.held_clocks),
     };
-    let mut depth = vec![0u16; left.width() * left.height()];
-    for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
-        dst.iter_mut().zip(row).for_each(|(d, &z)| *d = z);
-    }
     Ok((report, rtl, gold, depth))
 }
 
@@ -220,12 +229,14 @@ pub fn evaluate_pair_rtl(pair: &PairData, hblank: usize, engine: Engine, progres
 /// The `eval --rtl` table.
 pub fn rtl_markdown_table(reports: &[RtlEvalReport]) -> String {
     let mut s = String::from(
-        "| pair | agree_quarter_px | px_per_clk | stall_cycles | latency_cycles | bad2 | golden bad2 | nonocc_bad2 | lines dropped | sim clocks/s |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        "| pair | exact_px | exact_depth_px | agree_quarter_px | px_per_clk | stall_cycles | latency_cycles | bad2 | golden bad2 | nonocc_bad2 | lines dropped | sim clocks/s |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in reports {
         s.push_str(&format!(
-            "| {} | {:.4} | {:.4} | {} | {} | {:.1} | {:.1} | {} | {} | {:.0} |\n",
+            "| {} | {:.4} | {:.4} | {:.4} | {:.4} | {} | {} | {:.1} | {:.1} | {} | {} | {:.0} |\n",
             r.pair,
+            r.run.exact_px,
+            r.run.exact_depth_px,
             r.run.agree_quarter_px,
             r.run.px_per_clk,
             r.run.stall_cycles,
