@@ -106,7 +106,7 @@ pub fn declivity_bounds_reference(line: &[u8]) -> DeclivityBounds<'_> {
 /// flat run between that end and the start keeps the end's level, so the
 /// amplitude `I(start) - I(x_i)` is known there and tested against
 /// `threshold`.
-fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
+pub(crate) fn declivity_spans(line: &[u8], threshold: u32) -> Vec<(usize, usize)> {
     let mut spans = Vec::new();
     declivity_spans_into(line, threshold, &mut spans);
     spans
@@ -216,7 +216,7 @@ pub fn declivity_bounds(line: &[u8]) -> Vec<(usize, usize)> {
 
 /// The amplitude threshold of [`declivity_spans`] equivalent to `|a_i| > d_t`:
 /// amplitudes are integers, so `|a| > d_t ⇔ |a| > ⌊d_t⌋` for `d_t ≥ 0`.
-fn integer_threshold(dt: f64) -> u32 {
+pub fn integer_threshold(dt: f64) -> u32 {
     dt.max(0.0).floor().min(u32::MAX as f64) as u32
 }
 

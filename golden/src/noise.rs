@@ -18,10 +18,10 @@
 pub const HIST_BINS: usize = 256;
 
 /// The median of |N(0,1)|: `Φ⁻¹(3/4)`.
-const MAD_NORMAL: f64 = 0.674_489_750_196_081_7;
+pub(crate) const MAD_NORMAL: f64 = 0.674_489_750_196_081_7;
 
 /// Deviation of uniform quantization noise of one grey level: `1/√12`.
-const SIGMA_FLOOR: f64 = 0.288_675_134_594_812_9;
+pub(crate) const SIGMA_FLOOR: f64 = 0.288_675_134_594_812_9;
 
 /// The factor of eq. 2.
 pub const THRESHOLD_FACTOR: f64 = 5.6;

@@ -36,7 +36,7 @@ pub const HIST_ADDR_BITS: usize = PIXEL_BITS;
 pub const HIST_COUNT_BITS: usize = W_MAX_BITS + 2;
 
 /// Fraction bits of the median's in-bin interpolation `(n/2 - below)/h`.
-pub(crate) const MEDIAN_FRAC_BITS: usize = 15;
+pub const MEDIAN_FRAC_BITS: usize = 15;
 /// Bits of that fraction: it can be exactly 1.
 pub(crate) const MEDIAN_Q_BITS: usize = MEDIAN_FRAC_BITS + 1;
 
@@ -52,19 +52,19 @@ pub(crate) const DT_INT_BITS: usize = DT_BITS - DT_FRAC_BITS;
 /// (eq. 2 with the MAD estimator of `DESIGN.md` §2.1).
 pub const THRESHOLD_PER_MEDIAN: f64 = 5.6 / (0.674_489_750_196_081_7 * std::f64::consts::SQRT_2);
 /// Fraction bits of `d_t` inside the threshold engine before rounding.
-pub(crate) const DT_ACC_FRAC_BITS: usize = 20;
+pub const DT_ACC_FRAC_BITS: usize = 20;
 /// Bits of the threshold engine's accumulator (`d_t · 2^20 < 2^31`).
 pub(crate) const DT_ACC_BITS: usize = 32;
 /// `round(K · 2^19)`: `K·(v - ½)·2^20 = (2v - 1)·K_HALF`, added twice per bin
 /// during the histogram scan.
-pub(crate) const K_HALF: u64 = 3_077_993;
+pub const K_HALF: u64 = 3_077_993;
 /// Fraction bits of [`K_FRAC`].
-pub(crate) const K_FRAC_BITS: usize = 13;
+pub const K_FRAC_BITS: usize = 13;
 /// `round(K · 2^13)`: multiplies the in-bin fraction (16×16 product).
-pub(crate) const K_FRAC: u64 = 48_094;
+pub const K_FRAC: u64 = 48_094;
 /// The σ floor of eq. 2's estimator (`1/√12`) as a `d_t` in fixed point:
 /// `round(5.6/√12 · 2^5)`.
-pub(crate) const DT_FLOOR: u64 = 52;
+pub const DT_FLOOR: u64 = 52;
 
 /// Fraction bits of a declivity position `X_i` (eq. 3).
 pub const POS_FRAC_BITS: usize = 4;
@@ -194,7 +194,7 @@ pub const WIDTH_BITS: usize = W_MAX_BITS + 1;
 pub const EDGE_JUMP_LSB: u64 = 6 << POS_FRAC_BITS;
 /// Fraction bits of the interpolator's weight `t = (x - X_a) / (X_b - X_a)`
 /// between two matches.
-pub(crate) const WEIGHT_FRAC_BITS: usize = 16;
+pub const WEIGHT_FRAC_BITS: usize = 16;
 /// Index bits of the interpolator's reciprocal table: `1 / (X_b - X_a)` from
 /// the distance's [`RECIP_INDEX_BITS`] bits after its leading one (relative
 /// error below `2^-(RECIP_INDEX_BITS + 1) + 2^-15`).
@@ -278,7 +278,7 @@ pub const DEPTH_WEIGHT_BITS: usize = POS_BITS - 1 - DEPTH_INDEX_BITS;
 /// Bits of a depth table entry `round(K / m)` for a normalised disparity
 /// `m ∈ [2^(POS_BITS-1), 2^POS_BITS)`: the numerator `K` is below
 /// [`DEPTH_K_LIMIT`], so an entry lies in `(2^16 - 1, 2^18)`.
-pub(crate) const DEPTH_TABLE_BITS: usize = 18;
+pub const DEPTH_TABLE_BITS: usize = 18;
 /// Bits of an entry's slope, the difference to the next entry (at most
 /// `2^18 / 512 ≈ 512`).
 pub const DEPTH_SLOPE_BITS: usize = 10;
@@ -290,7 +290,7 @@ pub const DEPTH_WORD_BITS: usize = DEPTH_TABLE_BITS + DEPTH_SLOPE_BITS;
 /// then fits [`DEPTH_TABLE_BITS`] bits and has at least 16 significant ones.
 pub const DEPTH_K_LIMIT: u64 = (1 << (POS_BITS - 1 + DEPTH_TABLE_BITS)) - (1 << (POS_BITS - 1));
 /// Bits of the depth stage's shift amounts (`s - 1 - lz`, `0 ..= 15`).
-pub(crate) const DEPTH_SHIFT_BITS: usize = 4;
+pub const DEPTH_SHIFT_BITS: usize = 4;
 /// The smallest scale exponent `s` of a camera: `s = 0` would saturate
 /// every depth (`Z ≥ 2^30 / 2^14 = 65536` mm at the largest disparity).
 pub const DEPTH_SCALE_MIN: u32 = 1;

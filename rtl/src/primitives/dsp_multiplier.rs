@@ -27,7 +27,7 @@
 use rust_hdl::prelude::*;
 
 /// Operand bits of [`DspMultiplier`] (rust-hdl's product is 16 × 16).
-pub(crate) const MUL_OPERAND_BITS: usize = 16;
+pub const MUL_OPERAND_BITS: usize = 16;
 /// Product bits of [`DspMultiplier`].
 pub(crate) const MUL_PRODUCT_BITS: usize = 2 * MUL_OPERAND_BITS;
 /// Operand bits of one `MULT18X18D`.
