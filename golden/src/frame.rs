@@ -437,14 +437,19 @@ mod tests {
     }
 
     /// A textured pair (the right view the left shifted by 4 px; the rows
-    /// one texture with a little noise, so that they confirm each other)
-    /// of rows wider than a small hardware's `w_max`.
+    /// one texture of steps with a little noise, so that they confirm each
+    /// other) of rows wider than a small hardware's `w_max`.
     fn shifted_pair(w: usize, h: usize, seed: u64) -> (GreyImage, GreyImage) {
         let mut rng = crate::test_rng::TestRng::new(seed);
         let mut level = 128i32;
         let texture: Vec<i32> = (0..w + 4)
-            .map(|_| {
-                level = (level + (rng.next() % 61) as i32 - 30).clamp(2, 253);
+            .map(|x| {
+                // Plateaus of 5 px with steps of 30 to 90 grey levels: far
+                // above the noise's d_t, so every step is a declivity.
+                if x % 5 == 0 {
+                    let step = 30 + (rng.next() % 61) as i32;
+                    level = if level + step > 253 || (level - step >= 2 && rng.next() % 2 == 0) { level - step } else { level + step };
+                }
                 level
             })
             .collect();
