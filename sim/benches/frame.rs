@@ -1,6 +1,8 @@
 //! One full frame of the golden model on Middlebury "cones" (450x375,
-//! search bound 56), paper and robust modes, on one thread and on all cores. Compare with OpenCV
-//! StereoBM in the same run: `scripts/bench-vs-opencv.sh`.
+//! search bound 56), paper and robust modes, on one thread and on all cores,
+//! and the robust mode in hardware parity (what the line processor computes,
+//! bit for bit) beside it: the ratio of the two is parity's cost. Compare
+//! with OpenCV StereoBM in the same run: `scripts/bench-vs-opencv.sh`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 
@@ -10,6 +12,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use golden::{process_frame, Mode, Params, Threads};
 use sim::eval::io::{load_pair_dir, stereo_data_dir};
+use sim::formats::hardware_limits;
 
 fn frame(c: &mut Criterion) {
     let dir = stereo_data_dir().join("cones");
@@ -25,6 +28,10 @@ fn frame(c: &mut Criterion) {
             b.iter(|| process_frame(&pair.left, &pair.right, &params, Threads::All).unwrap())
         });
     }
+    let parity = Params { hardware: Some(hardware_limits()), ..Params::with_mode(Mode::Robust, pair.dispmax + 1.0).expect("valid search bound") };
+    g.bench_function("robust_hardware_parity_one_thread", |b| {
+        b.iter(|| process_frame(&pair.left, &pair.right, &parity, Threads::One).unwrap())
+    });
     g.finish();
 }
 
