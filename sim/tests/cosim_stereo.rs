@@ -158,6 +158,69 @@ mod frames {
         check::<N_CELLS>(Simulator::Verilator, &crop(&left, 60..100), &crop(&right, 60..100), 0, dispmax, "map rows 60..100");
     }
 
+    /// A generated frame: plateaus of 2 to `max_run` pixels with steps of
+    /// 20 to 80 grey levels (each a declivity), seeded; the right view is
+    /// the left at disparity `shift` (`right[x] = left[x + shift]`, the last
+    /// pixel repeated).
+    fn steps_pair(width: usize, height: usize, max_run: u64, shift: usize, seed: u64) -> (GreyImage, GreyImage) {
+        let mut rng = sim::rng::VectorRng(seed);
+        let mut left = Vec::with_capacity(width * height);
+        for _ in 0..height {
+            let mut v: i64 = 128;
+            let mut run = 0;
+            for _ in 0..width {
+                if run == 0 {
+                    let r = rng.next();
+                    let step = 20 + (r % 61) as i64;
+                    v = if (v + step > 255) || (r >> 8) & 1 == 0 && v - step >= 0 { v - step } else { v + step };
+                    run = 2 + (r >> 16) % (max_run - 1);
+                }
+                run -= 1;
+                left.push(v as u8);
+            }
+        }
+        let right: Vec<u8> = left.chunks(width).flat_map(|row| (0..width).map(move |x| row[(x + shift).min(width - 1)])).collect();
+        (GreyImage::new(width, height, left).expect("a frame"), GreyImage::new(width, height, right).expect("a frame"))
+    }
+
+    /// Generated frames through the sensor's Verilog under Verilator, equal
+    /// to golden's hardware parity on every disparity and depth: lines of
+    /// `W_MAX` pixels with more than `N_MAX` declivities (the detector keeps
+    /// the first `N_MAX` and flags the line full, golden alike), and a
+    /// narrower frame with blanking.
+    #[test]
+    fn generated_frames_under_verilator_equal_golden_hardware_parity_lines_over_n_max_included() {
+        use rtl::params::{N_MAX, W_MAX};
+        use rtl::post::depth_stage::DepthCamera;
+        use sim::drive::stereo::{golden_depth_map, golden_map};
+        let design = sim::hdl::verilog::generate(sim::hdl::verilog::Top::Stereo);
+        for (what, (left, right), hblank, dispmax, over_n_max) in [
+            ("W_MAX lines of many steps", steps_pair(W_MAX, 24, 4, 9, 0x5eed_0001), 0, 24.0, true),
+            ("plateaus with blanking", steps_pair(400, 30, 12, 5, 0x5eed_0002), 16, 12.0, false),
+        ] {
+            let lsb = sim::formats::dispmax_lsb(dispmax).expect("dispmax");
+            let got = run_frame(Simulator::Verilator, &design, &left, &right, hblank, lsb, &Options::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let run = &got.run;
+            assert_eq!(run.rows.len(), left.height(), "{what}: every line out");
+            assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped), (0, 0, 0), "{what}: nothing dropped");
+            assert_eq!(run.lines_full > 0, over_n_max, "{what}: lines over N_MAX = {N_MAX} flagged full ({})", run.lines_full);
+            let rtl = run.disparity_px(left.height());
+            let gold = golden_map(&left, &right, dispmax).expect("golden runs");
+            let depth: Vec<u16> = run.depth_rows.iter().flatten().copied().collect();
+            let gold_depth = golden_depth_map(&gold, &DepthCamera::default());
+            let matched = rtl.iter().filter(|&&d| d > 0.0).count();
+            eprintln!("{what}: {} clocks, {} lines full, {matched} pixels with a disparity", run.cycles, run.lines_full);
+            assert!(matched > rtl.len() / 2, "{what}: a dense map ({matched} of {})", rtl.len());
+            for (i, (a, b)) in rtl.iter().zip(&gold).enumerate() {
+                assert_eq!(a, b, "{what}: disparity at ({}, {}) differs from golden's hardware parity", i % left.width(), i / left.width());
+            }
+            assert_eq!(depth.len(), gold_depth.len(), "{what}: every depth out");
+            for (i, (a, b)) in depth.iter().zip(&gold_depth).enumerate() {
+                assert_eq!(a, b, "{what}: depth at ({}, {}) differs from golden's hardware parity", i % left.width(), i / left.width());
+            }
+        }
+    }
+
     /// Every pair in the repository, whole frame, through the sensor's
     /// Verilog under Verilator: every disparity and every depth equal to
     /// golden's hardware parity (`golden::hardware`, computed from the
