@@ -227,13 +227,14 @@ def results_rtl():
     for p in PAIRS:
         r = run = rtl[p]
         dropped = f"{run['records_dropped']}, {run['lines_dropped']}, {run['pixels_dropped']}"
-        rows.append([p, f"{run['width']}×{run['height']}", f"{run['agree_quarter_px']:.4f}", f"{run['px_per_clk']:.4f}",
+        rows.append([p, f"{run['width']}×{run['height']}", f"{run['exact_px']:.4f}", f"{run['exact_depth_px']:.4f}",
+                     f"{run['agree_quarter_px']:.4f}", f"{run['px_per_clk']:.4f}",
                      fmt(run["stall_cycles"], ","), fmt(run["latency_cycles"], ","), fmt(r["bad2"], ".2f"),
                      fmt(r["golden_bad2"], ".2f"), fmt(r["nonocc_bad2"], ".2f"), dropped, fmt(run["cycles"], ",")])
-    return markdown(["pair", "size", "agree_quarter_px", "px_per_clk", "stall clocks",
+    return markdown(["pair", "size", "exact_px", "exact_depth_px", "agree_quarter_px", "px_per_clk", "stall clocks",
                      "latency (clocks, first pixel in → first disparity out)", "bad2 rtl (%)",
                      "bad2 golden, same stages (%)", "nonocc bad2 rtl (%)", "dropped (records, lines, pixels)", "clocks"],
-                    rows, ["---", "---"] + ["---:"] * 9)
+                    rows, ["---", "---"] + ["---:"] * 11)
 
 
 def evals_rtl():
