@@ -350,13 +350,56 @@ fn attributes_are_three_neighbours_clamped_at_the_line_ends() {
 
 #[test]
 fn eq6_search_area_is_open_at_both_ends() {
-    assert!(!in_search_area(0.0, 10.0));
-    assert!(!in_search_area(10.0, 10.0));
-    assert!(!in_search_area(-0.5, 10.0));
-    assert!(!in_search_area(10.5, 10.0));
-    assert!(in_search_area(0.5, 10.0));
-    assert!(in_search_area(9.99, 10.0));
-    assert!(in_search_area(1e-9, 10.0));
+    assert!(!in_search_area(0.0, 0.0, 10.0));
+    assert!(!in_search_area(10.0, 0.0, 10.0));
+    assert!(!in_search_area(-0.5, 0.0, 10.0));
+    assert!(!in_search_area(10.5, 0.0, 10.0));
+    assert!(in_search_area(0.5, 0.0, 10.0));
+    assert!(in_search_area(9.99, 0.0, 10.0));
+    assert!(in_search_area(1e-9, 0.0, 10.0));
+}
+
+#[test]
+fn eq6_lower_bound_dispmin_is_open_too() {
+    // dispmin < d < dispmax: 3 and 10 are outside, just above 3 inside.
+    assert!(!in_search_area(3.0, 3.0, 10.0));
+    assert!(!in_search_area(2.5, 3.0, 10.0));
+    assert!(in_search_area(3.0625, 3.0, 10.0));
+    assert!(in_search_area(9.99, 3.0, 10.0));
+    assert!(!in_search_area(10.0, 3.0, 10.0));
+    // A pair 5 px apart is a node for dispmin 4.9, not for dispmin 5.
+    let at = |x: f64| hand_declivity(x, [50, 50, 50], [90, 90, 90]);
+    assert!(node_gain(&at(20.5), &at(15.5), 2.0, (4.9, 10.0), RefView::Left, Mode::Paper).is_some());
+    assert!(node_gain(&at(20.5), &at(15.5), 2.0, (5.0, 10.0), RefView::Left, Mode::Paper).is_none());
+}
+
+/// A scene 6 px away throughout (the right view the left shifted by 6):
+/// with `dispmin` 5 its matches stay at 6; with `dispmin` 6.5 no match is
+/// at or below the bound. Bounds outside `0 ≤ dispmin < dispmax − 1` are
+/// refused.
+#[test]
+fn eq6_dispmin_removes_every_match_at_or_below_it() {
+    let mut rng = declivity_tests::seeded(61);
+    let (w, h, d) = (240, 4, 6);
+    let left: Vec<u8> = (0..h).flat_map(|_| declivity_tests::block_line(&mut rng, w)).collect();
+    let right: Vec<u8> = left.chunks(w).flat_map(|l| declivity_tests::shift_left_to_right(l, d)).collect();
+    let (l, r) = (GreyImage::new(w, h, left).unwrap(), GreyImage::new(w, h, right).unwrap());
+    let matches = |dispmin: f64| -> Vec<f64> {
+        let p = Params { dispmin, ..Params::paper(12.0).unwrap() };
+        let f = process_frame(&l, &r, &p, Threads::One).unwrap();
+        f.lines.iter().flat_map(|line| line.matches.iter().map(|m| m.disparity)).collect()
+    };
+    let base = matches(0.0);
+    let at_six = |m: &[f64]| m.iter().filter(|&&x| (x - 6.0).abs() < 0.25).count();
+    assert!(at_six(&base) > 20, "the shift is found: {base:?}");
+    let above_five = matches(5.0);
+    assert!(above_five.iter().all(|&x| x > 5.0), "{above_five:?}");
+    assert!(at_six(&above_five) >= at_six(&base), "the true matches stay: {} < {}", at_six(&above_five), at_six(&base));
+    let above = matches(6.5);
+    assert!(above.iter().all(|&x| x > 6.5), "{above:?}");
+    for dispmin in [-1.0, 11.0, 12.0, f64::NAN] {
+        assert!(Params { dispmin, ..Params::paper(12.0).unwrap() }.validate().is_err(), "dispmin {dispmin}");
+    }
 }
 
 #[test]
@@ -372,7 +415,7 @@ fn eq6_node_gain_excludes_d_zero_and_d_dispmax_for_both_views() {
     // Identical attributes: lpd = rpd = 0, so a node in range has gain
     // 3·gmax = 3·2 = 6 (eq. 7).
     let at = |x: f64| hand_declivity(x, [10, 10, 10], [90, 90, 90]);
-    let g = |r: f64, o: f64, view| node_gain(&at(r), &at(o), 2.0, 10.0, view, Mode::Paper);
+    let g = |r: f64, o: f64, view| node_gain(&at(r), &at(o), 2.0, (0.0, 10.0), view, Mode::Paper);
     // Left reference: d = x_ref - x_other.
     assert_eq!(g(20.5, 20.5, RefView::Left), None); // d = 0
     assert_eq!(g(20.5, 10.5, RefView::Left), None); // d = 10 = dispmax
@@ -450,14 +493,14 @@ fn eq4_to_eq8_node_gain_from_attributes() {
     let gm = gmax(10.0, 14.0);
     let r = hand_declivity(30.0, [10, 20, 30], [100, 90, 80]);
     let o = hand_declivity(25.0, [12, 17, 30], [97, 90, 81]);
-    assert_eq!(node_gain(&r, &o, gm, 60.0, RefView::Left, Mode::Paper), Some(27.0));
+    assert_eq!(node_gain(&r, &o, gm, (0.0, 60.0), RefView::Left, Mode::Paper), Some(27.0));
     // rpd = 13 (other right = 95, 90, 88): one-sided -> 12 - 5 - 13 = -6.
     let o2 = hand_declivity(25.0, [12, 17, 30], [95, 90, 88]);
-    assert_eq!(node_gain(&r, &o2, gm, 60.0, RefView::Left, Mode::Paper), Some(-6.0));
+    assert_eq!(node_gain(&r, &o2, gm, (0.0, 60.0), RefView::Left, Mode::Paper), Some(-6.0));
     // lpd = 12 = gmax (other left = 22, 20, 30: 12 + 0 + 0) and rpd = 13:
     // neither below -> rejected.
     let o3 = hand_declivity(25.0, [22, 20, 30], [95, 90, 88]);
-    assert_eq!(node_gain(&r, &o3, gm, 60.0, RefView::Left, Mode::Paper), None);
+    assert_eq!(node_gain(&r, &o3, gm, (0.0, 60.0), RefView::Left, Mode::Paper), None);
 }
 
 // ===========================================================================

@@ -262,7 +262,7 @@ proptest! {
             prop_assert!((m.disparity - (xl - xr)).abs() <= 1e-12);
             prop_assert_eq!(m.disparity, pair_disparity(r.position, o.position, params.ref_view));
             // The node exists and its gain is the eq. 4-8 gain.
-            let g = node_gain(r, o, gm, params.dispmax, params.ref_view, params.mode);
+            let g = node_gain(r, o, gm, (params.dispmin, params.dispmax), params.ref_view, params.mode);
             prop_assert_eq!(g, Some(m.gain));
             sum += m.gain;
         }

@@ -32,6 +32,16 @@ pub(crate) fn parse_positive(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A finite number, 0 or more.
+pub(crate) fn parse_non_negative(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a number"))?;
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("`{s}` must be a finite number, 0 or more"))
+    }
+}
+
 /// The method's options of `depth` and `eval`.
 #[derive(Args, Debug, Clone)]
 pub(crate) struct MethodArgs {
@@ -47,6 +57,11 @@ pub(crate) struct MethodArgs {
     pub ends: CliEnds,
     #[arg(long, help = hardware_parity_help())]
     pub hardware_parity: bool,
+    /// Lower search bound in px: a match needs dispmin < d < dispmax (eq. 6; the paper's 0).
+    /// For a verged or offset rig, or a scene with a known nearest range. Golden only: the
+    /// line processor has none, so --hardware-parity takes 0 only.
+    #[arg(long, default_value_t = 0.0, value_parser = parse_non_negative)]
+    pub dispmin: f64,
 }
 
 fn hardware_parity_help() -> String {
@@ -67,6 +82,7 @@ impl MethodArgs {
         let p = Params {
             mode: self.mode.0,
             dispmax,
+            dispmin: self.dispmin,
             ref_view: match self.ref_view {
                 CliRef::Left => RefView::Left,
                 CliRef::Right => RefView::Right,

@@ -101,7 +101,7 @@ fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
     GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
     std::fs::write(p.join("junk.png"), b"not an image").unwrap();
     std::fs::create_dir(p.join("empty")).unwrap();
-    let cases: [(&[&str], &str); 7] = [
+    let cases: &[(&[&str], &str)] = &[
         (&["depth", "missing.png", "r.png", "--dispmax", "8"], "missing.png"),
         (&["depth", "junk.png", "r.png", "--dispmax", "8"], "cannot read image"),
         (&["depth", "l.png", "small.png", "--dispmax", "8"], "differ in size"),
@@ -110,13 +110,91 @@ fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
         (&["depth", "l.png", "r.png", "--dispmax", "8", "--graph-line", "10"], "outside the image"),
         // The sensor's array is 32 cells of four rows; 64 is not generated.
         (&["verilog", "--top", "matcher", "--cells", "64"], "generated with [2, 4, 8, 16, 32] cells"),
+        // A camera of no size, or of a NaN baseline, has no depth.
+        (&["depth", "l.png", "r.png", "--dispmax", "8", "--focal-px", "0", "--baseline-m", "0.16"], "finite number greater than 0"),
+        (&["depth", "l.png", "r.png", "--dispmax", "8", "--focal-px=-5", "--baseline-m", "0.16"], "finite number greater than 0"),
+        (&["depth", "l.png", "r.png", "--dispmax", "8", "--focal-px", "500", "--baseline-m", "nan"], "finite number greater than 0"),
+        // No silent defaults: zero runs, and options --rtl does not use.
+        (&["eval", "--runs", "0", "empty"], "--runs"),
+        (&["eval", "--rtl", "--out", "o", "empty"], "cannot be used with"),
+        (&["eval", "--rtl", "--mode", "paper", "empty"], "cannot be used with"),
+        (&["eval", "--rtl", "--diagnose", "empty"], "cannot be used with"),
+        // Blanking the simulation could never run through.
+        (&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--hblank", "4000000000"], "--hblank"),
+        // An output folder that cannot be made, refused before the simulation.
+        (&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--engine", "rust-hdl", "--out", "/proc/x"], "/proc/x"),
     ];
-    for (args, needle) in cases {
+    for &(args, needle) in cases {
         let o = declivity(args, p);
         let (_, err) = text(&o);
         assert!(!o.status.success(), "{args:?} must fail");
         assert!(err.contains("error:") && err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
     }
+}
+
+/// A pair folder in `dir/name`: `left` and `right`, a ground truth of `d`
+/// px everywhere (scale 16) and `meta.txt` with `dispmax`.
+fn pair_folder(dir: &Path, name: &str, left: &GrayImage, right: &GrayImage, d: u8, dispmax: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::create_dir_all(&p).unwrap();
+    left.save(p.join("left_gray.png")).unwrap();
+    right.save(p.join("right_gray.png")).unwrap();
+    GrayImage::from_pixel(left.width(), left.height(), Luma([d * 16])).save(p.join("disp_gt.png")).unwrap();
+    std::fs::write(p.join("meta.txt"), format!("scale: 16\ndispmax: {dispmax}\n")).unwrap();
+    p
+}
+
+/// `meta.txt` numbers keep their sign: a negative `dispmax` is refused, not
+/// read as positive.
+#[test]
+fn eval_refuses_a_negative_dispmax_in_meta_txt_and_names_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = shifted_pair(60, 10, 3);
+    pair_folder(dir.path(), "neg", &l, &r, 3, "-3");
+    let o = declivity(&["eval", "neg"], dir.path());
+    let (_, err) = text(&o);
+    assert!(!o.status.success(), "accepted: {err}");
+    assert!(err.contains("meta.txt") && err.contains("must be positive (got -3)"), "stderr {err}");
+}
+
+/// A folder with one bad pair: the good pairs are still scored and printed,
+/// the bad one is named, and the exit is non-zero.
+#[test]
+fn eval_scores_the_good_pairs_of_a_folder_and_names_the_bad_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = shifted_pair(120, 12, 4);
+    pair_folder(&dir.path().join("all"), "a_good", &l, &r, 4, "8");
+    pair_folder(&dir.path().join("all"), "c_good", &l, &r, 4, "8");
+    let bad = dir.path().join("all/b_bad");
+    std::fs::create_dir_all(&bad).unwrap();
+    std::fs::write(bad.join("meta.txt"), "scale: 16\ndispmax: 8\n").unwrap();
+    for json in [false, true] {
+        let args: &[&str] = if json { &["eval", "--runs", "1", "--json", "all"] } else { &["eval", "--runs", "1", "all"] };
+        let o = declivity(args, dir.path());
+        let (out, err) = text(&o);
+        assert!(!o.status.success(), "{args:?}: a bad pair must fail the run");
+        assert!(out.contains("a_good") && out.contains("c_good"), "{args:?}: the good pairs are reported: {out}");
+        assert!(err.contains("b_bad") && err.contains("has no left_gray.png") && err.contains("1 of 3 pairs"), "{args:?}: stderr {err}");
+    }
+}
+
+/// `sparse_acc1` is undefined without a match: `null` in JSON, a dash in
+/// the table, never 0.
+#[test]
+fn eval_gives_no_sparse_accuracy_for_a_pair_without_matches() {
+    let dir = tempfile::tempdir().unwrap();
+    let flat = GrayImage::from_pixel(60, 10, Luma([120]));
+    pair_folder(dir.path(), "flat", &flat, &flat, 3, "8");
+    let o = declivity(&["eval", "--runs", "1", "--json", "flat"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(v["matches"], 0, "{v}");
+    assert!(v["sparse_acc1"].is_null(), "{v}");
+    let o = declivity(&["eval", "--runs", "1", "flat"], dir.path());
+    let (out, _) = text(&o);
+    let row = out.lines().find(|l| l.starts_with("| flat")).expect("a row for the pair");
+    assert_eq!(row.split('|').nth(7).map(str::trim), Some("—"), "sparse_acc1 column: {row}");
 }
 
 #[test]

@@ -22,4 +22,11 @@ pub enum GoldenError {
     /// The search bound of eq. 6 must leave room for a positive disparity.
     #[error("dispmax must be greater than 1 (got {0}): eq. 6 needs 0 < d < dispmax")]
     InvalidDispmax(f64),
+    /// The lower search bound of eq. 6 must be at least 0 and leave a pixel
+    /// of search below `dispmax`.
+    #[error("dispmin must be at least 0 and less than dispmax − 1 = {} (got {dispmin}): eq. 6 needs dispmin < d < dispmax", dispmax - 1.0)]
+    InvalidDispmin { dispmin: f64, dispmax: f64 },
+    /// Hardware parity with a lower search bound the line processor lacks.
+    #[error("dispmin {0}: the line processor has no lower search bound, so hardware parity takes dispmin 0 only")]
+    DispminInHardware(f64),
 }

@@ -18,9 +18,10 @@ pub fn pair_disparity(x_ref: f64, x_other: f64, ref_view: RefView) -> f64 {
     }
 }
 
-/// Eq. 6, the limitation of the search area: `0 < d < dispmax`.
-pub fn in_search_area(d: f64, dispmax: f64) -> bool {
-    0.0 < d && d < dispmax
+/// Eq. 6, the limitation of the search area: `dispmin < d < dispmax` (the
+/// paper's `0 < d < dispmax` with `dispmin = 0`).
+pub fn in_search_area(d: f64, dispmin: f64, dispmax: f64) -> bool {
+    dispmin < d && d < dispmax
 }
 
 /// Eq. 4, the left photometric distance
@@ -65,7 +66,7 @@ fn shifted_distance(a: &[u8; 3], b: &[u8; 3], delta: f64) -> f64 {
 /// The photometric distances `(lpd, rpd)` of a node in `mode`: eq. 4–5, or
 /// their offset-compensated form; `None` when the mode compares only
 /// declivities of one polarity and these differ.
-fn photometric_distances(reference: &Declivity, other: &Declivity, mode: Mode) -> Option<(f64, f64)> {
+pub fn photometric_distances(reference: &Declivity, other: &Declivity, mode: Mode) -> Option<(f64, f64)> {
     if mode.features().relative {
         (reference.polarity() == other.polarity()).then(|| (lpd_relative(reference, other), rpd_relative(reference, other)))
     } else {
@@ -121,12 +122,12 @@ pub fn node_gain(
     reference: &Declivity,
     other: &Declivity,
     gmax: f64,
-    dispmax: f64,
+    (dispmin, dispmax): (f64, f64),
     ref_view: RefView,
     mode: Mode,
 ) -> Option<f64> {
     let d = pair_disparity(reference.position, other.position, ref_view);
-    if !in_search_area(d, dispmax) {
+    if !in_search_area(d, dispmin, dispmax) {
         return None;
     }
     let (l, r) = photometric_distances(reference, other, mode)?;
@@ -283,7 +284,7 @@ mod tests {
             let dt = |v: u64| if v.is_multiple_of(3) { (v % 40) as f64 } else { (v % 4000) as f64 / 37.0 };
             let (dr, dl) = (dt(next()), dt(next()));
             for mode in Mode::ALL {
-                let want = node_gain(&r, &o, gmax(dr, dl), 10.0, RefView::Left, mode);
+                let want = node_gain(&r, &o, gmax(dr, dl), (0.0, 10.0), RefView::Left, mode);
                 let rule = LineGain::new(dr, dl, mode);
                 let got = rule.gain(&(&r).into(), &(&o).into());
                 assert_eq!(want.unwrap_or(REJECTED), got, "{mode:?}: dt {dr} {dl}, {r:?} {o:?}");

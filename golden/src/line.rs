@@ -131,7 +131,7 @@ const BAND_PAD: usize = 4;
 /// it moves further.
 fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params, bands: &mut Vec<(usize, usize)>) {
     debug_assert!(others.len() >= BAND_PAD && others[others.len() - BAND_PAD..] == [f64::INFINITY; BAND_PAD]);
-    let dispmax = params.dispmax;
+    let (dispmin, dispmax) = (params.dispmin, params.dispmax);
     // Moves a bound past the columns `before` holds for. Positions are
     // sorted, so `before` holds for a run of columns from `k` on (if at all)
     // and the first steps are one sum of independent tests, not a chain:
@@ -147,16 +147,17 @@ fn search_bands_padded(refs: &[f64], others: &[f64], params: &Params, bands: &mu
     bands.clear();
     bands.extend(refs.iter().map(|&x_ref| {
         let d = |j: usize| pair_disparity(x_ref, others[j], params.ref_view);
-        // Column j is before the band / before its end (eq. 6: 0 < d < dispmax).
+        // Column j is before the band / before its end (eq. 6: dispmin < d
+        // < dispmax).
         match params.ref_view {
             // d falls as x_other grows.
             RefView::Left => {
                 lo = advance(lo, |j| d(j) >= dispmax);
-                hi = advance(hi, |j| d(j) > 0.0);
+                hi = advance(hi, |j| d(j) > dispmin);
             }
             // d grows with x_other.
             RefView::Right => {
-                lo = advance(lo, |j| d(j) <= 0.0);
+                lo = advance(lo, |j| d(j) <= dispmin);
                 hi = advance(hi, |j| d(j) < dispmax);
             }
         }
@@ -177,7 +178,7 @@ fn banded_gains(reference: &LineFeatures, other: &LineFeatures, params: &Params)
     for (r, &(lo, hi)) in reference.declivities.iter().zip(&spans) {
         bands.push_row(
             lo,
-            other.declivities[lo..hi].iter().map(|o| node_gain(r, o, g, params.dispmax, params.ref_view, params.mode)),
+            other.declivities[lo..hi].iter().map(|o| node_gain(r, o, g, (params.dispmin, params.dispmax), params.ref_view, params.mode)),
         );
     }
     bands
@@ -191,7 +192,7 @@ pub fn gain_table(reference: &LineFeatures, other: &LineFeatures, params: &Param
             &reference.declivities[i],
             &other.declivities[j],
             g,
-            params.dispmax,
+            (params.dispmin, params.dispmax),
             params.ref_view,
             params.mode,
         )
@@ -282,18 +283,20 @@ mod tests {
             };
             let (refs, others) = (sorted(40), sorted(40));
             let dispmax = 1.0 + (next() % 400) as f64 / 4.0;
+            // The paper's 0 in half the cases, a lower bound in the others.
+            let dispmin = if case % 2 == 0 { 0.0 } else { (next() % 400) as f64 / 4.0 * ((dispmax - 1.0).max(0.0) / 100.0) };
             for ref_view in [RefView::Left, RefView::Right] {
-                let params = Params { dispmax, ref_view, ..Params::paper(2.0).unwrap() };
+                let params = Params { dispmax, dispmin, ref_view, ..Params::paper(2.0).unwrap() };
                 let bands = search_bands(&refs, &others, &params);
                 assert_eq!(bands.len(), refs.len());
                 assert!(bands.windows(2).all(|w| w[0].0 <= w[1].0 && w[0].1 <= w[1].1), "case {case}: bands move right");
                 for (i, &(lo, hi)) in bands.iter().enumerate() {
                     let inside: Vec<usize> = (0..others.len())
-                        .filter(|&j| in_search_area(pair_disparity(refs[i], others[j], ref_view), dispmax))
+                        .filter(|&j| in_search_area(pair_disparity(refs[i], others[j], ref_view), dispmin, dispmax))
                         .collect();
                     let want = inside.first().map_or((lo, lo), |&f| (f, inside.last().unwrap() + 1));
                     assert_eq!(inside.len(), want.1 - want.0, "case {case}: the area is contiguous");
-                    assert_eq!((lo, hi), want, "case {case}, row {i}, {ref_view:?}, dispmax {dispmax}");
+                    assert_eq!((lo, hi), want, "case {case}, row {i}, {ref_view:?}, dispmin {dispmin}, dispmax {dispmax}");
                 }
             }
         }

@@ -196,8 +196,13 @@ pub enum EndRule {
 pub struct Params {
     /// Local-gain rule.
     pub mode: Mode,
-    /// Search bound of eq. 6: a node exists when `0 < d < dispmax`.
+    /// Upper search bound of eq. 6: a node exists when
+    /// `dispmin < d < dispmax`.
     pub dispmax: f64,
+    /// Lower search bound of eq. 6 (0 in the paper: `0 < d < dispmax`); a
+    /// verged or offset rig, or a scene with a known nearest range, sets it
+    /// higher.
+    pub dispmin: f64,
     /// Reference view.
     pub ref_view: RefView,
     /// Interpolation at the line's ends.
@@ -222,15 +227,23 @@ impl Params {
 
     /// `mode`, left reference, holding ends, with the given search bound.
     pub fn with_mode(mode: Mode, dispmax: f64) -> Result<Self, GoldenError> {
-        let p = Params { mode, dispmax, ref_view: RefView::Left, ends: EndRule::Hold, hardware: None };
+        let p = Params { mode, dispmax, dispmin: 0.0, ref_view: RefView::Left, ends: EndRule::Hold, hardware: None };
         p.validate()?;
         Ok(p)
     }
 
-    /// Checks the search bound: eq. 6 needs room for a positive disparity.
+    /// Checks the search bounds: eq. 6 needs room for a positive disparity
+    /// above `dispmin ≥ 0`; the line processor has no lower bound, so
+    /// hardware parity takes `dispmin = 0` only.
     pub fn validate(&self) -> Result<(), GoldenError> {
         if self.dispmax.is_nan() || self.dispmax <= 1.0 || self.dispmax.is_infinite() {
             return Err(GoldenError::InvalidDispmax(self.dispmax));
+        }
+        if !(self.dispmin >= 0.0 && self.dispmin < self.dispmax - 1.0) {
+            return Err(GoldenError::InvalidDispmin { dispmin: self.dispmin, dispmax: self.dispmax });
+        }
+        if self.hardware.is_some() && self.dispmin != 0.0 {
+            return Err(GoldenError::DispminInHardware(self.dispmin));
         }
         Ok(())
     }

@@ -5,7 +5,7 @@ use clap::Args;
 use rtl::detector::declivity_detector::MIN_LINE_PERIOD;
 use rtl::params::{MEDIAN_HALF, N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
 use sim::blocks::MATCHER_CELLS;
-use sim::budget::{budget, report_text, BudgetRequest, MIN_HEIGHT};
+use sim::budget::{budget, report_text, BudgetRequest, MAX_HEIGHT, MIN_HEIGHT};
 use sim::SimError;
 
 /// Latency budget of the hardware: clocks per line per stage, line period, latency, frame rate, resources.
@@ -61,14 +61,15 @@ latency_formula, resources, notes)."
 
 fn width_help() -> String {
     format!(
-        "Pixels per line W on each camera's input. Lines wider than W_MAX = {W_MAX} are processed on their \
-         first {W_MAX} pixels and flagged wide (the budget says so); the input still takes W clocks"
+        "Pixels per line W on each camera's input, at most W_MAX = {W_MAX} (the line processor would \
+         process the first {W_MAX} pixels of a wider line and flag it wide: refused)"
     )
 }
 
 fn height_help() -> String {
     format!(
-        "Lines per frame H (at least MIN_HEIGHT = {MIN_HEIGHT}: a row's output waits for the {} rows below it)",
+        "Lines per frame H (at least MIN_HEIGHT = {MIN_HEIGHT}: a row's output waits for the {} rows below it; \
+         at most {MAX_HEIGHT}, the line processor's row count)",
         MIN_HEIGHT - 1
     )
 }

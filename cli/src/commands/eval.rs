@@ -50,7 +50,7 @@ pub(crate) struct EvalArgs {
     /// Run each pair through the cycle-accurate line processor instead (the default mode in
     /// hardware) and report its exact_px, exact_depth_px, agree_quarter_px, px_per_clk,
     /// stall_cycles, latency_cycles, bad2, nonocc_bad2 and golden's bad2 with the same stages.
-    #[arg(long, conflicts_with_all = ["mode", "ref_view", "ends", "hardware_parity"])]
+    #[arg(long, conflicts_with_all = ["mode", "ref_view", "ends", "hardware_parity", "dispmin"])]
     rtl: bool,
     /// With --rtl: what simulates the line processor [default: verilator if installed, else rust-hdl].
     #[arg(long, value_enum, requires = "rtl")]
@@ -60,7 +60,9 @@ pub(crate) struct EvalArgs {
 }
 
 pub(crate) fn run(a: EvalArgs) -> Result<(), SimError> {
-    let params = a.method.params(2.0)?;
+    // Each pair's own bound (its dispmax + 1) replaces this one; the pair's
+    // evaluation checks the bounds again with it.
+    let params = a.method.params(f64::MAX)?;
     let dirs = expand_pair_dirs(&a.pairs)?;
     if a.rtl {
         return eval_rtl(&dirs, engine(a.engine), a.json);
@@ -69,8 +71,17 @@ pub(crate) fn run(a: EvalArgs) -> Result<(), SimError> {
     let bar = Progress::new(dirs.len(), "pairs", "eval", a.json);
     let mut reports = Vec::new();
     let mut diagnoses = Vec::new();
+    let mut failed = Vec::new();
     for dir in &dirs {
-        let outcome = evaluate_dir(dir, &job)?;
+        let outcome = match evaluate_dir(dir, &job) {
+            Ok(o) => o,
+            Err(e) => {
+                bar.suspend(|| eprintln!("error: {e} (pair skipped)"));
+                failed.push(dir.clone());
+                bar.inc();
+                continue;
+            }
+        };
         bar.suspend(|| super::print_notes(&outcome.notes));
         if a.json {
             bar.suspend(|| super::print_json(&outcome.report));
@@ -95,7 +106,17 @@ pub(crate) fn run(a: EvalArgs) -> Result<(), SimError> {
             print!("{}", diagnosis_table(&diagnoses));
         }
     }
-    Ok(())
+    pairs_failed(&failed, dirs.len())
+}
+
+/// An error naming the pairs that could not be evaluated (each reported
+/// when it failed, the others scored), or `Ok` when there are none.
+fn pairs_failed(failed: &[PathBuf], total: usize) -> Result<(), SimError> {
+    if failed.is_empty() {
+        return Ok(());
+    }
+    let names: Vec<String> = failed.iter().map(|d| d.display().to_string()).collect();
+    Err(SimError::Argument(format!("{} of {total} pairs could not be evaluated: {}", failed.len(), names.join(", "))))
 }
 
 /// `eval --rtl`: each pair through the line processor.
@@ -104,19 +125,31 @@ fn eval_rtl(dirs: &[PathBuf], engine: Engine, json: bool) -> Result<(), SimError
         eprintln!("engine: {}", engine.name());
     }
     let mut reports = Vec::new();
+    let mut failed = Vec::new();
     for dir in dirs {
-        let pair = load_pair_dir(dir)?;
-        super::print_notes(&pair.notes);
-        let bar = super::rtl::frame_progress(pair.left.height(), format!("{} through the line processor", pair.name), engine, json);
-        let report = evaluate_pair_rtl(&pair, 0, engine, |n| bar.set(n))?;
-        bar.finish();
-        if json {
-            super::print_json(&report);
+        let one = || -> Result<_, SimError> {
+            let pair = load_pair_dir(dir)?;
+            super::print_notes(&pair.notes);
+            let bar = super::rtl::frame_progress(pair.left.height(), format!("{} through the line processor", pair.name), engine, json);
+            let report = evaluate_pair_rtl(&pair, 0, engine, |n| bar.set(n));
+            bar.finish();
+            report
+        };
+        match one() {
+            Ok(report) => {
+                if json {
+                    super::print_json(&report);
+                }
+                reports.push(report);
+            }
+            Err(e) => {
+                eprintln!("error: {e} (pair skipped)");
+                failed.push(dir.clone());
+            }
         }
-        reports.push(report);
     }
     if !json {
         print!("{}", rtl_markdown_table(&reports));
     }
-    Ok(())
+    pairs_failed(&failed, dirs.len())
 }

@@ -144,7 +144,7 @@ use rtl::params::{
 use rtl::stream::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
 use rtl::post::row_check::{row_check_cycles, row_check_period, ROW_RESTART_LAG, ROW_START_LAG};
 use rtl::stream::skid_buffer::SKID_LAG;
-use rtl::stereo_line_processor::{CHECK_REGISTER_LAG, INTERP_REGISTER_LAG, MEDIAN_REGISTER_LAG, OUTPUT_REGISTER_LAG};
+use rtl::stereo_line_processor::{CHECK_REGISTER_LAG, HEIGHT_BITS, INTERP_REGISTER_LAG, MEDIAN_REGISTER_LAG, OUTPUT_REGISTER_LAG};
 use rtl::matcher::record_memory::COPY_ADDR_BITS;
 use rtl::matcher::systolic_matcher::CHOICE_ADDR_BITS;
 use rtl::matcher::traceback::{traceback_cycles, WALK_LEAD};
@@ -199,6 +199,20 @@ pub enum BudgetError {
     TooFewRows {
         /// The rows asked for.
         height: usize,
+    },
+    /// `H > MAX_HEIGHT`.
+    #[error("--height {height}: the line processor's row count has HEIGHT_BITS = {HEIGHT_BITS} bits, at most {MAX_HEIGHT} rows a frame")]
+    TooManyRows {
+        /// The rows asked for.
+        height: usize,
+    },
+    /// `W > W_MAX`.
+    #[error(
+        "--width {width}: wider than the line processor's W_MAX = {W_MAX} pixels (it would process the first {W_MAX} of each line and flag it wide); this build has no configuration for wider lines"
+    )]
+    TooWide {
+        /// The width asked for.
+        width: usize,
     },
     /// `N = 0`.
     #[error("--n-max 0: budget the matcher for at least one declivity per line (a line without one costs it a clock)")]
@@ -314,6 +328,9 @@ const DEPTH_TABLE: &str = "depth table";
 /// median), and row `y + MEDIAN_HALF`'s check for row `y + MEDIAN_HALF +
 /// 1`; the first output row leaves on that path only if that row exists.
 pub const MIN_HEIGHT: usize = MEDIAN_HALF + 2;
+/// The most rows a frame can have: the largest `height` the line
+/// processor's `HEIGHT_BITS`-bit input takes.
+pub const MAX_HEIGHT: usize = (1 << HEIGHT_BITS) - 1;
 
 /// `DP16KD`s of one `rtl::primitives::block_ram::BlockRam` of `words` words of
 /// `word_bits` bits: one per [`DP16KD_WIDTH`] bits of width and
@@ -892,11 +909,9 @@ impl Resources {
 pub struct Budget {
     pub width: usize,
     pub height: usize,
-    /// Pixels stored and processed per line, `min(W, W_MAX)`.
+    /// Pixels stored and processed per line, `W' = min(W, W_MAX)` (`W`:
+    /// wider lines are refused).
     pub stored_width: usize,
-    /// `W > W_MAX`: every line is processed on its first `W_MAX` pixels and
-    /// flagged wide.
-    pub wide: bool,
     pub n_max: usize,
     pub dispmax: f64,
     pub clock_mhz: f64,
@@ -971,6 +986,12 @@ fn validate(r: &BudgetRequest) -> Result<Sizes, BudgetError> {
     }
     if r.height < MIN_HEIGHT {
         return Err(BudgetError::TooFewRows { height: r.height });
+    }
+    if r.height > MAX_HEIGHT {
+        return Err(BudgetError::TooManyRows { height: r.height });
+    }
+    if r.width > W_MAX {
+        return Err(BudgetError::TooWide { width: r.width });
     }
     if r.n_max == 0 {
         return Err(BudgetError::NoDeclivities);
@@ -1089,12 +1110,6 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     let frame_time_ms = frame_cycles as f64 / (r.clock_mhz * 1e3);
 
     let mut notes = Vec::new();
-    if r.width > W_MAX {
-        notes.push(format!(
-            "W = {} > W_MAX = {W_MAX}: the detector processes the first {W_MAX} pixels of each line, accepts and drops the rest, and flags the line wide; the budget uses W' = {W_MAX} stored pixels, the input still takes W clocks per line",
-            r.width
-        ));
-    }
     if r.n_max >= r.width {
         notes.push(format!(
             "N = {} ≥ W = {}: a line of W pixels has at most W − 1 declivities, so the matcher's worst line is pessimistic here",
@@ -1159,7 +1174,6 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
         width: r.width,
         height: r.height,
         stored_width: sizes.stored_width,
-        wide: r.width > W_MAX,
         n_max: r.n_max,
         dispmax: r.dispmax,
         clock_mhz: r.clock_mhz,
@@ -1555,13 +1569,20 @@ mod tests {
         }
     }
 
+    /// A frame rate is never given for pixels the hardware does not
+    /// process, and sizes beyond the hardware's are refused before anything
+    /// is allocated for them.
     #[test]
-    fn a_line_wider_than_w_max_is_budgeted_on_w_max_pixels_and_says_so() {
-        let b = budget(&request(W_MAX + 476, N_MAX, N_CELLS)).unwrap();
-        assert!(b.wide && b.stored_width == W_MAX);
-        assert_eq!(b.input_cycles_per_line, W_MAX as u64 + 476);
-        assert!(b.notes.iter().any(|n| n.contains("wide") && n.contains("W_MAX")), "{:?}", b.notes);
-        assert_eq!(b.stages[0].latency_cycles, SKID_LAG as u64 + (W_MAX + 476 - 1) as u64 + marker_latency_estimate(W_MAX));
+    fn lines_wider_than_w_max_and_frames_taller_than_the_row_count_are_refused() {
+        assert!(budget(&request(W_MAX, N_MAX, N_CELLS)).is_ok());
+        for w in [W_MAX + 1, W_MAX + 476, usize::MAX] {
+            assert_eq!(budget(&request(w, N_MAX, N_CELLS)), Err(BudgetError::TooWide { width: w }));
+        }
+        let tall = |height| BudgetRequest { height, ..request(640, N_MAX, N_CELLS) };
+        assert!(budget(&tall(MAX_HEIGHT)).is_ok());
+        for h in [MAX_HEIGHT + 1, 300_000_000, usize::MAX] {
+            assert_eq!(budget(&tall(h)), Err(BudgetError::TooManyRows { height: h }));
+        }
     }
 
     #[test]

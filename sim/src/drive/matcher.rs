@@ -347,7 +347,7 @@ pub fn golden_match(reference: &MatchLine, other: &MatchLine, dispmax: u32, rule
     let g = gmax(dt_r, dt_o);
     let dispmax = dispmax as f64 / (1u32 << POS_FRAC_BITS) as f64;
     let mode = golden_mode(rule);
-    let table = GainTable::from_fn(r.len(), o.len(), |i, j| node_gain(&r[i], &o[j], g, dispmax, RefView::Left, mode));
+    let table = GainTable::from_fn(r.len(), o.len(), |i, j| node_gain(&r[i], &o[j], g, (0.0, dispmax), RefView::Left, mode));
     let tables = prefix_max_dp(&table);
     // golden::dp::traceback, keeping the last cell it decides on.
     let (mut i, mut j) = (r.len(), o.len());

@@ -90,12 +90,14 @@ fn parse_meta(text: &str) -> HashMap<String, String> {
         .collect()
 }
 
-/// The first number in a string (`"55 (Middlebury eval used ndisp=60)"` → 55).
+/// The number a value starts with, its sign included
+/// (`"55 (Middlebury eval used ndisp=60)"` → 55, `"-3"` → −3); `None` when
+/// the value does not start with one.
 fn first_number(s: &str) -> Option<f64> {
-    let start = s.find(|c: char| c.is_ascii_digit())?;
-    let rest = &s[start..];
-    let end = rest.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(rest.len());
-    rest[..end].parse().ok()
+    let s = s.trim_start();
+    let sign = usize::from(s.starts_with(['-', '+']));
+    let end = s[sign..].find(|c: char| !(c.is_ascii_digit() || c == '.')).map_or(s.len(), |e| e + sign);
+    s[..end].parse().ok().filter(|v: &f64| v.is_finite())
 }
 
 /// The scale of the ground-truth file `gt_name` from a `scale` value: where
@@ -182,7 +184,10 @@ pub fn load_pair_dir(dir: &Path) -> Result<PairData, SimError> {
     let meta_text = std::fs::read_to_string(&meta_path).map_err(|source| SimError::Io { path: meta_path.clone(), source })?;
     let meta = parse_meta(&meta_text);
     let get = |k: &str| meta.get(k).ok_or_else(|| pair_err(&meta_path, format!("has no `{k}:` line")));
-    let dispmax = first_number(get("dispmax")?).ok_or_else(|| pair_err(&meta_path, "`dispmax:` holds no number"))?;
+    let dispmax = first_number(get("dispmax")?).ok_or_else(|| pair_err(&meta_path, "`dispmax:` does not start with a number"))?;
+    if dispmax <= 0.0 {
+        return Err(pair_err(&meta_path, format!("`dispmax:` must be positive (got {dispmax})")));
+    }
     let scale_value = get("scale")?.clone();
 
     let left_path = first_existing(dir, &["left_gray.png", "left.png"]).ok_or_else(|| pair_err(dir, "has no left_gray.png or left.png"))?;
@@ -208,15 +213,18 @@ pub fn load_pair_dir(dir: &Path) -> Result<PairData, SimError> {
 
     let gt_path = first_existing(dir, &["disp_gt.png", "disp_gt.pgm"]).ok_or_else(|| pair_err(dir, "has no disp_gt.png or disp_gt.pgm"))?;
     let gt_name = gt_path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
-    let scale = scale_for(&scale_value, gt_name).ok_or_else(|| pair_err(&meta_path, "`scale:` holds no number"))?;
+    let scale = scale_for(&scale_value, gt_name).ok_or_else(|| pair_err(&meta_path, "`scale:` does not start with a number"))?;
     if scale <= 0.0 {
-        return Err(pair_err(&meta_path, "`scale:` must be positive"));
+        return Err(pair_err(&meta_path, format!("`scale:` must be positive (got {scale})")));
     }
     let gt_left = load_gt(&gt_path, scale, w, h)?;
     let gt_right = match first_existing(dir, &["disp_gt_right.png", "disp_gt_right.pgm"]) {
         Some(p) => {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
             let s = scale_for(&scale_value, name).unwrap_or(scale);
+            if s <= 0.0 {
+                return Err(pair_err(&meta_path, format!("`scale:` of {name} must be positive (got {s})")));
+            }
             Some(load_gt(&p, s, w, h)?)
         }
         None => None,

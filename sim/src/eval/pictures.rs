@@ -571,7 +571,7 @@ fn draw_graph(
     // Search area backgrounds.
     for (i, r) in reference.declivities.iter().enumerate() {
         for (j, o) in other.declivities.iter().enumerate() {
-            if in_search_area(pair_disparity(r.position, o.position, params.ref_view), params.dispmax) {
+            if in_search_area(pair_disparity(r.position, o.position, params.ref_view), params.dispmin, params.dispmax) {
                 let (x0, y0) = layout.cell_origin(i, j);
                 for y in y0..y0 + cell {
                     for x in x0..x0 + cell {

@@ -137,8 +137,9 @@ pub struct EvalReport {
     pub edge_matches: usize,
     /// `matches / declivities`.
     pub match_frac: f64,
-    /// % of matched reference declivities at valid-GT pixels within 1 px.
-    pub sparse_acc1: f64,
+    /// % of matched reference declivities at valid-GT pixels within 1 px;
+    /// `None` (JSON `null`) when no match lies at such a pixel (undefined).
+    pub sparse_acc1: Option<f64>,
     /// Matched declivities at valid-GT pixels (the denominator of `sparse_acc1`).
     pub sparse_n: usize,
     /// Dense scores, all pixels with ground truth.
@@ -190,7 +191,7 @@ fn timed_frame(pair: &PairData, params: &Params, runs: usize) -> Result<(FrameRe
 /// `params.dispmax` is replaced by the pair's bound.
 pub fn evaluate_pair(pair: &PairData, params: &Params, runs: usize) -> Result<(EvalReport, FrameResult), SimError> {
     let params = Params { dispmax: pair.dispmax + 1.0, ..*params };
-    params.validate()?;
+    params.validate().map_err(|e| SimError::PairDir { path: pair.dir.clone(), msg: e.to_string() })?;
     let gt = reference_gt(pair, params.ref_view)?;
     let (frame, ms) = timed_frame(pair, &params, runs)?;
     let all = dense_scores(&frame.disparity, gt, None);
@@ -215,7 +216,7 @@ pub fn evaluate_pair(pair: &PairData, params: &Params, runs: usize) -> Result<(E
         matches,
         edge_matches: frame.edge_matches(),
         match_frac: matches as f64 / declivities.max(1) as f64,
-        sparse_acc1: pct(ok, n),
+        sparse_acc1: (n > 0).then(|| pct(ok, n)),
         sparse_n: n,
         bad1: all.bad1,
         bad2: all.bad2,
@@ -235,20 +236,36 @@ pub fn markdown_table(reports: &[EvalReport]) -> String {
         "| pair | mode | size | declivities | matches | match_frac | sparse_acc1 | bad1 | bad2 | bad2v | density | nonocc bad2 | ms |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
+    let or_dash = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.1}"));
     for r in reports {
-        let nonocc = r.nonocc_bad2.map_or("—".to_string(), |v| format!("{v:.1}"));
         s += &format!(
-            "| {} | {} | {}x{} | {} | {} | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} | {:.2} |\n",
-            r.pair, r.mode, r.width, r.height, r.declivities, r.matches, r.match_frac, r.sparse_acc1, r.bad1, r.bad2, r.bad2v, r.density, nonocc, r.ms
+            "| {} | {} | {}x{} | {} | {} | {:.3} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {} | {:.2} |\n",
+            r.pair,
+            r.mode,
+            r.width,
+            r.height,
+            r.declivities,
+            r.matches,
+            r.match_frac,
+            or_dash(r.sparse_acc1),
+            r.bad1,
+            r.bad2,
+            r.bad2v,
+            r.density,
+            or_dash(r.nonocc_bad2),
+            r.ms
         );
     }
     if reports.len() > 1 {
         let n = reports.len() as f64;
         let mean = |f: fn(&EvalReport) -> f64| reports.iter().map(f).sum::<f64>() / n;
+        // sparse_acc1 over the pairs where it is defined.
+        let defined: Vec<f64> = reports.iter().filter_map(|r| r.sparse_acc1).collect();
+        let sparse_mean = (!defined.is_empty()).then(|| defined.iter().sum::<f64>() / defined.len() as f64);
         s += &format!(
-            "| mean | | | | | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | | {:.2} |\n",
+            "| mean | | | | | {:.3} | {} | {:.1} | {:.1} | {:.1} | {:.1} | | {:.2} |\n",
             mean(|r| r.match_frac),
-            mean(|r| r.sparse_acc1),
+            or_dash(sparse_mean),
             mean(|r| r.bad1),
             mean(|r| r.bad2),
             mean(|r| r.bad2v),
@@ -269,7 +286,9 @@ pub struct Diagnosis {
     /// where the ground truth puts it.
     pub with_partner: f64,
     /// Of the declivities with a true partner, % whose node passes both
-    /// photometric tests (`lpd < gmax` and `rpd < gmax`, eq. 7).
+    /// photometric tests (`lpd < gmax` and `rpd < gmax`, eq. 7), with the
+    /// distances of the frame's mode (offset-compensated in the modes that
+    /// match so).
     pub partner_both_sides: f64,
     /// … % that pass exactly one side (gain ≤ 0 in paper mode: never matched).
     pub partner_one_side: f64,
@@ -360,7 +379,7 @@ fn fates(frame: &FrameResult, gt: &[f64], y: usize) -> Vec<Fate> {
 /// Counts the causes of failure of `frame` against the reference view's
 /// ground truth `gt` (see [`Diagnosis`]).
 pub(crate) fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
-    use golden::gain::{gmax, lpd, rpd};
+    use golden::gain::{gmax, photometric_distances};
     let w = frame.width;
     let (mut rows_with, mut rows_none) = (0usize, 0usize);
     let (mut n_ref, mut partners, mut both, mut one, mut matched) = (0usize, 0usize, 0usize, 0usize, 0usize);
@@ -392,7 +411,9 @@ pub(crate) fn diagnose(frame: &FrameResult, gt: &[f64]) -> Diagnosis {
             n_ref += 1;
             let Some((j, od)) = true_partner(line, rd, d, frame.params.ref_view) else { continue };
             partners += 1;
-            let (l, rr) = (lpd(rd, od) as f64, rpd(rd, od) as f64);
+            // The mode's distances (eq. 4–5, or their offset-compensated
+            // form); a partner has the declivity's polarity, so they exist.
+            let Some((l, rr)) = photometric_distances(rd, od, frame.params.mode) else { continue };
             both += (l < g && rr < g) as usize;
             one += ((l < g) != (rr < g)) as usize;
             matched += line.matches.iter().any(|m| m.ref_index == i && m.other_index == j) as usize;
@@ -573,6 +594,25 @@ mod tests {
         assert!(fates(&frame, &off, 2).contains(&Fate::Wrong));
         assert_eq!(sparse_counts(&frame, &vec![0.0; 120 * 6]), (0, 0));
         assert!(fates(&frame, &vec![0.0; 120 * 6], 2).iter().all(|f| *f == Fate::NoTruth));
+    }
+
+    /// The right view 30 grey levels brighter: the paper's distances reject
+    /// every true partner, the robust mode's offset-compensated ones pass
+    /// them, and the diagnosis of each mode says so.
+    #[test]
+    fn diagnosis_tests_the_true_partners_with_the_modes_own_distances() {
+        let (l, r) = shifted(120, 6, 5);
+        let r = GreyImage::new(120, 6, r.pixels().iter().map(|&v| v + 30).collect()).unwrap();
+        let gt = vec![5.0; 120 * 6];
+        let both = |params: Params| {
+            let frame = process_frame(&l, &r, &params, Threads::One).unwrap();
+            let d = diagnose(&frame, &gt);
+            assert!(d.with_partner > 50.0, "{d:?}");
+            d.partner_both_sides
+        };
+        let (paper, robust) = (both(Params::paper(9.0).unwrap()), both(Params::new(9.0).unwrap()));
+        assert!(paper < 5.0, "paper: {paper} % pass both sides");
+        assert!(robust > 95.0, "robust: {robust} % pass both sides");
     }
 
     #[test]
