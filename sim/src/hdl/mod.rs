@@ -3,8 +3,9 @@
 //! of the Verilog against the Rust model under Icarus and Verilator and
 //! Verilator's lint ([`cosim`]), the traces each block's co-simulation
 //! replays ([`traces`]), whole frames through the line processor's Verilog
-//! ([`frame`]), and synthesis for the ECP5 with Yosys and nextpnr
-//! ([`synth`]), each in a work directory of its own ([`workdir`]).
+//! ([`frame`]), synthesis for the ECP5 with Yosys and nextpnr ([`synth`])
+//! and formal proofs with SymbiYosys ([`formal`]), each in a work directory
+//! of its own ([`workdir`]).
 
 pub(crate) mod workdir;
 pub(crate) mod primitives;
@@ -13,3 +14,4 @@ pub mod cosim;
 pub mod traces;
 pub mod frame;
 pub mod synth;
+pub mod formal;

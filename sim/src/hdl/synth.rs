@@ -818,7 +818,7 @@ fn pip_script_dirs() -> &'static [PathBuf] {
 }
 
 /// Finds a yowasp tool on `PATH` or in pip's script directories.
-fn find_yowasp(name: &str) -> Result<PathBuf, SynthError> {
+pub(crate) fn find_yowasp(name: &str) -> Result<PathBuf, SynthError> {
     if let Some(d) = std::env::var_os("DECLIVITY_YOWASP_BIN") {
         let p = PathBuf::from(d).join(name);
         if is_executable(&p) {
