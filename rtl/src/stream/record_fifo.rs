@@ -49,7 +49,7 @@ const RECORD_FIFO_ADDR_BITS: usize = DP16KD_ADDR_BITS;
 /// Beats the queue holds.
 pub const RECORD_FIFO_DEPTH: usize = 1 << RECORD_FIFO_ADDR_BITS;
 /// Registers the reads go ahead into.
-const RECORD_FIFO_AHEAD: usize = 4;
+pub const RECORD_FIFO_AHEAD: usize = 4;
 /// Clocks from a beat's write into an empty queue to its being on the
 /// outputs: the write, the RAM's read and output registers, the ring.
 pub const RECORD_FIFO_LAG: usize = 4;

@@ -27,6 +27,34 @@ use crate::hdl::workdir::{find_on_path, unique_dir};
 /// bits of `tdata`.
 pub const SKID_BUFFER_PROPERTIES: &str = include_str!("formal/skid_buffer.sv");
 
+/// The record queue's contract (`rtl::stream::record_fifo`): no overflow
+/// (at most `DEPTH` beats held, no unread word written over), no underflow
+/// (a beat leaves only from the ring, a word is read only once written),
+/// the count equal to the writes minus the beats that left, the ring's
+/// count and the flags the count's, and a place kept for a line's marker
+/// after every record. Parameters `PTR`, `DEPTH`, `AHEAD`; the block RAMs
+/// are [`free_dp16kd`].
+pub const RECORD_FIFO_PROPERTIES: &str = include_str!("formal/record_fifo.sv");
+
+/// The `DP16KD` simulation model's ports and parameters with a read port
+/// that gives any value on any clock (`anyseq`): for the proofs of blocks
+/// whose contract reads no data, an over-approximation of the RAM that
+/// keeps the solver off its 18 432 bits.
+pub fn free_dp16kd() -> String {
+    let model = crate::hdl::primitives::DP16KD_MODEL;
+    let start = model.find("module DP16KD(").expect("the model declares DP16KD");
+    let ports_end = start + model[start..].find(");").expect("the model's port list ends") + 2;
+    let params: Vec<&str> = model[ports_end..].lines().filter(|l| l.trim_start().starts_with("parameter")).collect();
+    let bus = |name: &str| (0..18).rev().map(|k| format!("{name}{k}")).collect::<Vec<_>>().join(", ");
+    format!(
+        "{}\n{}\n  (* anyseq *) reg [17:0] f_any;\n  assign {{{}}} = f_any;\n  assign {{{}}} = 18'b0;\nendmodule\n",
+        &model[start..ports_end],
+        params.join("\n"),
+        bus("DOB"),
+        bus("DOA")
+    )
+}
+
 /// The solver `yosys-smtbmc` drives (Debian's boolector 1.5 is older than
 /// the pinned smtbmc's SMT-LIB).
 const SOLVER: &str = "z3";

@@ -9,7 +9,7 @@
 //! beside the design, as `models.v`.
 
 /// Behavioural model of `DP16KD` as `rtl::primitives::block_ram::BlockRam` uses it.
-const DP16KD_MODEL: &str = include_str!("models/ecp5_dp16kd_sim.v");
+pub(crate) const DP16KD_MODEL: &str = include_str!("models/ecp5_dp16kd_sim.v");
 
 /// Behavioural model of `MULT18X18D` as `rtl::primitives::dsp_multiplier::DspMultiplier` uses it.
 const MULT18X18D_MODEL: &str = include_str!("models/ecp5_mult18x18d_sim.v");
