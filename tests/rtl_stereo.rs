@@ -43,10 +43,7 @@ fn check_blocks_and_golden_after_matcher(run: &StereoRun, blocks: &BlocksRun, wi
 fn against_golden(run: &StereoRun, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> (f64, f64, f64) {
     let golden = golden_map(left, right, dispmax).expect("golden runs");
     let rtl = run.disparity_px(left.height());
-    let mut depth = vec![0u16; rtl.len()];
-    for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
-        dst.copy_from_slice(row);
-    }
+    let depth = run.depth_mm(left.height());
     let golden_depth = golden_depth_map(&golden, &DepthCamera::default());
     (exact_share(&rtl, &golden), exact_share(&depth, &golden_depth), agree_quarter_px(&rtl, &golden))
 }

@@ -206,7 +206,7 @@ mod frames {
             assert_eq!(run.lines_full > 0, over_n_max, "{what}: lines over N_MAX = {N_MAX} flagged full ({})", run.lines_full);
             let rtl = run.disparity_px(left.height());
             let gold = golden_map(&left, &right, dispmax).expect("golden runs");
-            let depth: Vec<u16> = run.depth_rows.iter().flatten().copied().collect();
+            let depth = run.depth_mm(left.height());
             let gold_depth = golden_depth_map(&gold, &DepthCamera::default());
             let matched = rtl.iter().filter(|&&d| d > 0.0).count();
             eprintln!("{what}: {} clocks, {} lines full, {matched} pixels with a disparity", run.cycles, run.lines_full);

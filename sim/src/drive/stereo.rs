@@ -238,6 +238,16 @@ impl StereoRun {
         }
         out
     }
+
+    /// The depths (mm, row-major, 0 = none) of a frame of `height` rows;
+    /// rows that did not come out stay 0.
+    pub fn depth_mm(&self, height: usize) -> Vec<u16> {
+        let mut out = vec![0; self.width * height];
+        for (row, dst) in self.depth_rows.iter().zip(out.chunks_mut(self.width)) {
+            dst.copy_from_slice(row);
+        }
+        out
+    }
 }
 
 /// A run ends when nothing has come in or out for this many clocks after

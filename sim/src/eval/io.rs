@@ -100,15 +100,22 @@ fn first_number(s: &str) -> Option<f64> {
     s[..end].parse().ok().filter(|v: &f64| v.is_finite())
 }
 
-/// The scale of the ground-truth file `gt_name` from a `scale` value: where
-/// the value lists several (`"1 (npz float) ; 256 (disp_gt.png)"`), the one
-/// naming the file, else the first number.
-fn scale_for(scale_value: &str, gt_name: &str) -> Option<f64> {
-    scale_value
+/// The scale of the ground-truth file `gt_name` from the `scale` value of
+/// `meta_path`: where the value lists several (`"1 (npz float) ; 256
+/// (disp_gt.png)"`), the one naming the file, else the number the value
+/// starts with, else `fallback`; refused unless positive.
+fn scale_for(meta_path: &Path, scale_value: &str, gt_name: &str, fallback: Option<f64>) -> Result<f64, SimError> {
+    let scale = scale_value
         .split(';')
         .find(|part| part.contains(gt_name))
         .and_then(first_number)
         .or_else(|| first_number(scale_value))
+        .or(fallback)
+        .ok_or_else(|| pair_err(meta_path, "`scale:` does not start with a number"))?;
+    if scale <= 0.0 {
+        return Err(pair_err(meta_path, format!("`scale:` of {gt_name} must be positive (got {scale})")));
+    }
+    Ok(scale)
 }
 
 /// A stereo pair with ground truth, read from a pair folder.
@@ -213,19 +220,12 @@ pub fn load_pair_dir(dir: &Path) -> Result<PairData, SimError> {
 
     let gt_path = first_existing(dir, &["disp_gt.png", "disp_gt.pgm"]).ok_or_else(|| pair_err(dir, "has no disp_gt.png or disp_gt.pgm"))?;
     let gt_name = gt_path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
-    let scale = scale_for(&scale_value, gt_name).ok_or_else(|| pair_err(&meta_path, "`scale:` does not start with a number"))?;
-    if scale <= 0.0 {
-        return Err(pair_err(&meta_path, format!("`scale:` must be positive (got {scale})")));
-    }
+    let scale = scale_for(&meta_path, &scale_value, gt_name, None)?;
     let gt_left = load_gt(&gt_path, scale, w, h)?;
     let gt_right = match first_existing(dir, &["disp_gt_right.png", "disp_gt_right.pgm"]) {
         Some(p) => {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
-            let s = scale_for(&scale_value, name).unwrap_or(scale);
-            if s <= 0.0 {
-                return Err(pair_err(&meta_path, format!("`scale:` of {name} must be positive (got {s})")));
-            }
-            Some(load_gt(&p, s, w, h)?)
+            Some(load_gt(&p, scale_for(&meta_path, &scale_value, name, Some(scale))?, w, h)?)
         }
         None => None,
     };

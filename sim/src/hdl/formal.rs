@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::hdl::synth::{find_yowasp, SynthError};
+use crate::hdl::synth::{find_yowasp, log_tail, SynthError};
 use crate::hdl::workdir::{find_on_path, unique_dir};
 
 /// The camera register slice's contract (`rtl::stream::skid_buffer`): a
@@ -127,13 +127,7 @@ pub fn prove(design: &str, depth: usize) -> Result<Proof, SynthError> {
         Some(2) => Outcome::Fail,
         Some(4) => Outcome::Unknown,
         _ => {
-            let lines: Vec<&str> = text.lines().collect();
-            return Err(SynthError::ToolFailed {
-                tool: SBY.into(),
-                status: out.status.to_string(),
-                workdir: work,
-                log_tail: lines[lines.len().saturating_sub(25)..].join("\n"),
-            });
+            return Err(SynthError::ToolFailed { tool: SBY.into(), status: out.status.to_string(), workdir: work, log_tail: log_tail(&text) });
         }
     };
     let mut failed_asserts: Vec<String> = text

@@ -722,14 +722,18 @@ fn run_tool(
     let mut text = std::fs::read_to_string(work.path.join(log)).unwrap_or_default();
     text.push_str(&String::from_utf8_lossy(&out.stdout));
     text.push_str(&String::from_utf8_lossy(&out.stderr));
-    let lines: Vec<&str> = text.lines().collect();
-    let tail = lines[lines.len().saturating_sub(25)..].join("\n");
     Err(SynthError::ToolFailed {
         tool: name.into(),
         status: out.status.to_string(),
         workdir: work.path.clone(),
-        log_tail: tail,
+        log_tail: log_tail(&text),
     })
+}
+
+/// The last lines of a failed tool's log, for [`SynthError::ToolFailed`].
+pub(crate) fn log_tail(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(25)..].join("\n")
 }
 
 /// Runs both yowasp tools once with `-V`, one caller at a time: the first call of

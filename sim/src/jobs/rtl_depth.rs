@@ -152,10 +152,7 @@ fn run_pair(
     };
     let rtl = run.disparity_px(left.height());
     let gold = golden_map(left, right, dispmax)?;
-    let mut depth = vec![0u16; left.width() * left.height()];
-    for (dst, row) in depth.chunks_mut(left.width()).zip(&run.depth_rows) {
-        dst.iter_mut().zip(row).for_each(|(d, &z)| *d = z);
-    }
+    let depth = run.depth_mm(left.height());
     let gold_depth = golden_depth_map(&gold, &rtl::post::depth_stage::DepthCamera::default());
     let report = StereoReport {
         image: name.to_string(),
