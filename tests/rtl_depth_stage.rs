@@ -63,7 +63,7 @@ fn sweep(cam: DepthCamera) -> usize {
 /// golden's numerator and table for `cam` are the rtl's, entry for entry.
 fn check_table(cam: &DepthCamera) -> Result<(), String> {
     let hw = DepthScale::of(cam).map_err(|e| e.to_string())?;
-    let limits = sim::formats::hardware_limits();
+    let limits = sim::Config::Sd.limits();
     let gold = golden::hardware::depth::DepthScale::of(&golden_camera(cam), limits).map_err(|e| e.to_string())?;
     if (gold.k, gold.scale) != (hw.k, hw.scale) {
         return Err(format!("{cam:?}: golden K {} s {}, rtl K {} s {}", gold.k, gold.scale, hw.k, hw.scale));
@@ -166,7 +166,7 @@ fn every_disparity_gives_golden_depth_at_both_ends_of_the_camera_range() {
 #[test]
 fn golden_depth_formats_numerator_and_table_equal_the_rtl() {
     use golden::hardware::depth as g;
-    let limits = sim::formats::hardware_limits();
+    let limits = sim::Config::Sd.limits();
     assert_eq!(g::depth_k_limit(limits), DEPTH_K_LIMIT);
     assert_eq!(g::depth_weight_bits(limits) as usize, DEPTH_WEIGHT_BITS);
     assert_eq!((g::DEPTH_INDEX_BITS as usize, g::DEPTH_SCALE_MIN, g::DEPTH_SCALE_MAX), (DEPTH_INDEX_BITS, DEPTH_SCALE_MIN, DEPTH_SCALE_MAX));
@@ -297,10 +297,10 @@ fn cameras_outside_the_range_are_refused_with_typed_errors() {
 /// one row per line period: every depth as golden's.
 fn real_pair(pair: &str, cam: DepthCamera) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
-    let disparity = sim::drive::stereo::golden_map(&data.left, &data.right, data.dispmax + 1.0).expect("golden runs");
+    let disparity = sim::drive::stereo::golden_map(&data.left, &data.right, data.dispmax + 1.0, sim::Config::Sd).expect("golden runs");
     let w = data.left.width();
-    let lines: Vec<Vec<u64>> = disparity.chunks(w).map(|r| r.iter().map(|&d| disparity_lsb(d)).collect()).collect();
-    let want = sim::drive::stereo::golden_depth_map(&disparity, &cam);
+    let lines: Vec<Vec<u64>> = disparity.chunks(w).map(|r| r.iter().map(|&d| disparity_lsb(d, sim::Config::Sd)).collect()).collect();
+    let want = sim::drive::stereo::golden_depth_map(&disparity, &cam, sim::Config::Sd);
     let gold = golden_stage(&cam).expect("in range");
     let mut sim = DepthStageSim::new(cam).expect("in range");
     let run = sim.run(&lines, w + 8);

@@ -398,7 +398,7 @@ struct ThresholdStep {
 /// from `x - 1` (falling ones mirrored), `L` taken from the base line and
 /// clamped so that all four are grey levels.
 fn place_threshold_steps(base: &[u8], steps: &[ThresholdStep]) -> Option<(Vec<u8>, u32)> {
-    let limits = sim::formats::hardware_limits();
+    let limits = sim::Config::Sd.limits();
     let mut amps: Vec<i32> = vec![1; steps.len()];
     for _ in 0..8 {
         let mut line = base.to_vec();
@@ -626,7 +626,7 @@ fn golden_parity_derives_the_threshold_engines_constants_of_rtl_params() {
     assert_eq!(g::K_FRAC, r::K_FRAC);
     assert_eq!(g::dt_floor_lsb(r::DT_FRAC_BITS as u32) as u64, r::DT_FLOOR);
     // golden's default hardware is the generated one.
-    assert_eq!(golden::hardware::HardwareLimits::default(), sim::formats::hardware_limits());
+    assert_eq!(golden::hardware::HardwareLimits::default(), sim::Config::Sd.limits());
 }
 
 // ===========================================================================

@@ -278,7 +278,7 @@ fn reciprocal_table_is_within_its_relative_bound_of_every_distance_of_its_bucket
 #[test]
 fn golden_reciprocal_table_and_formats_equal_the_rtl_entry_for_entry() {
     use golden::hardware::interpolate as g;
-    let limits = sim::formats::hardware_limits();
+    let limits = sim::Config::Sd.limits();
     assert_eq!(g::position_bits(limits) as usize, POS_BITS);
     assert_eq!(g::recip_shift(limits) as usize, RECIP_SHIFT);
     assert_eq!((g::RECIP_INDEX_BITS as usize, g::RECIP_BITS as usize, g::WEIGHT_FRAC_BITS as usize), (RECIP_INDEX_BITS, RECIP_BITS, WEIGHT_FRAC_BITS));
@@ -311,7 +311,7 @@ fn the_edge_jump_is_golden_default_mode_edge_jump() {
 fn real_pair(pair: &str) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::formats::hardware_limits());
+    params.hardware = Some(sim::Config::Sd.limits());
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = data.left.width();
     let lines: Vec<AnchorLine> = frame.lines.iter().enumerate().map(|(y, l)| fixed_anchors(&l.matches, w, y == 0)).collect();

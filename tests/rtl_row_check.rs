@@ -318,7 +318,7 @@ fn the_thresholds_are_golden_consistency_bounds() {
 fn real_pair(pair: &str) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::formats::hardware_limits());
+    params.hardware = Some(sim::Config::Sd.limits());
     assert!(params.mode.features().consistent, "the default mode checks across rows");
     let frame = unchecked_rows(&data.left, &data.right, &params);
     let w = data.left.width();
@@ -334,7 +334,7 @@ fn real_pair(pair: &str) {
     eprintln!("{pair}: {} rows, {n} matches, {kept} kept, at most {max_n} per row, at most {worst} clocks a row (line {w}), {} clocks", frame.len(), sim.cycle);
     assert!(kept > n / 2 && kept < n, "{pair}: the check keeps most but not all");
     // golden's frame in hardware parity keeps the same matches.
-    let limits = sim::formats::hardware_limits();
+    let limits = sim::Config::Sd.limits();
     let golden_frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     for (y, (line, out)) in golden_frame.lines.iter().zip(&run.rows).enumerate() {
         let kept: Vec<FixedMatch> = line

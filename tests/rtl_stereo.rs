@@ -41,10 +41,10 @@ fn check_blocks_and_golden_after_matcher(run: &StereoRun, blocks: &BlocksRun, wi
 /// the shares of pixels with the same disparity and the same depth, and
 /// within 1/4 px.
 fn against_golden(run: &StereoRun, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> (f64, f64, f64) {
-    let golden = golden_map(left, right, dispmax).expect("golden runs");
+    let golden = golden_map(left, right, dispmax, sim::Config::Sd).expect("golden runs");
     let rtl = run.disparity_px(left.height());
     let depth = run.depth_mm(left.height());
-    let golden_depth = golden_depth_map(&golden, &DepthCamera::default());
+    let golden_depth = golden_depth_map(&golden, &DepthCamera::default(), sim::Config::Sd);
     (exact_share(&rtl, &golden), exact_share(&depth, &golden_depth), agree_quarter_px(&rtl, &golden))
 }
 
@@ -58,7 +58,7 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
     eprintln!("tsukuba rows 100..116: exact {exact:.4}, exact depth {exact_depth:.4}, agree {agree:.4}, latency {:?}, px/clk {:.4}", run.latency_cycles(), run.px_per_clk());
     assert_eq!(run.rows.len(), left.height());
     assert_eq!((run.records_dropped, run.lines_dropped, run.pixels_dropped, run.stall_cycles), (0, 0, 0, 0));
-    let blocks = blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
+    let blocks = blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax, sim::Config::Sd).expect("dispmax"));
     check_blocks_and_golden_after_matcher(&run, &blocks, left.width());
     // From the pixels on, golden's hardware parity (the detector's formats
     // and the steps after the matcher): every pixel.
@@ -68,7 +68,7 @@ fn a_band_of_tsukuba_through_the_line_processor_equals_its_blocks_one_after_the_
 /// Runs the pair through the default line processor (`dispmax` px) and
 /// prints what came out, the speed and the queues' peaks.
 fn run_and_report(what: &str, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> StereoRun {
-    let mut sim = StereoSim::<N_CELLS>::robust(sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
+    let mut sim = StereoSim::<N_CELLS>::robust(sim::formats::dispmax_lsb(dispmax, sim::Config::Sd).expect("dispmax"));
     let t = std::time::Instant::now();
     let run = sim.run(left, right, 0, |_| {});
     let secs = t.elapsed().as_secs_f64();
@@ -183,6 +183,6 @@ fn lines_after_a_backlog_are_held_in_the_record_queues_not_dropped() {
     assert_eq!(peak.in_flight as usize, LINES_IN_FLIGHT, "{peak:?}");
     assert!(peak.held_clocks > 0, "{peak:?}");
     assert!(peak.interp_lines as usize <= LINE_QUEUE, "{peak:?}");
-    let blocks = blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax).expect("dispmax"));
+    let blocks = blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax, sim::Config::Sd).expect("dispmax"));
     check_blocks_and_golden_after_matcher(&run, &blocks, width);
 }

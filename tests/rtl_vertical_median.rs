@@ -243,10 +243,10 @@ fn the_median_has_golden_default_mode_rows_and_one_buffer_per_row_above() {
 fn robust_map_before_median(pair: &str) -> (Vec<f64>, usize) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::formats::hardware_limits());
+    params.hardware = Some(sim::Config::Sd.limits());
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = frame.width;
-    let limits = sim::formats::hardware_limits();
+    let limits = sim::Config::Sd.limits();
     let interpolator = Interpolator::of_features(limits, &params.mode.features());
     let mut map = vec![0.0; w * frame.height];
     for (line, out) in frame.lines.iter().zip(map.chunks_mut(w)) {

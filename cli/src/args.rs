@@ -7,9 +7,9 @@ use std::ops::Range;
 use clap::{Args, ValueEnum};
 use golden::{EndRule, Mode, Params, RefView};
 use rtl::matcher::declivity_matcher::GainRule;
-use rtl::params::{N_MAX, POS_FRAC_BITS, W_MAX};
+use rtl::params::POS_FRAC_BITS;
 use sim::jobs::rtl_depth::Engine;
-use sim::SimError;
+use sim::{Config, SimError};
 
 /// `A..B` (rows A to B-1, not empty).
 pub(crate) fn parse_range(s: &str) -> Result<Range<usize>, String> {
@@ -57,6 +57,8 @@ pub(crate) struct MethodArgs {
     pub ends: CliEnds,
     #[arg(long, help = hardware_parity_help())]
     pub hardware_parity: bool,
+    #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("--hardware-parity and --rtl"))]
+    pub config: CliConfig,
     /// Lower search bound in px: a match needs dispmin < d < dispmax (eq. 6; the paper's 0).
     /// For a verged or offset rig, or a scene with a known nearest range. Golden only: the
     /// line processor has none, so --hardware-parity takes 0 only.
@@ -66,8 +68,8 @@ pub(crate) struct MethodArgs {
 
 fn hardware_parity_help() -> String {
     format!(
-        "Run as the hardware does: declivities of the first W_MAX = {W_MAX} pixels of a line, the first \
-         N_MAX = {N_MAX} kept, found and placed with the detector's fixed-point values (d_t in 1/{} grey \
+        "Run as the hardware of --config does: declivities of the first W_MAX pixels of a line, the first \
+         N_MAX kept, found and placed with the detector's fixed-point values (d_t in 1/{} grey \
          level, positions the eq. 3 divider's quotients in 1/{} px: the records `rtl detect` sends), and \
          matched with d_t rounded down to 1/{} grey level, as `rtl depth` compares with",
         1u32 << rtl::params::DT_FRAC_BITS,
@@ -91,7 +93,7 @@ impl MethodArgs {
                 CliEnds::Hold => EndRule::Hold,
                 CliEnds::None => EndRule::Empty,
             },
-            hardware: self.hardware_parity.then(sim::formats::hardware_limits),
+            hardware: self.hardware_parity.then(|| self.config.0.limits()),
         };
         p.validate()?;
         Ok(p)
@@ -120,6 +122,41 @@ impl ValueEnum for CliMode {
         Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.summary()))
     }
 }
+
+/// A configuration of the line processor on the command line (`--config`):
+/// its names and sizes come from `sim::config`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct CliConfig(pub Config);
+
+impl ValueEnum for CliConfig {
+    fn value_variants<'a>() -> &'a [Self] {
+        &[CliConfig(Config::Sd), CliConfig(Config::Hd)]
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let s = self.0.sizes();
+        Some(clap::builder::PossibleValue::new(s.config).help(format!(
+            "lines up to W_MAX = {} px, N_MAX = {} declivities a line, {} gain cells of {} rows",
+            s.w_max, s.n_max, s.cells, s.rows_per_cell
+        )))
+    }
+}
+
+/// A size of every configuration, for help texts: `sd 1024, hd 2048`.
+pub(crate) fn per_config(size: impl Fn(&sim::config::Sizes) -> usize) -> String {
+    Config::ALL.iter().map(|c| format!("{} {}", c.name(), size(&c.sizes()))).collect::<Vec<_>>().join(", ")
+}
+
+/// The help of a `--config` option that applies to `what`.
+pub(crate) fn config_help(what: &str) -> String {
+    let names: Vec<String> = Config::ALL
+        .iter()
+        .map(|c| format!("{} (lines up to {} px, {} declivities each)", c.name(), c.sizes().w_max, c.sizes().n_max))
+        .collect();
+    format!("Configuration of the line processor for {what}: {}", names.join(", "))
+}
+
+const _: () = assert!(Config::ALL.len() == 2, "CliConfig::value_variants lists every configuration");
 
 /// The reference view.
 #[derive(ValueEnum, Debug, Clone, Copy)]
@@ -202,5 +239,11 @@ impl CliTop {
             CliTop::Interpolator => Top::Interpolator,
             CliTop::Stereo => Top::Stereo,
         }
+    }
+}
+
+impl std::fmt::Display for CliConfig {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
     }
 }

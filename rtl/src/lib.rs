@@ -14,7 +14,8 @@
 //!   depth stage;
 //! - [`primitives`]: block RAM, LUT RAM, logic ROM and DSP multipliers;
 //! - [`stereo_line_processor`]: the top level joining them;
-//! - [`params`]: the generation-time sizes and fixed-point formats.
+//! - [`params`]: the generation-time sizes and fixed-point formats, derived
+//!   from the [`config`]uration.
 //!
 //! Each block generates Verilog that is co-simulated bit-exactly against the
 //! Rust model and checked against `golden`.
@@ -28,23 +29,8 @@
 // read them with `cargo doc --document-private-items`.
 #![allow(rustdoc::private_intra_doc_links)]
 
-pub mod params;
-pub mod stream;
-pub mod detector;
-pub mod matcher;
-pub mod post;
-pub mod primitives;
-pub mod stereo_line_processor;
-
-pub use rust_hdl;
-
-/// One clock of a block under direct drive in the unit tests: rising edge,
-/// settle, falling edge, settle.
-#[cfg(test)]
-pub(crate) fn tick<B: rust_hdl::prelude::Block>(uut: &mut B, clock: fn(&mut B) -> &mut rust_hdl::prelude::Signal<rust_hdl::prelude::In, rust_hdl::prelude::Clock>) {
-    use rust_hdl::prelude::*;
-    clock(uut).next = Clock::from(true);
-    assert!(simulate(uut, 100), "settles");
-    clock(uut).next = Clock::from(false);
-    assert!(simulate(uut, 100), "settles");
-}
+/// The configuration this crate is built for: `sd` (lines up to 1024
+/// pixels, 128 declivities each).
+#[path = "config/sd.rs"]
+pub mod config;
+include!("blocks.rs");

@@ -2,15 +2,19 @@
 //! derived from them.
 //!
 //! rust-hdl widths are const generics, and stable Rust cannot compute one
-//! const generic from another, so the sizes are constants here: change a
-//! parameter and every width below follows. The defaults are the sizes of
-//! `DESIGN.md` §3.
+//! const generic from another, so the sizes are constants here, derived
+//! from the two of the crate's configuration ([`crate::config`]: `W_MAX`
+//! and `N_MAX`): every width below follows from them. The same sources
+//! build one crate per configuration (`rtl` is `sd`, `rtl-hd` is `hd`).
 
 /// Bits of a grey level (8-bit images).
 pub const PIXEL_BITS: usize = 8;
 
+/// The configuration's name (`sd`, `hd`).
+pub const CONFIG: &str = crate::config::NAME;
+
 /// log2 of the maximum line width `W_MAX`.
-pub(crate) const W_MAX_BITS: usize = 10;
+pub(crate) const W_MAX_BITS: usize = crate::config::W_MAX_BITS;
 /// `W_MAX`: the widest line the detector stores (pixels beyond it are
 /// dropped and the line is flagged; see [`crate::detector::declivity_detector`]).
 pub const W_MAX: usize = 1 << W_MAX_BITS;
@@ -19,13 +23,14 @@ pub(crate) const X_BITS: usize = W_MAX_BITS;
 /// Address bits of the ping-pong line buffer: one bank bit above `x`.
 pub const LINE_BUF_ADDR_BITS: usize = W_MAX_BITS + 1;
 
-/// `N_MAX`: characteristic declivities kept per line. A line of the eight
-/// Middlebury pairs has at most 117 (motorcycle, 741 px wide), so 128
-/// covers every row with room to spare; the 129th and later declivities of
-/// a line are dropped and the line is flagged.
-pub const N_MAX: usize = 128;
+/// `N_MAX`: characteristic declivities kept per line; the later ones of a
+/// line are dropped and the line is flagged. A line of the eight Middlebury
+/// pairs has at most 117 (motorcycle, 741 px wide), so `sd`'s 128 covers
+/// every row with room to spare; up-scaled 2x (1482 px) the most is 155, in
+/// `hd`'s 256.
+pub const N_MAX: usize = 1 << crate::config::N_MAX_BITS;
 /// Bits of a per-line declivity count `0 ..= N_MAX`.
-pub(crate) const COUNT_BITS: usize = 8;
+pub(crate) const COUNT_BITS: usize = crate::config::N_MAX_BITS + 1;
 
 /// Bins of the |ΔI| histogram (one per grey-level difference).
 pub(crate) const HIST_BINS: usize = 1 << PIXEL_BITS;
@@ -83,7 +88,7 @@ pub(crate) const DIVIDEND_BITS: usize = S1_BITS + POS_FRAC_BITS - 1;
 // ---- The matcher (paper §III–IV, eq. 4–9).
 
 /// Bits of a declivity index `0 .. N_MAX` in a line (row `i`, column `j`).
-pub const INDEX_BITS: usize = 7;
+pub const INDEX_BITS: usize = crate::config::N_MAX_BITS;
 /// Bits of an anti-diagonal index `i + j ≤ 2 (N_MAX - 1)` of the matching
 /// table.
 pub const DIAG_BITS: usize = INDEX_BITS + 1;

@@ -12,7 +12,6 @@ use criterion::{criterion_group, criterion_main, Criterion};
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use golden::{process_frame, Mode, Params, Threads};
 use sim::eval::io::{load_pair_dir, stereo_data_dir};
-use sim::formats::hardware_limits;
 
 fn frame(c: &mut Criterion) {
     let dir = stereo_data_dir().join("cones");
@@ -28,7 +27,7 @@ fn frame(c: &mut Criterion) {
             b.iter(|| process_frame(&pair.left, &pair.right, &params, Threads::All).unwrap())
         });
     }
-    let parity = Params { hardware: Some(hardware_limits()), ..Params::with_mode(Mode::Robust, pair.dispmax + 1.0).expect("valid search bound") };
+    let parity = Params { hardware: Some(sim::Config::Sd.limits()), ..Params::with_mode(Mode::Robust, pair.dispmax + 1.0).expect("valid search bound") };
     g.bench_function("robust_hardware_parity_one_thread", |b| {
         b.iter(|| process_frame(&pair.left, &pair.right, &parity, Threads::One).unwrap())
     });

@@ -10,12 +10,6 @@ use rust_hdl::prelude::*;
 /// Stack of the threads that build and generate the large blocks.
 const BIG_STACK: usize = 1 << 30;
 
-/// The array sizes the matcher can be generated with (`--cells`): up to
-/// the sensor's `N_CELLS` cells of `ROWS_PER_CELL` rows, arrays of fewer
-/// than 16 cells dividing 16 (their phases share a word of the choice
-/// memory, `rtl::matcher::choice_word`).
-pub const MATCHER_CELLS: [usize; 5] = [2, 4, 8, 16, 32];
-
 /// Runs `f` on a thread with [`BIG_STACK`] of stack and returns its result;
 /// `what` names the work if it panics.
 pub(crate) fn on_big_stack<T: Send + 'static>(what: &str, f: impl FnOnce() -> T + Send + 'static) -> T {
@@ -26,13 +20,19 @@ pub(crate) fn on_big_stack<T: Send + 'static>(what: &str, f: impl FnOnce() -> T 
         .unwrap_or_else(|e| panic!("{what}: {e}"))
 }
 
-/// Builds and connects the matcher of `N` cells for the gain rule `rule`.
-pub(crate) fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
-    on_big_stack("building the matcher", move || {
-        let mut uut = Box::new(DeclivityMatcher::<N>::new(rule));
+/// Builds a block with `make` on a thread with [`BIG_STACK`] of stack and
+/// connects it; `what` names the work if it panics.
+pub(crate) fn build_block<B: Block + Send + 'static>(what: &str, make: impl FnOnce() -> B + Send + 'static) -> Box<B> {
+    on_big_stack(what, move || {
+        let mut uut = Box::new(make());
         uut.connect_all();
         uut
     })
+}
+
+/// Builds and connects the matcher of `N` cells for the gain rule `rule`.
+pub(crate) fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
+    build_block("building the matcher", move || DeclivityMatcher::<N>::new(rule))
 }
 
 /// Builds and connects the line processor: the matcher of `N` cells for

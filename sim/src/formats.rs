@@ -1,8 +1,9 @@
 //! Conversions between golden's real values and the hardware's fixed-point
 //! formats (`rtl::params`), in one place for every driver, job and report.
 
-use golden::hardware::HardwareLimits;
-use rtl::params::{DISPMAX_BITS, DT_FRAC_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_BITS, POS_FRAC_BITS, W_MAX};
+use rtl::params::POS_FRAC_BITS;
+
+use crate::config::Config;
 
 /// One pixel in the positions' unit, `1/2^POS_FRAC_BITS` px.
 pub(crate) const POSITION_UNIT: f64 = (1u32 << POS_FRAC_BITS) as f64;
@@ -15,10 +16,10 @@ pub(crate) fn position_lsb(x: f64) -> u32 {
 
 /// A real disparity (pixels, `0.0` = none) in the depth stage's input
 /// format: rounded to `POS_FRAC_BITS` fraction bits, at least one LSB when
-/// positive, at most the largest value of `POS_BITS` bits.
-pub fn disparity_lsb(d: f64) -> u64 {
+/// positive, at most the largest value of `config`'s `POS_BITS` bits.
+pub fn disparity_lsb(d: f64, config: Config) -> u64 {
     if d > 0.0 {
-        ((d * POSITION_UNIT).round() as u64).clamp(1, (1u64 << POS_BITS) - 1)
+        ((d * POSITION_UNIT).round() as u64).clamp(1, (1u64 << config.sizes().pos_bits) - 1)
     } else {
         0
     }
@@ -36,16 +37,18 @@ pub struct DispmaxError {
 
 /// `--dispmax` in the matcher's unit, `1/2^POS_FRAC_BITS` px: a finite
 /// value greater than 1 (eq. 6 searches `0 < d < dispmax`), at most
-/// `W_MAX`, on that grid. A bound of `W_MAX` is clamped to the largest the
-/// matcher's port holds, which no disparity inside a line reaches.
-pub fn dispmax_lsb(dispmax: f64) -> Result<u32, DispmaxError> {
+/// `config`'s `W_MAX`, on that grid. A bound of `W_MAX` is clamped to the
+/// largest the matcher's port holds, which no disparity inside a line
+/// reaches.
+pub fn dispmax_lsb(dispmax: f64, config: Config) -> Result<u32, DispmaxError> {
     let unit = POSITION_UNIT;
+    let (w_max, dispmax_bits) = (config.sizes().w_max, config.sizes().dispmax_bits);
     let err = |why: String| DispmaxError { dispmax, why };
     if !dispmax.is_finite() || dispmax <= 1.0 {
         return Err(err("dispmax must be greater than 1 (eq. 6 searches 0 < d < dispmax)".into()));
     }
-    if dispmax > W_MAX as f64 {
-        return Err(err(format!("dispmax must be at most W_MAX = {W_MAX} px (the widest line the hardware stores)")));
+    if dispmax > w_max as f64 {
+        return Err(err(format!("dispmax must be at most W_MAX = {w_max} px (the widest line the {config} hardware stores)")));
     }
     let lsb = dispmax * unit;
     if lsb.fract() != 0.0 {
@@ -54,16 +57,5 @@ pub fn dispmax_lsb(dispmax: f64) -> Result<u32, DispmaxError> {
             (lsb.round() / unit).max(1.0 + 1.0 / unit)
         )));
     }
-    Ok((lsb as u32).min((1u32 << DISPMAX_BITS) - 1))
-}
-
-/// The hardware's limits and formats as golden's parity mode takes them.
-pub fn hardware_limits() -> HardwareLimits {
-    HardwareLimits {
-        w_max: W_MAX,
-        n_max: N_MAX,
-        pos_frac_bits: POS_FRAC_BITS as u32,
-        dt_frac_bits: DT_FRAC_BITS as u32,
-        match_dt_frac_bits: MATCH_DT_FRAC_BITS as u32,
-    }
+    Ok((lsb as u32).min((1u32 << dispmax_bits) - 1))
 }

@@ -3,7 +3,8 @@
 //! The `declivity` binary (crate `cli`) is a thin layer over this crate.
 //! Its modules form layers; each uses only the layers listed before it:
 //!
-//! 1. [`formats`]: golden's real values in the hardware's fixed-point
+//! 1. [`config`]: the line processor's configurations and their sizes;
+//!    [`formats`]: golden's real values in the hardware's fixed-point
 //!    formats; [`blocks`]: building the large rtl blocks; [`rng`]: the
 //!    seeded generator of test lines and vectors.
 //! 2. [`drive`]: the rtl blocks under direct drive, clock by clock, with real
@@ -22,6 +23,7 @@
 // read them with `cargo doc --document-private-items`.
 #![allow(rustdoc::private_intra_doc_links)]
 
+pub mod config;
 pub mod formats;
 pub mod blocks;
 pub mod rng;
@@ -32,4 +34,5 @@ pub mod eval;
 pub mod error;
 pub mod jobs;
 
+pub use config::Config;
 pub use error::SimError;

@@ -538,7 +538,7 @@ fn verilog_dp16kd(v: &str) -> usize {
 fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
     use sim::hdl::verilog::{generate, generate_with, Top};
     let b = budget(&request(512, N_MAX, N_CELLS)).expect("valid");
-    let (det_v, mat_v, int_v) = (generate(Top::Detector), generate(Top::Matcher), generate(Top::Interpolator));
+    let (det_v, mat_v, int_v) = (generate(sim::Config::Sd, Top::Detector), generate(sim::Config::Sd, Top::Matcher), generate(sim::Config::Sd, Top::Interpolator));
     let (detector, matcher, interpolator) = (verilog_memory_bits(&det_v), verilog_memory_bits(&mat_v), verilog_memory_bits(&int_v));
     assert!(detector > 0 && matcher > 0 && interpolator > 0, "memories found");
     let r = &b.resources;
@@ -555,8 +555,8 @@ fn memory_sizes_equal_the_memories_of_the_generated_verilog() {
     assert_eq!(verilog_dp16kd(&int_v), of(&["interpolator"], rams));
     let new_stages = ["record queues", "row check", "vertical median", "depth stage"];
     let rule = GainRule::default();
-    let top = generate_with(Top::Stereo, 8, rule).expect("8 cells");
-    let matcher8 = generate_with(Top::Matcher, 8, rule).expect("8 cells");
+    let top = generate_with(sim::Config::Sd, Top::Stereo, 8, rule).expect("8 cells");
+    let matcher8 = generate_with(sim::Config::Sd, Top::Matcher, 8, rule).expect("8 cells");
     let beyond = |f: fn(&str) -> usize| f(&top) - f(&matcher8) - 2 * f(&det_v) - f(&int_v);
     assert_eq!(beyond(verilog_memory_bits), of(&new_stages, bits), "{:#?}", r.memories);
     assert_eq!(beyond(verilog_dp16kd), of(&new_stages, rams));

@@ -21,7 +21,7 @@ fn vectors() -> PathBuf {
 }
 
 fn design() -> String {
-    sim::hdl::verilog::generate(sim::hdl::verilog::Top::Detector)
+    sim::hdl::verilog::generate(sim::Config::Sd, sim::hdl::verilog::Top::Detector)
 }
 
 

@@ -24,7 +24,7 @@ fn vectors() -> PathBuf {
 }
 
 fn design() -> String {
-    sim::hdl::verilog::generate(sim::hdl::verilog::Top::Interpolator)
+    sim::hdl::verilog::generate(sim::Config::Sd, sim::hdl::verilog::Top::Interpolator)
 }
 
 /// A random line of `n` anchors: steps of one LSB to 20 px, disparities
@@ -83,7 +83,7 @@ fn corner_trace(design: &str) -> Trace {
 fn real_trace(design: &str) -> Trace {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("cones")).expect("the pair loads");
     let mut params = golden::Params::new(data.dispmax + 1.0).expect("params");
-    params.hardware = Some(sim::formats::hardware_limits());
+    params.hardware = Some(sim::Config::Sd.limits());
     let frame = golden::process_frame(&data.left, &data.right, &params, golden::Threads::All).expect("golden runs");
     let w = data.left.width();
     let lines: Vec<AnchorLine> = (180..186).map(|y| fixed_anchors(&frame.lines[y].matches, w, y == 180)).collect();

@@ -45,7 +45,7 @@ fn vectors() -> PathBuf {
 }
 
 fn design(cells: usize, rule: GainRule) -> String {
-    generate_with(Top::Matcher, cells, rule).expect("a supported size")
+    generate_with(sim::Config::Sd, Top::Matcher, cells, rule).expect("a supported size")
 }
 
 

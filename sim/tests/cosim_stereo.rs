@@ -6,7 +6,7 @@
 use sim::hdl::cosim;
 
 fn design() -> String {
-    sim::hdl::verilog::generate_with(sim::hdl::verilog::Top::Stereo, CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size")
+    sim::hdl::verilog::generate_with(sim::Config::Sd, sim::hdl::verilog::Top::Stereo, CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size")
 }
 
 /// Cells of the matcher in the checked Verilog.
@@ -80,7 +80,7 @@ mod frames {
 
     fn pair(name: &str) -> (GreyImage, GreyImage, u32) {
         let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(name)).expect("the pair loads");
-        (data.left, data.right, sim::formats::dispmax_lsb(data.dispmax + 1.0).expect("dispmax"))
+        (data.left, data.right, sim::formats::dispmax_lsb(data.dispmax + 1.0, sim::Config::Sd).expect("dispmax"))
     }
 
     fn model<const N: usize>(left: &GreyImage, right: &GreyImage, hblank: usize, dispmax: u32) -> (StereoRun, f64) {
@@ -94,10 +94,10 @@ mod frames {
     /// The model with `N` cells against its Verilog under `simulator` on
     /// the frame: every field of the run equal.
     fn check<const N: usize>(simulator: Simulator, left: &GreyImage, right: &GreyImage, hblank: usize, dispmax: u32, what: &str) {
-        let design = sim::hdl::verilog::generate_with(sim::hdl::verilog::Top::Stereo, N, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
+        let design = sim::hdl::verilog::generate_with(sim::Config::Sd, sim::hdl::verilog::Top::Stereo, N, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
         let (want, model_rate) = model::<N>(left, right, hblank, dispmax);
         assert!(want.rows.len() == left.height() && want.pixels_in > 0, "{what}: the model ran the frame");
-        let got = run_frame(simulator, &design, left, right, hblank, dispmax, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+        let got = run_frame(simulator, sim::Config::Sd, &design, left, right, hblank, dispmax, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
         eprintln!(
             "{what}: {} clocks; rust-hdl {model_rate:.0} clocks/s, {} {:.0} clocks/s (build {:.1} s{})",
             want.cycles,
@@ -128,12 +128,12 @@ mod frames {
     fn cosim_verilator_driver_writes_the_icarus_testbench_files_byte_for_byte() {
         let (left, right, dispmax) = pair("tsukuba");
         let (left, right) = (crop(&left, 120..122), crop(&right, 120..122));
-        let design = sim::hdl::verilog::generate_with(sim::hdl::verilog::Top::Stereo, super::CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
+        let design = sim::hdl::verilog::generate_with(sim::Config::Sd, sim::hdl::verilog::Top::Stereo, super::CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
         let opts = Options { keep: true, ..Options::default() };
         let (want, _) = model::<{ super::CELLS }>(&left, &right, 7, dispmax);
         let mut files = Vec::new();
         for simulator in [Simulator::Icarus, Simulator::Verilator] {
-            let got = run_frame(simulator, &design, &left, &right, 7, dispmax, &opts).unwrap_or_else(|e| panic!("{e}"));
+            let got = run_frame(simulator, sim::Config::Sd, &design, &left, &right, 7, dispmax, &opts).unwrap_or_else(|e| panic!("{e}"));
             let diff = differences(&want, &got.run);
             assert!(diff.is_empty(), "{} differs from the rust-hdl model: {diff:#?}", simulator.name());
             let dir = got.work_dir.expect("kept");
@@ -193,21 +193,21 @@ mod frames {
         use rtl::params::{N_MAX, W_MAX};
         use rtl::post::depth_stage::DepthCamera;
         use sim::drive::stereo::{golden_depth_map, golden_map};
-        let design = sim::hdl::verilog::generate(sim::hdl::verilog::Top::Stereo);
+        let design = sim::hdl::verilog::generate(sim::Config::Sd, sim::hdl::verilog::Top::Stereo);
         for (what, (left, right), hblank, dispmax, over_n_max) in [
             ("W_MAX lines of many steps", steps_pair(W_MAX, 24, 4, 9, 0x5eed_0001), 0, 24.0, true),
             ("plateaus with blanking", steps_pair(400, 30, 12, 5, 0x5eed_0002), 16, 12.0, false),
         ] {
-            let lsb = sim::formats::dispmax_lsb(dispmax).expect("dispmax");
-            let got = run_frame(Simulator::Verilator, &design, &left, &right, hblank, lsb, &Options::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let lsb = sim::formats::dispmax_lsb(dispmax, sim::Config::Sd).expect("dispmax");
+            let got = run_frame(Simulator::Verilator, sim::Config::Sd, &design, &left, &right, hblank, lsb, &Options::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
             let run = &got.run;
             assert_eq!(run.rows.len(), left.height(), "{what}: every line out");
             assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped), (0, 0, 0), "{what}: nothing dropped");
             assert_eq!(run.lines_full > 0, over_n_max, "{what}: lines over N_MAX = {N_MAX} flagged full ({})", run.lines_full);
             let rtl = run.disparity_px(left.height());
-            let gold = golden_map(&left, &right, dispmax).expect("golden runs");
+            let gold = golden_map(&left, &right, dispmax, sim::Config::Sd).expect("golden runs");
             let depth = run.depth_mm(left.height());
-            let gold_depth = golden_depth_map(&gold, &DepthCamera::default());
+            let gold_depth = golden_depth_map(&gold, &DepthCamera::default(), sim::Config::Sd);
             let matched = rtl.iter().filter(|&&d| d > 0.0).count();
             eprintln!("{what}: {} clocks, {} lines full, {matched} pixels with a disparity", run.cycles, run.lines_full);
             assert!(matched > rtl.len() / 2, "{what}: a dense map ({matched} of {})", rtl.len());
@@ -233,7 +233,7 @@ mod frames {
         assert_eq!(pairs.len(), 8, "the eight Middlebury pairs of data/stereo");
         for p in pairs {
             let data = sim::eval::io::load_pair_dir(&p).expect("the pair loads");
-            let r = evaluate_pair_rtl(&data, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", data.name));
+            let r = evaluate_pair_rtl(sim::Config::Sd, &data, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", data.name));
             eprintln!("{}", serde_json::to_string(&r).expect("serializes"));
             let run = &r.run;
             assert_eq!(run.lines_out, data.left.height(), "{}: every line out", data.name);

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 /// The top-level modules, by layer (`sim/src/lib.rs`).
-const LAYERS: [&[&str]; 6] = [&["formats", "blocks", "rng"], &["drive"], &["hdl"], &["budget"], &["eval", "error"], &["jobs"]];
+const LAYERS: [&[&str]; 6] = [&["config", "formats", "blocks", "rng"], &["drive"], &["hdl"], &["budget"], &["eval", "error"], &["jobs"]];
 
 fn layer(module: &str) -> usize {
     let top = module.split("::").next().unwrap_or("");

@@ -7,7 +7,7 @@ use sim::eval::io::{expand_pair_dirs, load_pair_dir};
 use sim::eval::scores::{diagnosis_table, markdown_table};
 use sim::jobs::eval::{evaluate_dir, EvalJob};
 use sim::jobs::rtl_depth::{evaluate_pair_rtl, rtl_markdown_table, Engine};
-use sim::SimError;
+use sim::{Config, SimError};
 
 use crate::args::{engine, CliEngine, MethodArgs};
 use crate::progress::Progress;
@@ -65,7 +65,7 @@ pub(crate) fn run(a: EvalArgs) -> Result<(), SimError> {
     let params = a.method.params(f64::MAX)?;
     let dirs = expand_pair_dirs(&a.pairs)?;
     if a.rtl {
-        return eval_rtl(&dirs, engine(a.engine), a.json);
+        return eval_rtl(&dirs, a.method.config.0, engine(a.engine), a.json);
     }
     let job = EvalJob { params, runs: a.runs as usize, diagnose: a.diagnose, out: a.out.clone() };
     let bar = Progress::new(dirs.len(), "pairs", "eval", a.json);
@@ -120,9 +120,9 @@ fn pairs_failed(failed: &[PathBuf], total: usize) -> Result<(), SimError> {
 }
 
 /// `eval --rtl`: each pair through the line processor.
-fn eval_rtl(dirs: &[PathBuf], engine: Engine, json: bool) -> Result<(), SimError> {
+fn eval_rtl(dirs: &[PathBuf], config: Config, engine: Engine, json: bool) -> Result<(), SimError> {
     if !json {
-        eprintln!("engine: {}", engine.name());
+        eprintln!("engine: {}, configuration {config}", engine.name());
     }
     let mut reports = Vec::new();
     let mut failed = Vec::new();
@@ -131,7 +131,7 @@ fn eval_rtl(dirs: &[PathBuf], engine: Engine, json: bool) -> Result<(), SimError
             let pair = load_pair_dir(dir)?;
             super::print_notes(&pair.notes);
             let bar = super::rtl::frame_progress(pair.left.height(), format!("{} through the line processor", pair.name), engine, json);
-            let report = evaluate_pair_rtl(&pair, 0, engine, |n| bar.set(n));
+            let report = evaluate_pair_rtl(config, &pair, 0, engine, |n| bar.set(n));
             bar.finish();
             report
         };

@@ -10,9 +10,9 @@ use sim::eval::io::{load_grey, load_pair_images};
 use sim::jobs::rtl_depth::{rtl_depth, Engine, RtlDepthJob};
 use sim::jobs::rtl_detect::{rtl_detect, Waveform};
 use sim::jobs::rtl_match::{check_rows, rtl_match, MatchJob};
-use sim::SimError;
+use sim::{Config, SimError};
 
-use crate::args::{engine, parse_range, CliEngine, CliRule};
+use crate::args::{config_help, engine, parse_range, CliConfig, CliEngine, CliRule};
 use crate::progress::Progress;
 
 #[derive(Subcommand, Debug)]
@@ -184,6 +184,8 @@ pub(crate) struct DepthArgs {
     /// Rows of the frame (of the band, with --rows) to trace in the VCD, as A..B (rows A to B-1).
     #[arg(long, value_parser = parse_range, requires = "vcd")]
     lines: Option<Range<usize>>,
+    #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("the run (hd: on verilator or icarus)"))]
+    config: CliConfig,
 }
 
 pub(crate) fn run(c: RtlCommand) -> Result<(), SimError> {
@@ -238,7 +240,7 @@ fn detect(a: DetectArgs) -> Result<(), SimError> {
 }
 
 fn match_pair(a: MatchArgs) -> Result<(), SimError> {
-    let dispmax = sim::formats::dispmax_lsb(a.pair.dispmax)?;
+    let dispmax = sim::formats::dispmax_lsb(a.pair.dispmax, Config::Sd)?;
     let (left, right, notes) = load_pair_images(&a.pair.left, &a.pair.right)?;
     super::print_notes(&notes);
     let rows = a.rows.clone().unwrap_or(0..left.height());
@@ -298,6 +300,7 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
     };
     let rows = a.rows.clone().unwrap_or(0..left.height());
     let job = RtlDepthJob {
+        config: a.config.0,
         dispmax: a.pair.dispmax,
         hblank: a.hblank as usize,
         rows: rows.clone(),
@@ -306,9 +309,9 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
         out: super::out_dir(&a.out, "rtl-depth", &a.pair.left),
     };
     if !a.pair.json {
-        eprintln!("engine: {}", engine.name());
+        eprintln!("engine: {}, configuration {}", engine.name(), a.config);
     }
-    let bar = frame_progress(rows.len(), "rtl line processor".into(), engine, a.pair.json);
+    let bar = frame_progress(rows.len(), format!("rtl line processor ({})", a.config), engine, a.pair.json);
     let (report, files) = rtl_depth(&a.pair.left.display().to_string(), &left, &right, &job, |n| bar.set(n))?;
     bar.finish();
     if a.pair.json {

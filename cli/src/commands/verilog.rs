@@ -3,11 +3,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use rtl::params::{N_CELLS, ROWS_PER_CELL};
-use sim::blocks::MATCHER_CELLS;
-use sim::SimError;
+use rtl::params::ROWS_PER_CELL;
+use sim::{Config, SimError};
 
-use crate::args::{CliRule, CliTop};
+use crate::args::{config_help, per_config, CliConfig, CliRule, CliTop};
 
 /// Write the Verilog of a hardware block.
 #[derive(Args, Debug)]
@@ -27,11 +26,14 @@ pub(crate) struct VerilogArgs {
     out: PathBuf,
 }
 
-/// The matcher's generation parameters (`--top matcher` and `stereo`).
+/// The configuration and the matcher's generation parameters (`--top
+/// matcher` and `stereo`).
 #[derive(Args, Debug)]
 pub(crate) struct MatcherArgs {
-    #[arg(long, default_value_t = N_CELLS, help = cells_help())]
-    pub cells: usize,
+    #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("the block"))]
+    pub config: CliConfig,
+    #[arg(long, help = cells_help())]
+    pub cells: Option<usize>,
     /// Gain rule the matcher is generated for (--top matcher and stereo only).
     #[arg(long, value_enum, default_value_t = CliRule::Robust)]
     pub rule: CliRule,
@@ -39,19 +41,23 @@ pub(crate) struct MatcherArgs {
 
 fn cells_help() -> String {
     format!(
-        "Gain cells of the matcher's systolic array (one of {MATCHER_CELLS:?}; each holds up to \
-         {ROWS_PER_CELL} reference declivities; --top matcher and stereo only)"
+        "Gain cells of the matcher's systolic array ({}; each holds up to {ROWS_PER_CELL} reference \
+         declivities; --top matcher and stereo only) [default: the configuration's sensor: {}]",
+        Config::ALL.iter().map(|c| format!("{c}: one of {:?}", c.matcher_cells())).collect::<Vec<_>>().join("; "),
+        per_config(|s| s.cells)
     )
 }
 
 /// The Verilog of a block as the command line asks for it.
 pub(crate) fn block_verilog(top: CliTop, m: &MatcherArgs) -> Result<String, SimError> {
     let has_matcher = matches!(top, CliTop::Matcher | CliTop::Stereo);
-    if !has_matcher && (m.cells != N_CELLS || m.rule != CliRule::Robust) {
+    if !has_matcher && (m.cells.is_some() || m.rule != CliRule::Robust) {
         return Err(SimError::Argument("--cells and --rule apply to --top matcher and --top stereo only".into()));
     }
-    sim::hdl::verilog::generate_with(top.top(), m.cells, m.rule.rule())
-        .ok_or_else(|| SimError::Argument(format!("--cells {}: the matcher is generated with {MATCHER_CELLS:?} cells", m.cells)))
+    let config = m.config.0;
+    let cells = m.cells.unwrap_or(config.sizes().cells);
+    sim::hdl::verilog::generate_with(config, top.top(), cells, m.rule.rule())
+        .ok_or_else(|| SimError::Argument(format!("--cells {cells}: the {config} matcher is generated with {:?} cells", config.matcher_cells())))
 }
 
 pub(crate) fn run(a: VerilogArgs) -> Result<(), SimError> {

@@ -9,13 +9,14 @@
 //! is then its phases' RAMs side by side, phase `k` at `2·(k·N mod 16)`.
 //!
 //! ## Ports
-//! - `w0..7`: one anti-diagonal's words of the memory's eight
-//!   ([`CHOICE_WORDS`]) RAMs.
+//! - `w[0 .. CHOICE_WORDS]`: one anti-diagonal's words of the memory's
+//!   [`CHOICE_WORDS`] RAMs (8 in `sd`, 16 in `hd`).
 //! - `group`: the row's group `⌊r / 16⌋`; out `word`, the word holding the
 //!   choices of the group's rows.
 //!
 //! ## Timing
-//! Combinational (an eight-way multiplexer of words, or a few ORs): no
+//! Combinational (a `CHOICE_WORDS`-way multiplexer of words, a tree of
+//! two-way ones on the group's bits from bit 0 up, or a few ORs): no
 //! registers, no latency.
 //!
 //! No paper equation: addressing of the traceback's choices (eq. 9).
@@ -25,14 +26,7 @@ use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
 pub struct ChoiceWord {
-    pub w0: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub w1: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub w2: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub w3: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub w4: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub w5: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub w6: Signal<In, Bits<CHOICE_WORD_BITS>>,
-    pub w7: Signal<In, Bits<CHOICE_WORD_BITS>>,
+    pub w: [Signal<In, Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     pub group: Signal<In, Bits<ROW_GROUP_BITS>>,
     pub word: Signal<Out, Bits<CHOICE_WORD_BITS>>,
     // A small array's groups: phase k's bits shifted into group 0 or 1.
@@ -42,25 +36,34 @@ pub struct ChoiceWord {
     g0: Signal<Local, Bits<CHOICE_WORD_BITS>>,
     g1: Signal<Local, Bits<CHOICE_WORD_BITS>>,
     phase_word: [Signal<Local, Bits<CHOICE_WORD_BITS>>; ROWS_PER_CELL],
+    // The multiplexer's levels: level k selects by the group's bit k - 1
+    // between pairs of level k - 1's words (level 0 is `w`); the last level
+    // holds one word (arrays past it are empty).
+    level1: [Signal<Local, Bits<CHOICE_WORD_BITS>>; LEVEL1_WORDS],
+    level2: [Signal<Local, Bits<CHOICE_WORD_BITS>>; LEVEL2_WORDS],
+    level3: [Signal<Local, Bits<CHOICE_WORD_BITS>>; LEVEL3_WORDS],
+    level4: [Signal<Local, Bits<CHOICE_WORD_BITS>>; LEVEL4_WORDS],
 }
+
+/// Words of the multiplexer's levels (see `ChoiceWord::level1`).
+const LEVEL1_WORDS: usize = CHOICE_WORDS / 2;
+const LEVEL2_WORDS: usize = CHOICE_WORDS / 4;
+const LEVEL3_WORDS: usize = CHOICE_WORDS / 8;
+const LEVEL4_WORDS: usize = CHOICE_WORDS / 16;
+// Three or four levels: 8 or 16 words.
+const _: () = assert!(CHOICE_WORDS == 8 || CHOICE_WORDS == 16);
+const _: () = assert!(CHOICE_WORDS == 1 << ROW_GROUP_BITS);
 
 impl ChoiceWord {
     /// The selection for an array of `cells` cells.
     pub(crate) fn new(cells: usize) -> Self {
-        assert!(cells <= N_CELLS && CHOICE_WORDS == 8, "eight words");
+        assert!(cells <= N_CELLS, "at most the sensor's cells");
         let packed = cells < CELLS_PER_CHOICE_WORD;
         assert!(packed || cells % CELLS_PER_CHOICE_WORD == 0, "whole words per phase, or phases packed into words");
         assert!(!packed || CELLS_PER_CHOICE_WORD % cells == 0, "a whole number of phases per word");
         let first_row = |k: usize| k * cells;
         ChoiceWord {
-            w0: Default::default(),
-            w1: Default::default(),
-            w2: Default::default(),
-            w3: Default::default(),
-            w4: Default::default(),
-            w5: Default::default(),
-            w6: Default::default(),
-            w7: Default::default(),
+            w: Default::default(),
             group: Default::default(),
             word: Default::default(),
             small_array: Constant::new(packed),
@@ -69,6 +72,10 @@ impl ChoiceWord {
             g0: Default::default(),
             g1: Default::default(),
             phase_word: Default::default(),
+            level1: Default::default(),
+            level2: Default::default(),
+            level3: Default::default(),
+            level4: Default::default(),
         }
     }
 }
@@ -82,40 +89,39 @@ impl Default for ChoiceWord {
 impl Logic for ChoiceWord {
     #[hdl_gen]
     fn update(&mut self) {
-        // Whole words: RAM `group`.
-        self.word.next = self.w0.val();
-        if self.group.val().get_bit(2) {
-            if self.group.val().get_bit(1) {
-                if self.group.val().get_bit(0) {
-                    self.word.next = self.w7.val();
-                } else {
-                    self.word.next = self.w6.val();
-                }
-            } else {
-                if self.group.val().get_bit(0) {
-                    self.word.next = self.w5.val();
-                } else {
-                    self.word.next = self.w4.val();
-                }
-            }
-        } else {
-            if self.group.val().get_bit(1) {
-                if self.group.val().get_bit(0) {
-                    self.word.next = self.w3.val();
-                } else {
-                    self.word.next = self.w2.val();
-                }
-            } else {
-                if self.group.val().get_bit(0) {
-                    self.word.next = self.w1.val();
-                }
+        // Whole words: RAM `group`, a tree of two-way multiplexers.
+        for j in 0..LEVEL1_WORDS {
+            self.level1[j].next = self.w[2 * j].val();
+            if self.group.val().get_bit(0) {
+                self.level1[j].next = self.w[2 * j + 1].val();
             }
         }
+        for j in 0..LEVEL2_WORDS {
+            self.level2[j].next = self.level1[2 * j].val();
+            if self.group.val().get_bit(1) {
+                self.level2[j].next = self.level1[2 * j + 1].val();
+            }
+        }
+        for j in 0..LEVEL3_WORDS {
+            self.level3[j].next = self.level2[2 * j].val();
+            if self.group.val().get_bit(2) {
+                self.level3[j].next = self.level2[2 * j + 1].val();
+            }
+        }
+        for j in 0..LEVEL4_WORDS {
+            self.level4[j].next = self.level3[2 * j].val();
+            if self.group.val().get_bit(3) {
+                self.level4[j].next = self.level3[2 * j + 1].val();
+            }
+        }
+        self.word.next = self.level3[0].val();
+        for j in 0..LEVEL4_WORDS {
+            self.word.next = self.level4[j].val();
+        }
         // Packed phases: RAM k is phase k.
-        self.phase_word[0].next = self.w0.val() << self.shift[0].val();
-        self.phase_word[1].next = self.w1.val() << self.shift[1].val();
-        self.phase_word[2].next = self.w2.val() << self.shift[2].val();
-        self.phase_word[3].next = self.w3.val() << self.shift[3].val();
+        for k in 0..ROWS_PER_CELL {
+            self.phase_word[k].next = self.w[k].val() << self.shift[k].val();
+        }
         self.g0.next = 0.into();
         self.g1.next = 0.into();
         for k in 0..ROWS_PER_CELL {

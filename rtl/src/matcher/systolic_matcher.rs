@@ -87,6 +87,9 @@ pub const CHOICE_ADDR_BITS: usize = DIAG_BITS + 1;
 
 /// Words of one phase's choices of an anti-diagonal in the sensor's array.
 const PHASE_WORDS: usize = CHOICE_WORDS / ROWS_PER_CELL;
+/// Bits of a word's index among a phase's.
+const PHASE_WORD_BITS: usize = 2;
+const _: () = assert!(PHASE_WORDS <= 1 << PHASE_WORD_BITS);
 
 #[derive(LogicBlock)]
 pub struct SystolicMatcher<const N: usize> {
@@ -141,10 +144,12 @@ pub struct SystolicMatcher<const N: usize> {
     word_q: [DFF<Bits<CHOICE_WORD_BITS>>; PHASE_WORDS],
     ram: [BlockRam<CHOICE_WORD_BITS, CHOICE_ADDR_BITS>; CHOICE_WORDS],
     rd2: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
-    // RAM g holds phase `ram_phase[g]`'s word `ram_word1[g]` (0 or 1);
-    // RAMs past the phases' (`4·max(1, N/16)`) are never written.
+    // RAM g holds phase `ram_phase[g]`'s word `ram_word[g]` (of
+    // `PHASE_WORDS`); RAMs past the phases' (`4·max(1, N/16)`) are never
+    // written.
     ram_phase: [Constant<Bits<PHASE_BITS>>; CHOICE_WORDS],
-    ram_word1: [Constant<Bit>; CHOICE_WORDS],
+    ram_word: [Constant<Bits<PHASE_WORD_BITS>>; CHOICE_WORDS],
+    word_index: [Constant<Bits<PHASE_WORD_BITS>>; PHASE_WORDS],
     ram_used: [Constant<Bit>; CHOICE_WORDS],
     last_p: Signal<Local, Bits<PATH_BITS>>,
     cw_addr: Signal<Local, Bits<CHOICE_ADDR_BITS>>,
@@ -157,7 +162,6 @@ pub struct SystolicMatcher<const N: usize> {
 impl<const N: usize> Default for SystolicMatcher<N> {
     fn default() -> Self {
         assert!((1..=N_CELLS).contains(&N), "1 ..= N_CELLS cells");
-        assert_eq!(PHASE_WORDS, 2, "the phase words below are named two");
         assert_eq!(CELLS_PER_CHOICE_WORD, 16, "the word index below is written i / 16");
         // RAMs per phase: N/16 whole words, or one RAM per phase (packed).
         let per_phase = (N / CELLS_PER_CHOICE_WORD).max(1);
@@ -214,7 +218,8 @@ impl<const N: usize> Default for SystolicMatcher<N> {
             ram: Default::default(),
             rd2: Default::default(),
             ram_phase: core::array::from_fn(|g| Constant::new((((g / per_phase) % ROWS_PER_CELL) as u64).into())),
-            ram_word1: core::array::from_fn(|g| Constant::new(g % per_phase == 1)),
+            ram_word: core::array::from_fn(|g| Constant::new(((g % per_phase) as u64).into())),
+            word_index: core::array::from_fn(|k| Constant::new((k as u64).into())),
             ram_used: core::array::from_fn(|g| Constant::new(g < ROWS_PER_CELL * per_phase)),
             last_p: Default::default(),
             cw_addr: Default::default(),
@@ -378,8 +383,10 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.ram[g].clock.next = self.clock.val();
             self.ram[g].write_address.next = self.cw_addr.val();
             self.ram[g].write_data.next = self.word_q[0].q.val();
-            if self.ram_word1[g].val() {
-                self.ram[g].write_data.next = self.word_q[1].q.val();
+            for k in 1..PHASE_WORDS {
+                if self.ram_word[g].val() == self.word_index[k].val() {
+                    self.ram[g].write_data.next = self.word_q[k].q.val();
+                }
             }
             self.ram[g].write_enable.next =
                 self.cw_en.val() & self.ram_used[g].val() & (self.cw_phase.val() == self.ram_phase[g].val());
@@ -389,23 +396,11 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         }
 
         // ---- Traceback reads: the words of groups tb_group and tb_group - 1.
-        self.row_word.w0.next = self.rd2[0].q.val();
-        self.row_word.w1.next = self.rd2[1].q.val();
-        self.row_word.w2.next = self.rd2[2].q.val();
-        self.row_word.w3.next = self.rd2[3].q.val();
-        self.row_word.w4.next = self.rd2[4].q.val();
-        self.row_word.w5.next = self.rd2[5].q.val();
-        self.row_word.w6.next = self.rd2[6].q.val();
-        self.row_word.w7.next = self.rd2[7].q.val();
+        for g in 0..CHOICE_WORDS {
+            self.row_word.w[g].next = self.rd2[g].q.val();
+            self.prev_word.w[g].next = self.rd2[g].q.val();
+        }
         self.row_word.group.next = self.tb_group.val();
-        self.prev_word.w0.next = self.rd2[0].q.val();
-        self.prev_word.w1.next = self.rd2[1].q.val();
-        self.prev_word.w2.next = self.rd2[2].q.val();
-        self.prev_word.w3.next = self.rd2[3].q.val();
-        self.prev_word.w4.next = self.rd2[4].q.val();
-        self.prev_word.w5.next = self.rd2[5].q.val();
-        self.prev_word.w6.next = self.rd2[6].q.val();
-        self.prev_word.w7.next = self.rd2[7].q.val();
         self.prev_word.group.next = self.tb_group.val() - self.group_one.val();
         self.tb_word.next = self.row_word.word.val();
         self.tb_word_prev.next = self.prev_word.word.val();

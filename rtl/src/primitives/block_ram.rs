@@ -1,6 +1,8 @@
 //! A simple dual-port block RAM with its output register: ECP5 `DP16KD`
-//! primitives (18-bit mode, 1024 words) instantiated with `REGMODE_B =
-//! "OUTREG"`, one per 18 bits of width.
+//! primitives instantiated with `REGMODE_B = "OUTREG"` side by side, in the
+//! widest mode that holds the depth ([`dp16kd_mode`]: 18 bits of 1024
+//! words up to 1024 words, 9 bits of 2048, 4 of 4096, 2 of 8192, 1 of
+//! 16384), one per that many bits of width.
 //!
 //! Yosys's ECP5 memory mapping never uses a block RAM's output register,
 //! and without it the RAM's clock-to-out takes most of a clock period,
@@ -31,6 +33,31 @@ use rust_hdl::prelude::*;
 pub const DP16KD_WIDTH: usize = 18;
 /// Address bits of one `DP16KD` in its 18-bit mode (1024 words).
 pub const DP16KD_ADDR_BITS: usize = 10;
+/// Address bits of one `DP16KD` in its 1-bit mode (16384 words), the
+/// deepest.
+pub const DP16KD_MAX_ADDR_BITS: usize = 14;
+
+/// The `DP16KD` mode of a memory of `2^addr_bits` words: the data bits of
+/// one primitive (`DATA_WIDTH_A/B`), the widest whose depth holds the
+/// words: 18 up to [`DP16KD_ADDR_BITS`], then 9, 4, 2 and 1 bits for each
+/// address bit more (the primitive's 18 Kbit, then its 16 Kbit without the
+/// parity bits).
+pub const fn dp16kd_mode(addr_bits: usize) -> usize {
+    match addr_bits {
+        0..=DP16KD_ADDR_BITS => DP16KD_WIDTH,
+        11 => 9,
+        12 => 4,
+        13 => 2,
+        DP16KD_MAX_ADDR_BITS => 1,
+        _ => panic!("at most 16384 words per DP16KD"),
+    }
+}
+
+/// The `DP16KD`s of a [`BlockRam`] of `data_bits` bits and `2^addr_bits`
+/// words.
+pub const fn dp16kd_count(data_bits: usize, addr_bits: usize) -> usize {
+    data_bits.div_ceil(dp16kd_mode(addr_bits))
+}
 
 #[derive(LogicBlock, Default)]
 pub(crate) struct BlockRam<const D: usize, const A: usize> {
@@ -74,27 +101,35 @@ impl<const D: usize, const A: usize> Logic for BlockRam<D, A> {
     }
 }
 
-/// The Verilog body: `⌈d / 18⌉` `DP16KD`s side by side, port A writing,
-/// port B reading through its output register.
+/// The Verilog body: [`dp16kd_count`]`(d, a)` `DP16KD`s side by side in
+/// the mode [`dp16kd_mode`]`(a)`, port A writing, port B reading through
+/// its output register. The word address is on `AD[13:14-a']` for the mode's
+/// `a'` address bits (`AD[13:4]` in the 18-bit mode, `AD[13:3]` in the
+/// 9-bit one, and so on), the bits below it tied off, except that in the
+/// 18-bit mode `AD[1:0]` are a write's byte enables (both set); a word's
+/// bits are on `DI[w-1:0]` and `DO[w-1:0]` (as Yosys's `synth_ecp5` maps
+/// the modes, `techlibs/lattice/brams_map_16kd.v`).
 fn dp16kd_instances(d: usize, a: usize) -> String {
-    assert!(a <= DP16KD_ADDR_BITS, "at most 1024 words per DP16KD in its 18-bit mode");
+    let width = dp16kd_mode(a);
+    let mode_addr_bits = a.max(DP16KD_ADDR_BITS);
+    let low = DP16KD_MAX_ADDR_BITS - mode_addr_bits;
     let addr = |name: &str, port: &str| -> String {
-        // AD[13:4] is the word address, AD[3:2] unused, AD[1:0] the byte
-        // enables of a write (both set) or unused (read).
         let mut pins = Vec::new();
-        for k in 0..DP16KD_ADDR_BITS {
+        for k in 0..mode_addr_bits {
             let bit = if k < a { format!("{name}[{k}]") } else { "1'b0".to_string() };
-            pins.push(format!(".AD{port}{}({bit})", k + 4));
+            pins.push(format!(".AD{port}{}({bit})", k + low));
         }
-        let be = if port == "A" { "1'b1" } else { "1'b0" };
-        pins.push(format!(".AD{port}3(1'b0), .AD{port}2(1'b0), .AD{port}1({be}), .AD{port}0({be})"));
+        for k in (0..low).rev() {
+            let be = width == DP16KD_WIDTH && k < 2 && port == "A";
+            pins.push(format!(".AD{port}{k}({})", if be { "1'b1" } else { "1'b0" }));
+        }
         pins.join(", ")
     };
     let mut code = String::new();
-    let n = d.div_ceil(DP16KD_WIDTH);
+    let n = dp16kd_count(d, a);
     for i in 0..n {
-        let lo = i * DP16KD_WIDTH;
-        let w = (d - lo).min(DP16KD_WIDTH);
+        let lo = i * width;
+        let w = (d - lo).min(width);
         let mut di = Vec::new();
         let mut dout = Vec::new();
         for k in 0..DP16KD_WIDTH {
@@ -108,7 +143,7 @@ fn dp16kd_instances(d: usize, a: usize) -> String {
         code.push_str(&format!(
             r#"
 DP16KD #(
-    .DATA_WIDTH_A(18), .DATA_WIDTH_B(18),
+    .DATA_WIDTH_A({width}), .DATA_WIDTH_B({width}),
     .REGMODE_A("NOREG"), .REGMODE_B("OUTREG"),
     .RESETMODE("SYNC"), .ASYNC_RESET_RELEASE("SYNC"),
     .CSDECODE_A("0b000"), .CSDECODE_B("0b000"),
@@ -132,4 +167,31 @@ DP16KD #(
         ));
     }
     code
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each mode is one of the primitive's (`DATA_WIDTH` 18, 9, 4, 2, 1 of
+    /// 1024 to 16384 words), holds the depth, and the instances hold the
+    /// width; the word address takes the mode's top address pins.
+    #[test]
+    fn each_depth_takes_the_widest_mode_that_holds_it() {
+        let modes: Vec<(usize, usize)> = (0..=DP16KD_MAX_ADDR_BITS).map(|a| (a, dp16kd_mode(a))).collect();
+        assert_eq!(&modes[9..], &[(9, 18), (10, 18), (11, 9), (12, 4), (13, 2), (14, 1)]);
+        for a in 0..=DP16KD_MAX_ADDR_BITS {
+            let w = dp16kd_mode(a);
+            // 1024 x 18, 2048 x 9, 4096 x 4, ...: 16 Kbit of data, 18 Kbit in the 18- and 9-bit modes.
+            assert!((w << a.max(DP16KD_ADDR_BITS)) <= 18 * 1024, "{a}: {w}");
+            assert_eq!(dp16kd_count(20, a), 20usize.div_ceil(w));
+        }
+        let v = dp16kd_instances(8, 11);
+        assert_eq!(v.matches("DP16KD #(").count(), 1);
+        assert!(v.contains(".DATA_WIDTH_A(9), .DATA_WIDTH_B(9)"));
+        assert!(v.contains(".ADA3(write_address[0])") && v.contains(".ADA13(write_address[10])") && v.contains(".ADA2(1'b0)"));
+        assert!(v.contains(".DOB7(read_data[7])") && !v.contains(".DOB8("));
+        let v = dp16kd_instances(15, 10);
+        assert!(v.contains(".ADA4(write_address[0])") && v.contains(".ADA1(1'b1), .ADA0(1'b1)") && v.contains(".ADB1(1'b0), .ADB0(1'b0)"));
+    }
 }

@@ -134,9 +134,10 @@ pub fn golden_camera(camera: &DepthCamera) -> parity::DepthCamera {
 }
 
 /// golden's hardware-parity depth stage for `camera`
-/// (`golden::hardware::depth::DepthStage`).
+/// (`golden::hardware::depth::DepthStage`), in the `sd` configuration this
+/// driver's block is.
 pub fn golden_stage(camera: &DepthCamera) -> Result<parity::DepthStage, parity::DepthRangeError> {
-    parity::DepthStage::new(&golden_camera(camera), crate::formats::hardware_limits())
+    parity::DepthStage::new(&golden_camera(camera), crate::config::Config::Sd.limits())
 }
 
 /// golden's hardware-parity depth in millimetres of the disparity `d_lsb`

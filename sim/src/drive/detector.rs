@@ -10,7 +10,6 @@
 use golden::declivity::Declivity;
 use golden::hardware::{detect_line, LimitedLine};
 
-use crate::formats::hardware_limits;
 use rtl::detector::declivity_detector::DeclivityDetector;
 use rtl::params::{DT_FRAC_BITS, POS_FRAC_BITS, W_MAX};
 use rust_hdl::core::vcd_probe::VCDProbe;
@@ -350,7 +349,7 @@ pub fn compare_line(hw: &HwLine, gold: &LimitedLine) -> LineComparison {
 
 /// golden's declivities of every line in parity mode.
 pub fn golden_lines(lines: &[&[u8]]) -> Vec<LimitedLine> {
-    let limits = hardware_limits();
+    let limits = crate::config::Config::Sd.limits();
     lines.iter().map(|l| detect_line(l, limits)).collect()
 }
 

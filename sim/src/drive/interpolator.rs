@@ -174,7 +174,7 @@ pub(crate) fn timed_beats(lines: &[(&AnchorLine, usize)]) -> (Vec<Beat>, Vec<usi
 /// ends held, edge jump `jump` in `POS_FRAC_BITS` fixed point) of the same
 /// anchors: one disparity per pixel in `POS_FRAC_BITS` units, 0 = none.
 pub fn golden_line(line: &AnchorLine, jump: Option<u64>) -> Vec<u32> {
-    let limits = crate::formats::hardware_limits();
+    let limits = crate::config::Config::Sd.limits();
     let interpolator = interpolate::Interpolator::new(limits, jump.map(|j| j as u32));
     let matches: Vec<FixedMatch> = line.anchors.iter().map(|a| FixedMatch { x: a.x, d: a.d }).collect();
     let mut out = vec![0u16; line.width];

@@ -225,7 +225,7 @@ pub fn frame_rows(frame: &[Vec<FixedMatch>], period: usize, gap: usize) -> Vec<T
 /// The matches golden's hardware-parity row check keeps of each row.
 pub fn golden_kept(frame: &[Vec<FixedMatch>]) -> Vec<Vec<FixedMatch>> {
     let rows: Vec<Vec<GoldenMatch>> = frame.iter().map(|r| r.iter().map(|&(x, d)| GoldenMatch { x: x as u32, d: d as u32 }).collect()).collect();
-    let keep = row_check(&rows, crate::formats::hardware_limits());
+    let keep = row_check(&rows, crate::config::Config::Sd.limits());
     frame.iter().zip(keep).map(|(row, k)| row.iter().zip(k).filter(|(_, k)| *k).map(|(&m, _)| m).collect()).collect()
 }
 

@@ -10,6 +10,7 @@ use rtl::stereo_line_processor::StereoLineProcessor;
 use rust_hdl::prelude::*;
 
 use crate::blocks::build_stereo;
+use crate::config::Config;
 
 /// What a frame through the line processor gave.
 #[derive(Debug, Clone, Default)]
@@ -439,26 +440,28 @@ impl<const N: usize> StereoSim<N> {
     }
 }
 
-/// golden's disparity map of the pair for what the line processor computes:
-/// the default mode (its row check, edge jump and vertical median) in
-/// hardware parity, left reference, `dispmax` px. Its values are multiples
-/// of `1/2^POS_FRAC_BITS` px: the line processor's output must equal it.
-pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmax: f64) -> Result<Vec<f64>, golden::GoldenError> {
+/// golden's disparity map of the pair for what the line processor of
+/// `config` computes: the default mode (its row check, edge jump and
+/// vertical median) in hardware parity, left reference, `dispmax` px. Its
+/// values are multiples of `1/2^POS_FRAC_BITS` px: the line processor's
+/// output must equal it.
+pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmax: f64, config: Config) -> Result<Vec<f64>, golden::GoldenError> {
     let mut params = golden::Params::new(dispmax)?;
-    params.hardware = Some(crate::formats::hardware_limits());
+    params.hardware = Some(config.limits());
     Ok(golden::process_frame(left, right, &params, golden::Threads::All)?.disparity)
 }
 
 /// golden's hardware-parity depths (mm, 0 = none) of a map from
-/// [`golden_map`] for the depth stage's `camera`
+/// [`golden_map`] for the depth stage's `camera` in `config`
 /// (`golden::hardware::depth::DepthStage::depth_map_mm`).
 ///
 /// # Panics
 /// If the camera is outside the depth stage's range (no line processor is
 /// built for it).
-pub fn golden_depth_map(disparity: &[f64], camera: &DepthCamera) -> Vec<u16> {
-    let stage = crate::drive::depth_stage::golden_stage(camera).expect("a camera in the depth stage's range");
-    stage.depth_map_mm(disparity, crate::formats::hardware_limits())
+pub fn golden_depth_map(disparity: &[f64], camera: &DepthCamera, config: Config) -> Vec<u16> {
+    let limits = config.limits();
+    let stage = golden::hardware::depth::DepthStage::new(&crate::drive::depth_stage::golden_camera(camera), limits).expect("a camera in the depth stage's range");
+    stage.depth_map_mm(disparity, limits)
 }
 
 /// What [`blocks_one_after_the_other`] gives: the matcher's matches before
@@ -534,7 +537,7 @@ pub fn blocks_one_after_the_other<const N: usize>(
 /// does.
 pub fn golden_after_matcher(matches: &[Vec<crate::drive::row_check::FixedMatch>], width: usize, camera: &DepthCamera) -> (Vec<f64>, Vec<u16>) {
     use golden::line::{LineFeatures, LineResult, Match};
-    let limits = crate::formats::hardware_limits();
+    let limits = Config::Sd.limits();
     let unit = (1u64 << POS_FRAC_BITS) as f64;
     let empty = LineFeatures { sigma: 0.0, dt: 0.0, declivities: Vec::new() };
     let lines: Vec<LineResult> = matches
@@ -556,6 +559,6 @@ pub fn golden_after_matcher(matches: &[Vec<crate::drive::row_check::FixedMatch>]
     // dispmax is not read after the matcher.
     let params = golden::Params { hardware: Some(limits), ..golden::Params::new(2.0).expect("a valid bound") };
     let frame = golden::frame::finish_frame(lines, width, matches.len(), &params, golden::Threads::All);
-    let depth = golden_depth_map(&frame.disparity, camera);
+    let depth = golden_depth_map(&frame.disparity, camera, Config::Sd);
     (frame.disparity, depth)
 }

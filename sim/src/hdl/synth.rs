@@ -112,6 +112,9 @@ pub enum IoMode {
     OutOfContext,
 }
 
+/// The ECP5 speed grades nextpnr places for (`--speed`), slowest first.
+pub const SPEED_GRADES: [u8; 3] = [6, 7, 8];
+
 /// Settings of one [`synthesize_with`] run.
 #[derive(Debug, Clone)]
 pub struct SynthOptions {
@@ -123,6 +126,9 @@ pub struct SynthOptions {
     pub target_mhz: f64,
     /// ECP5 package (nextpnr `--package`), e.g. `CABGA381` or `CABGA756`.
     pub package: String,
+    /// Speed grade (nextpnr `--speed`): one of [`SPEED_GRADES`], 6 the
+    /// slowest.
+    pub speed: u8,
     /// See [`IoMode`].
     pub io: IoMode,
     /// nextpnr placer seed (nextpnr's own default when `None`; results are deterministic either way).
@@ -139,6 +145,7 @@ impl Default for SynthOptions {
             clock: "clock".into(),
             target_mhz: DEFAULT_TARGET_MHZ,
             package: "CABGA381".into(),
+            speed: SPEED_GRADES[0],
             io: IoMode::Auto,
             seed: None,
             timing_weight: Some(PLACER_TIMING_WEIGHT),
@@ -190,6 +197,19 @@ pub struct SynthReport {
     pub tools: String,
     /// Wall time of the whole flow in seconds.
     pub seconds: f64,
+    /// The configuration the Verilog was generated in, its sizes and the
+    /// matcher's cells, when the caller names them ([`SynthReport::of_design`]).
+    pub config: Option<crate::config::Config>,
+    pub hardware: Option<crate::config::Sizes>,
+    pub cells: Option<usize>,
+}
+
+impl SynthReport {
+    /// The report with the design it measured: generated in `config` with
+    /// a matcher of `cells` cells (`None`: the block has no matcher).
+    pub fn of_design(self, config: crate::config::Config, cells: Option<usize>) -> Self {
+        SynthReport { config: Some(config), hardware: Some(config.sizes()), cells, ..self }
+    }
 }
 
 /// What the nextpnr report JSON gives (see [`parse_nextpnr_report`]).
@@ -275,7 +295,7 @@ pub fn synthesize_with(verilog: &str, opts: &SynthOptions) -> Result<SynthReport
             "--package".into(),
             opts.package.clone(),
             "--speed".into(),
-            "6".into(),
+            opts.speed.to_string(),
             "--json".into(),
             "out.json".into(),
             "--top".into(),
@@ -352,13 +372,16 @@ pub fn synthesize_with(verilog: &str, opts: &SynthOptions) -> Result<SynthReport
         timing_weight: opts.timing_weight,
         meets_target: fmax_mhz >= opts.target_mhz,
         clock_net: pnr.clock_net.unwrap_or_default(),
-        device: format!("LFE5U-85F-6 {}", opts.package),
+        device: format!("LFE5U-85F-{} {}", opts.speed, opts.package),
         io_mode: if ooc { "out-of-context" } else { "pads" }.into(),
         critical_path: pnr.critical_path,
         yosys_cells,
         warnings,
         tools,
         seconds: start.elapsed().as_secs_f64(),
+        config: None,
+        hardware: None,
+        cells: None,
     };
     work.remove();
     Ok(out)

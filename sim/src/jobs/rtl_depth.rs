@@ -3,8 +3,9 @@
 //! golden and scored against ground truth.
 
 use golden::GreyImage;
-use rtl::params::{N_CELLS, W_MAX};
+use rtl::params::N_CELLS;
 
+use crate::config::{Config, Sizes};
 use crate::drive::stereo::{golden_depth_map, golden_map, StereoSim};
 use crate::error::SimError;
 use crate::eval::io::PairData;
@@ -19,6 +20,9 @@ use crate::hdl::verilog::{generate, Top};
 pub struct StereoReport {
     /// The left image (or the pair's name).
     pub image: String,
+    /// The configuration run, and its sizes (`W_MAX`, `N_MAX`, cells).
+    pub config: Config,
+    pub hardware: Sizes,
     pub width: usize,
     pub height: usize,
     /// Eq. 6's bound, px.
@@ -103,13 +107,17 @@ impl Engine {
     }
 }
 
-/// Runs a pair through the line processor (default mode: [`GainRule::Robust`],
-/// the edge jump, the default camera) on `engine` and compares with golden
+/// Runs a pair through `config`'s line processor (default mode:
+/// `GainRule::Robust`, the edge jump, the default camera) on `engine` (the
+/// rust-hdl model is `sd`'s only) and compares with golden's hardware
+/// parity in `config`
 /// (with `vcd`, the rust-hdl engine writes a waveform of the frame's rows
 /// in the range to the file, as [`StereoSim::trace_lines_to`]); returns the
 /// report, the rtl's map and golden's (px, row-major, 0 = none) and the
 /// rtl's depths (mm, row-major, 0 = none).
+#[allow(clippy::too_many_arguments)]
 fn run_pair(
+    config: Config,
     name: &str,
     left: &GreyImage,
     right: &GreyImage,
@@ -119,12 +127,18 @@ fn run_pair(
     vcd: Option<(&std::path::Path, &std::ops::Range<usize>)>,
     progress: impl FnMut(usize),
 ) -> Result<(StereoReport, Vec<f64>, Vec<f64>, Vec<u16>), SimError> {
-    let lsb = dispmax_lsb(dispmax)?;
-    if left.width() > W_MAX {
+    let lsb = dispmax_lsb(dispmax, config)?;
+    let w_max = config.sizes().w_max;
+    if left.width() > w_max {
+        let fits = match Config::fitting(left.width()) {
+            Some(c) => format!("the {c} configuration takes lines up to {} px (--config {c})", c.sizes().w_max),
+            None => "no configuration takes lines this wide".to_string(),
+        };
+        return Err(SimError::Argument(format!("{name}: lines of {} px are wider than the {config} hardware's W_MAX = {w_max} px; {fits}", left.width())));
+    }
+    if engine == Engine::RustHdl && config != Config::Sd {
         return Err(SimError::Argument(format!(
-            "{name}: lines of {} px are wider than the hardware's W_MAX = {} px",
-            left.width(),
-            W_MAX
+            "the rust-hdl engine runs the sd configuration's model only (a whole {config} frame takes hours under it); use --engine verilator or icarus"
         )));
     }
     if (left.width(), left.height()) != (right.width(), right.height()) {
@@ -145,17 +159,19 @@ fn run_pair(
         }
         Engine::Verilator | Engine::Icarus => {
             let simulator = if engine == Engine::Verilator { Simulator::Verilator } else { Simulator::Icarus };
-            let design = generate(Top::Stereo);
-            let frame = run_frame(simulator, &design, left, right, hblank, lsb, &Options::default())?;
+            let design = generate(config, Top::Stereo);
+            let frame = run_frame(simulator, config, &design, left, right, hblank, lsb, &Options::default())?;
             (frame.run, frame.sim.as_secs_f64(), frame.compile.as_secs_f64())
         }
     };
     let rtl = run.disparity_px(left.height());
-    let gold = golden_map(left, right, dispmax)?;
+    let gold = golden_map(left, right, dispmax, config)?;
     let depth = run.depth_mm(left.height());
-    let gold_depth = golden_depth_map(&gold, &rtl::post::depth_stage::DepthCamera::default());
+    let gold_depth = golden_depth_map(&gold, &rtl::post::depth_stage::DepthCamera::default(), config);
     let report = StereoReport {
         image: name.to_string(),
+        config,
+        hardware: config.sizes(),
         width: left.width(),
         height: left.height(),
         dispmax,
@@ -204,11 +220,11 @@ pub struct RtlEvalReport {
     pub golden_bad2: f64,
 }
 
-/// Runs a pair folder through the line processor with the search bound
-/// `dispmax + 1` (as `eval`) and scores the map against the left ground
-/// truth.
-pub fn evaluate_pair_rtl(pair: &PairData, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, SimError> {
-    let (run, rtl, gold, _) = run_pair(&pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, None, progress)?;
+/// Runs a pair folder through `config`'s line processor with the search
+/// bound `dispmax + 1` (as `eval`) and scores the map against the left
+/// ground truth.
+pub fn evaluate_pair_rtl(config: Config, pair: &PairData, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, SimError> {
+    let (run, rtl, gold, _) = run_pair(config, &pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, None, progress)?;
     let gt = &pair.gt_left;
     let all = dense_scores(&rtl, gt, None);
     Ok(RtlEvalReport {
@@ -251,6 +267,8 @@ pub fn rtl_markdown_table(reports: &[RtlEvalReport]) -> String {
 /// What `rtl depth` was asked for besides the pair.
 #[derive(Debug, Clone)]
 pub struct RtlDepthJob {
+    /// The line processor's configuration.
+    pub config: Config,
     /// Eq. 6's bound, px.
     pub dispmax: f64,
     /// Idle clocks after each line of the cameras.
@@ -294,7 +312,7 @@ pub fn rtl_depth(
     }
     std::fs::create_dir_all(&job.out).map_err(|source| SimError::Io { path: job.out.clone(), source })?;
     let vcd = job.vcd.as_ref().map(|v| (v.path.as_path(), &v.rows));
-    let (report, rtl, gold, depth) = run_pair(name, &l, &r, job.dispmax, job.hblank, job.engine, vcd, progress)?;
+    let (report, rtl, gold, depth) = run_pair(job.config, name, &l, &r, job.dispmax, job.hblank, job.engine, vcd, progress)?;
 
     let (w, h) = (l.width(), l.height());
     let files = vec![
@@ -306,7 +324,7 @@ pub fn rtl_depth(
     use crate::eval::pictures::{disparity_visual_of, save_png};
     save_png(&disparity_visual_of(&rtl, w, h, job.dispmax), &files[0].0)?;
     save_png(&disparity_visual_of(&gold, w, h, job.dispmax), &files[1].0)?;
-    let word: Vec<u16> = rtl.iter().map(|&d| crate::formats::disparity_lsb(d) as u16).collect();
+    let word: Vec<u16> = rtl.iter().map(|&d| crate::formats::disparity_lsb(d, job.config) as u16).collect();
     let png16 = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(w as u32, h as u32, word).expect("one word per pixel");
     save_png(&png16, &files[2].0)?;
     let depth16 = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(w as u32, h as u32, depth).expect("one depth per pixel");

@@ -4,9 +4,11 @@
 // check). Synthesis never reads it: Yosys's `synth_ecp5` maps the primitive
 // itself.
 //
-// It models what `BlockRam` uses: 18-bit data on both ports (1024 words,
-// AD[13:4] the word address, AD[1:0] the byte enables of a write), writes on
-// port A (`WRITEMODE_A = "NORMAL"`), registered reads on port B with the
+// It models what `BlockRam` uses: one data width on both ports, 18 bits of
+// 1024 words (AD[13:4] the word address, AD[1:0] the byte enables of a
+// write) or 9, 4, 2 or 1 bits of 2048 to 16384 words (AD[13:3], AD[13:2],
+// AD[13:1] or AD[13:0] the word address; the data on DI/DO[w-1:0]), writes
+// on port A (`WRITEMODE_A = "NORMAL"`), registered reads on port B with the
 // output register when `REGMODE_B = "OUTREG"`, clock enables, chip selects
 // and resets tied off. Anything else stops the simulation with an error.
 // The words and registers start at zero, as the rust-hdl model's do.
@@ -38,10 +40,15 @@ module DP16KD(
   parameter WRITEMODE_B = "NORMAL";
   parameter GSR = "ENABLED";
 
+  // The mode's word width and address bits.
+  localparam W = DATA_WIDTH_A;
+  localparam AB = (W == 18) ? 10 : (W == 9) ? 11 : (W == 4) ? 12 : (W == 2) ? 13 : 14;
   wire [17:0] dia = {DIA17, DIA16, DIA15, DIA14, DIA13, DIA12, DIA11, DIA10, DIA9, DIA8, DIA7, DIA6, DIA5, DIA4, DIA3, DIA2, DIA1, DIA0};
-  wire [9:0] wa = {ADA13, ADA12, ADA11, ADA10, ADA9, ADA8, ADA7, ADA6, ADA5, ADA4};
-  wire [9:0] ra = {ADB13, ADB12, ADB11, ADB10, ADB9, ADB8, ADB7, ADB6, ADB5, ADB4};
-  reg [17:0] mem [0:1023];
+  wire [13:0] ada = {ADA13, ADA12, ADA11, ADA10, ADA9, ADA8, ADA7, ADA6, ADA5, ADA4, ADA3, ADA2, ADA1, ADA0};
+  wire [13:0] adb = {ADB13, ADB12, ADB11, ADB10, ADB9, ADB8, ADB7, ADB6, ADB5, ADB4, ADB3, ADB2, ADB1, ADB0};
+  wire [AB-1:0] wa = ada[13:14-AB];
+  wire [AB-1:0] ra = adb[13:14-AB];
+  reg [W-1:0] mem [0:(1<<AB)-1];
   reg [17:0] ram_q;
   reg [17:0] out_q;
   wire [17:0] dob = (REGMODE_B == "OUTREG") ? out_q : ram_q;
@@ -49,20 +56,28 @@ module DP16KD(
   assign {DOA17, DOA16, DOA15, DOA14, DOA13, DOA12, DOA11, DOA10, DOA9, DOA8, DOA7, DOA6, DOA5, DOA4, DOA3, DOA2, DOA1, DOA0} = 18'b0;
   integer k;
   initial begin
-    if (DATA_WIDTH_A != 18 || DATA_WIDTH_B != 18 || REGMODE_A != "NOREG" || WRITEMODE_A != "NORMAL") begin
-      $display("DP16KD model: only the 18-bit simple dual-port use of rtl::block_ram is modelled");
+    if (DATA_WIDTH_B != W || !(W == 18 || W == 9 || W == 4 || W == 2 || W == 1) || REGMODE_A != "NOREG" || WRITEMODE_A != "NORMAL") begin
+      $display("DP16KD model: only the simple dual-port use of rtl::block_ram (one width of 18, 9, 4, 2 or 1 bits) is modelled");
       $finish;
     end
-    for (k = 0; k < 1024; k = k + 1) mem[k] = 18'b0;
+    for (k = 0; k < (1 << AB); k = k + 1) mem[k] = {W{1'b0}};
     ram_q = 18'b0;
     out_q = 18'b0;
   end
-  always @(posedge CLKA) begin
-    if (CEA && WEA && ADA0) mem[wa][8:0] <= dia[8:0];
-    if (CEA && WEA && ADA1) mem[wa][17:9] <= dia[17:9];
-  end
+  generate
+    if (W == 18) begin : bytes
+      always @(posedge CLKA) begin
+        if (CEA && WEA && ADA0) mem[wa][8:0] <= dia[8:0];
+        if (CEA && WEA && ADA1) mem[wa][17:9] <= dia[17:9];
+      end
+    end else begin : words
+      always @(posedge CLKA) begin
+        if (CEA && WEA) mem[wa] <= dia[W-1:0];
+      end
+    end
+  endgenerate
   always @(posedge CLKB) begin
-    if (CEB) ram_q <= mem[ra];
+    if (CEB) ram_q <= mem[ra];  // zero-extended to 18 bits
     if (OCEB) out_q <= ram_q;
   end
 endmodule
