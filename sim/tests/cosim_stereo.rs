@@ -1,12 +1,12 @@
-//! The whole line processor's Verilog (`declivity verilog --top stereo`):
-//! Verilator lint with the accepted list of the blocks, Yosys without
-//! latches. (Generated with a 16-cell matcher, the size `cosim_matcher`
+//! The whole line processor's Verilog (`declivity verilog --top stereo`),
+//! in each configuration: Verilator lint with the accepted list of the
+//! blocks, Yosys without latches. (Generated with a 16-cell matcher, the size `cosim_matcher`
 //! co-simulates: the cells are the matcher's; the joins are what is new.)
 
 use sim::hdl::cosim;
 
-fn design() -> String {
-    sim::hdl::verilog::generate_with(sim::Config::Sd, sim::hdl::verilog::Top::Stereo, CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size")
+fn design(config: sim::Config) -> String {
+    sim::hdl::verilog::generate_with(config, sim::hdl::verilog::Top::Stereo, CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size")
 }
 
 /// Cells of the matcher in the checked Verilog.
@@ -46,20 +46,24 @@ const UNUSED_OUTPUTS: &[&str] = &[
 ];
 
 #[test]
-fn stereo_verilog_lints_clean_but_for_the_accepted_warnings() {
-    let warnings = cosim::lint_verilator(&design()).unwrap_or_else(|e| panic!("{e}"));
-    let counts = cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{e}"));
-    for w in warnings.iter().filter(|w| w.code == "UNUSEDSIGNAL") {
-        assert!(UNUSED_OUTPUTS.iter().any(|name| w.message.ends_with(&format!("'{name}'"))), "an unused signal not in the list: {}", w.message);
+fn stereo_verilog_lints_clean_but_for_the_accepted_warnings_in_each_configuration() {
+    for config in sim::Config::ALL {
+        let warnings = cosim::lint_verilator(&design(config)).unwrap_or_else(|e| panic!("{config}: {e}"));
+        let counts = cosim::check_accepted(&warnings, ACCEPTED).unwrap_or_else(|e| panic!("{config}: {e}"));
+        for w in warnings.iter().filter(|w| w.code == "UNUSEDSIGNAL") {
+            assert!(UNUSED_OUTPUTS.iter().any(|name| w.message.ends_with(&format!("'{name}'"))), "{config}: an unused signal not in the list: {}", w.message);
+        }
+        eprintln!("{config}: accepted lint warnings: {counts:?}");
     }
-    eprintln!("accepted lint warnings: {counts:?}");
 }
 
 #[test]
-fn stereo_synthesizes_in_yosys_without_latches() {
-    let check = sim::hdl::synth::yosys_latch_check(&design(), "top").unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(check.latches, 0, "latches: {:?}", check.latch_cells);
-    assert!(check.cells > 3000, "the line processor is not empty: {} cells", check.cells);
+fn stereo_synthesizes_in_yosys_without_latches_in_each_configuration() {
+    for config in sim::Config::ALL {
+        let check = sim::hdl::synth::yosys_latch_check(&design(config), "top").unwrap_or_else(|e| panic!("{config}: {e}"));
+        assert_eq!(check.latches, 0, "{config}: latches: {:?}", check.latch_cells);
+        assert!(check.cells > 3000, "{config}: the line processor is not empty: {} cells", check.cells);
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -183,42 +187,102 @@ mod frames {
         (GreyImage::new(width, height, left).expect("a frame"), GreyImage::new(width, height, right).expect("a frame"))
     }
 
-    /// Generated frames through the sensor's Verilog under Verilator, equal
-    /// to golden's hardware parity on every disparity and depth: lines of
-    /// `W_MAX` pixels with more than `N_MAX` declivities (the detector keeps
-    /// the first `N_MAX` and flags the line full, golden alike), and a
-    /// narrower frame with blanking.
+    /// Generated frames through the sensor's Verilog under Verilator, in
+    /// each configuration, equal to golden's hardware parity in that
+    /// configuration on every disparity and depth: lines of the
+    /// configuration's `W_MAX` pixels with more than its `N_MAX`
+    /// declivities (the detector keeps the first `N_MAX` and flags the line
+    /// full, golden alike), and a narrower frame with blanking.
     #[test]
     fn generated_frames_under_verilator_equal_golden_hardware_parity_lines_over_n_max_included() {
-        use rtl::params::{N_MAX, W_MAX};
         use rtl::post::depth_stage::DepthCamera;
         use sim::drive::stereo::{golden_depth_map, golden_map};
-        let design = sim::hdl::verilog::generate(sim::Config::Sd, sim::hdl::verilog::Top::Stereo);
-        for (what, (left, right), hblank, dispmax, over_n_max) in [
-            ("W_MAX lines of many steps", steps_pair(W_MAX, 24, 4, 9, 0x5eed_0001), 0, 24.0, true),
-            ("plateaus with blanking", steps_pair(400, 30, 12, 5, 0x5eed_0002), 16, 12.0, false),
-        ] {
-            let lsb = sim::formats::dispmax_lsb(dispmax, sim::Config::Sd).expect("dispmax");
-            let got = run_frame(Simulator::Verilator, sim::Config::Sd, &design, &left, &right, hblank, lsb, &Options::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
-            let run = &got.run;
-            assert_eq!(run.rows.len(), left.height(), "{what}: every line out");
-            assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped), (0, 0, 0), "{what}: nothing dropped");
-            assert_eq!(run.lines_full > 0, over_n_max, "{what}: lines over N_MAX = {N_MAX} flagged full ({})", run.lines_full);
-            let rtl = run.disparity_px(left.height());
-            let gold = golden_map(&left, &right, dispmax, sim::Config::Sd).expect("golden runs");
-            let depth = run.depth_mm(left.height());
-            let gold_depth = golden_depth_map(&gold, &DepthCamera::default(), sim::Config::Sd);
-            let matched = rtl.iter().filter(|&&d| d > 0.0).count();
-            eprintln!("{what}: {} clocks, {} lines full, {matched} pixels with a disparity", run.cycles, run.lines_full);
-            assert!(matched > rtl.len() / 2, "{what}: a dense map ({matched} of {})", rtl.len());
-            for (i, (a, b)) in rtl.iter().zip(&gold).enumerate() {
-                assert_eq!(a, b, "{what}: disparity at ({}, {}) differs from golden's hardware parity", i % left.width(), i / left.width());
-            }
-            assert_eq!(depth.len(), gold_depth.len(), "{what}: every depth out");
-            for (i, (a, b)) in depth.iter().zip(&gold_depth).enumerate() {
-                assert_eq!(a, b, "{what}: depth at ({}, {}) differs from golden's hardware parity", i % left.width(), i / left.width());
+        for config in sim::Config::ALL {
+            let (w_max, n_max) = (config.sizes().w_max, config.sizes().n_max);
+            let design = sim::hdl::verilog::generate(config, sim::hdl::verilog::Top::Stereo);
+            for (what, (left, right), hblank, dispmax, over_n_max) in [
+                ("W_MAX lines of many steps", steps_pair(w_max, 24, 4, 9, 0x5eed_0001), 0, 24.0, true),
+                ("plateaus with blanking", steps_pair(400, 30, 12, 5, 0x5eed_0002), 16, 12.0, false),
+            ] {
+                let what = format!("{config}: {what}");
+                let lsb = sim::formats::dispmax_lsb(dispmax, config).expect("dispmax");
+                let got = run_frame(Simulator::Verilator, config, &design, &left, &right, hblank, lsb, &Options::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+                let run = &got.run;
+                assert_eq!(run.rows.len(), left.height(), "{what}: every line out");
+                assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped), (0, 0, 0), "{what}: nothing dropped");
+                assert_eq!(run.lines_full > 0, over_n_max, "{what}: lines over N_MAX = {n_max} flagged full ({})", run.lines_full);
+                assert_eq!(run.lines_wide, 0, "{what}: no line wider than W_MAX = {w_max}");
+                let rtl = run.disparity_px(left.height());
+                let gold = golden_map(&left, &right, dispmax, config).expect("golden runs");
+                let depth = run.depth_mm(left.height());
+                let gold_depth = golden_depth_map(&gold, &DepthCamera::default(), config);
+                let matched = rtl.iter().filter(|&&d| d > 0.0).count();
+                eprintln!("{what}: {} clocks, {} lines full, {matched} pixels with a disparity", run.cycles, run.lines_full);
+                assert!(matched > rtl.len() / 2, "{what}: a dense map ({matched} of {})", rtl.len());
+                for (i, (a, b)) in rtl.iter().zip(&gold).enumerate() {
+                    assert_eq!(a, b, "{what}: disparity at ({}, {}) differs from golden's hardware parity", i % left.width(), i / left.width());
+                }
+                assert_eq!(depth.len(), gold_depth.len(), "{what}: every depth out");
+                for (i, (a, b)) in depth.iter().zip(&gold_depth).enumerate() {
+                    assert_eq!(a, b, "{what}: depth at ({}, {}) differs from golden's hardware parity", i % left.width(), i / left.width());
+                }
             }
         }
+    }
+
+    /// A line of `N_MAX` declivities exactly is kept whole (not flagged
+    /// full) and one more is flagged, in each configuration: the detector's
+    /// count against golden's own count of the generated line.
+    #[test]
+    fn a_line_of_n_max_declivities_is_whole_and_one_more_is_full_in_each_configuration() {
+        for config in sim::Config::ALL {
+            let (w_max, n_max) = (config.sizes().w_max, config.sizes().n_max);
+            let design = sim::hdl::verilog::generate(config, sim::hdl::verilog::Top::Stereo);
+            // Steps of 60 grey levels every 3 pixels, up and down: one
+            // declivity each (d_t of such a line is far below 60).
+            let line = |segments: usize| -> Vec<u8> { (0..w_max).map(|x| if x / 3 < segments && (x / 3) % 2 == 1 { 160 } else { 100 }).collect() };
+            // `k + 1` plateaus have `k` steps between them, and one more at
+            // the end when the last is high (`k` odd).
+            for (segments, full) in [(n_max + 1, false), (n_max + 2, true)] {
+                let row = line(segments);
+                let counted = golden::hardware::detect_line(&row, golden::hardware::HardwareLimits { n_max: usize::MAX, w_max: usize::MAX, ..config.limits() }).declivities.len();
+                assert_eq!(counted > n_max, full, "{config}: the generated line has {counted} declivities");
+                assert!(counted >= n_max, "{config}: {counted} declivities");
+                let img = GreyImage::new(w_max, 12, row.repeat(12)).expect("a frame");
+                let lsb = sim::formats::dispmax_lsb(16.0, config).expect("dispmax");
+                let got = run_frame(Simulator::Verilator, config, &design, &img, &img, 0, lsb, &Options::default()).unwrap_or_else(|e| panic!("{config}: {e}"));
+                assert_eq!(got.run.rows.len(), 12, "{config}: every line out");
+                assert_eq!(got.run.lines_full > 0, full, "{config}: {counted} declivities a line, {} lines full", got.run.lines_full);
+            }
+        }
+    }
+
+    /// The eight pairs up-scaled 2× (`sim::eval::upscale`: 568 to 1482
+    /// px wide), whole frames through the `hd` processor's Verilog under
+    /// Verilator: every disparity and depth equal to golden's hardware
+    /// parity in `hd`, one pixel per clock, no stall, every line out,
+    /// nothing dropped.
+    #[test]
+    fn every_pair_up_scaled_2x_under_verilator_in_hd_equals_golden_hardware_parity_at_a_pixel_per_clock() {
+        use sim::jobs::rtl_depth::{evaluate_pair_rtl, Engine};
+        let dir = sim::eval::io::stereo_data_dir();
+        let pairs = sim::eval::io::expand_pair_dirs(&[dir]).expect("the pairs");
+        assert_eq!(pairs.len(), 8, "the eight Middlebury pairs of data/stereo");
+        let mut widest = 0;
+        for p in pairs {
+            let data = sim::eval::upscale::upscale_pair(&sim::eval::io::load_pair_dir(&p).expect("the pair loads"), 2).expect("2x");
+            widest = widest.max(data.left.width());
+            let r = evaluate_pair_rtl(sim::Config::Hd, &data, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", data.name));
+            eprintln!("{}", serde_json::to_string(&r).expect("serializes"));
+            let run = &r.run;
+            assert_eq!(run.lines_out, data.left.height(), "{}: every line out", data.name);
+            assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped, run.lines_wide), (0, 0, 0, 0), "{}: nothing dropped", data.name);
+            assert_eq!((run.px_per_clk, run.stall_cycles), (1.0, 0), "{}: a pixel per clock", data.name);
+            assert_eq!(run.exact_px, 1.0, "{}: every disparity equal to golden's hardware parity", data.name);
+            assert_eq!(run.exact_depth_px, 1.0, "{}: every depth equal to golden's hardware parity", data.name);
+            assert!(r.density > 0.5, "{}: a dense map ({})", data.name, r.density);
+        }
+        assert!(widest > rtl::params::W_MAX, "a pair wider than sd's W_MAX ({widest} px)");
     }
 
     /// Every pair in the repository, whole frame, through the sensor's
