@@ -3,7 +3,7 @@
 # and docs/ (method, results, verification): writes docs/data/*.json[l] (docs/data/README.md
 # lists them). Then run scripts/doc-tables.py.
 #
-# Usage: scripts/doc-data.sh [STEP...]    STEP: accuracy bench robustness rtl detect (default: all)
+# Usage: scripts/doc-data.sh [STEP...]    STEP: accuracy bench robustness rtl hd detect budget (default: all)
 #        DECLIVITY=path/to/declivity       the binary (default target/release/declivity)
 #
 # Runs one thing at a time, under nice. The bench needs numpy and opencv-python-headless
@@ -15,7 +15,7 @@ DATA=data/stereo
 OUT=docs/data
 MODES="paper relative one-sided consistent edges median edge-flag robust"
 PAIRS="tsukuba venus sawtooth map cones teddy art motorcycle"
-STEPS=${*:-accuracy bench robustness rtl detect}
+STEPS=${*:-accuracy bench robustness rtl hd detect budget}
 run() { nice -n 10 "$@"; }
 mkdir -p "$OUT"
 
@@ -133,6 +133,37 @@ PY
   rtl)
     # The whole line processor's Verilog under Verilator on the eight pairs, against golden.
     run "$BIN" eval --rtl --engine verilator --json "$DATA" > "$OUT/eval-rtl.jsonl"
+    ;;
+  hd)
+    # The eight pairs up-scaled 2x (sim/examples/upscale_pairs.rs), golden and the hd line
+    # processor's Verilog under Verilator.
+    work=$(mktemp -d)
+    run cargo run --release -q -p sim --example upscale_pairs -- "$work" 2 | grep -v "^written to" > "$OUT/upscale-2x.txt"
+    run "$BIN" eval --json --mode robust "$work" > "$OUT/eval-2x-robust.jsonl"
+    run "$BIN" eval --rtl --config hd --engine verilator --json "$work" > "$OUT/eval-rtl-hd-2x.jsonl"
+    rm -rf "$work"
+    ;;
+  budget)
+    # The latency budgets of the datasheet: sd examples at 125 MHz, and the HD video formats in
+    # hd, each at its pixel clock with its horizontal blanking (name: budget-WxH-nN[-dispmaxD]
+    # [-hblankC][-CONFIG-MHZ].json).
+    b() { local name=$1; shift; run "$BIN" budget --json "$@" > "$OUT/$name.json"; }
+    b budget-512x512-n56-dispmax60 --width 512 --height 512 --n-max 56 --dispmax 60 --clock-mhz 125
+    b budget-512x512-n128 --width 512 --height 512 --n-max 128 --dispmax 64 --clock-mhz 125
+    b budget-512x512-n128-hblank648 --width 512 --height 512 --n-max 128 --dispmax 64 --clock-mhz 125 --hblank 648
+    b budget-1024x768-n128 --width 1024 --height 768 --n-max 128 --dispmax 64 --clock-mhz 125
+    b budget-1024x768-n128-hblank320 --width 1024 --height 768 --n-max 128 --dispmax 64 --clock-mhz 125 --hblank 320
+    # CEA-861 720p60 (1650 x 750, 74.25 MHz), CVT-RB 1280x800 at 120 Hz (1440 x 847, 146.25 MHz),
+    # CEA-861 1080p30 (2200 x 1125, 74.25 MHz) and 1080p60 (2200 x 1125, 148.5 MHz), CVT-RB
+    # 1080p60 (2080 x 1111, 138.5 MHz); N = 160 (the most declivities a line of the up-scaled
+    # pairs has is 155) and N = N_MAX = 256.
+    for n in 160 256; do
+      b budget-1280x720-n$n-hblank370-hd-74.25 --config hd --width 1280 --height 720 --n-max $n --dispmax 128 --clock-mhz 74.25 --hblank 370
+      b budget-1280x800-n$n-hblank160-hd-146.25 --config hd --width 1280 --height 800 --n-max $n --dispmax 128 --clock-mhz 146.25 --hblank 160
+      b budget-1920x1080-n$n-hblank280-hd-74.25 --config hd --width 1920 --height 1080 --n-max $n --dispmax 128 --clock-mhz 74.25 --hblank 280
+      b budget-1920x1080-n$n-hblank280-hd-148.5 --config hd --width 1920 --height 1080 --n-max $n --dispmax 128 --clock-mhz 148.5 --hblank 280
+      b budget-1920x1080-n$n-hblank160-hd-138.5 --config hd --width 1920 --height 1080 --n-max $n --dispmax 128 --clock-mhz 138.5 --hblank 160
+    done
     ;;
   detect)
     # The rtl detector (rust-hdl model) on every row of each pair's left view, against golden.

@@ -147,6 +147,12 @@ pub(crate) fn per_config(size: impl Fn(&sim::config::Sizes) -> usize) -> String 
     Config::ALL.iter().map(|c| format!("{} {}", c.name(), size(&c.sizes()))).collect::<Vec<_>>().join(", ")
 }
 
+/// The matcher sizes of every configuration, for help texts: `sd: one of
+/// [2, 4, …]; hd: one of […]`.
+pub(crate) fn cells_per_config() -> String {
+    Config::ALL.iter().map(|c| format!("{c}: one of {:?}", c.matcher_cells())).collect::<Vec<_>>().join("; ")
+}
+
 /// The help of a `--config` option that applies to `what`.
 pub(crate) fn config_help(what: &str) -> String {
     let names: Vec<String> = Config::ALL

@@ -101,7 +101,17 @@ fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
     GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
     std::fs::write(p.join("junk.png"), b"not an image").unwrap();
     std::fs::create_dir(p.join("empty")).unwrap();
+    let (wl, wr) = shifted_pair(1100, 10, 3);
+    wl.save(p.join("wide_l.png")).unwrap();
+    wr.save(p.join("wide_r.png")).unwrap();
     let cases: &[(&[&str], &str)] = &[
+        // Lines wider than the configuration's W_MAX: refused, the one that takes them named.
+        (&["budget", "--width", "1920", "--height", "1080", "--n-max", "128", "--dispmax", "64", "--clock-mhz", "148.5"], "--config hd"),
+        (&["budget", "--config", "hd", "--width", "2100", "--height", "1080", "--n-max", "128", "--dispmax", "64", "--clock-mhz", "148.5"], "no configuration takes lines this wide"),
+        (&["rtl", "depth", "wide_l.png", "wide_r.png", "--dispmax", "8", "--engine", "icarus"], "--config hd"),
+        (&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--config", "hd", "--engine", "rust-hdl"], "sd configuration's model only"),
+        (&["verilog", "--config", "hd", "--top", "matcher", "--cells", "128"], "hd matcher is generated with [2, 4, 8, 16, 32, 64] cells"),
+        (&["synth", "--top", "detector", "--speed", "5"], "not an ECP5 speed grade"),
         (&["depth", "missing.png", "r.png", "--dispmax", "8"], "missing.png"),
         (&["depth", "junk.png", "r.png", "--dispmax", "8"], "cannot read image"),
         (&["depth", "l.png", "small.png", "--dispmax", "8"], "differ in size"),
@@ -318,13 +328,32 @@ fn rtl_detect_rejects_rows_outside_the_image_and_unreadable_files() {
 #[test]
 fn verilog_command_writes_the_detector_with_its_ports() {
     let dir = tempfile::tempdir().unwrap();
-    let o = declivity(&["verilog", "--top", "detector", "--out", "v"], dir.path());
-    let (out, err) = text(&o);
-    assert!(o.status.success(), "stdout {out}\nstderr {err}");
-    let v = std::fs::read_to_string(dir.path().join("v/detector.v")).unwrap();
-    assert!(v.contains("module top"));
-    for port in ["s_tdata", "s_tvalid", "s_tuser", "s_tlast", "s_tready", "m_valid", "m_last", "m_pos", "m_dt"] {
-        assert!(v.contains(port), "{port}");
+    // A position has 4 fraction bits below the line's index: 14 bits in sd (W_MAX 1024), 15 in hd (2048).
+    for (config, pos) in [("sd", "output reg  [13:0] m_pos"), ("hd", "output reg  [14:0] m_pos")] {
+        let out_dir = format!("v-{config}");
+        let o = declivity(&["verilog", "--top", "detector", "--config", config, "--out", &out_dir], dir.path());
+        let (out, err) = text(&o);
+        assert!(o.status.success(), "stdout {out}\nstderr {err}");
+        let v = std::fs::read_to_string(dir.path().join(&out_dir).join("detector.v")).unwrap();
+        assert!(v.contains("module top"));
+        for port in ["s_tdata", "s_tvalid", "s_tuser", "s_tlast", "s_tready", "m_valid", "m_last", "m_pos", "m_dt"] {
+            assert!(v.contains(port), "{config}: {port}");
+        }
+        assert!(v.contains(pos), "{config}: {pos}");
+    }
+}
+
+#[test]
+fn budget_json_names_the_configuration_and_its_sizes() {
+    let dir = tempfile::tempdir().unwrap();
+    for (config, w_max, n_max, cells) in [("sd", 1024, 128, 32), ("hd", 2048, 256, 64)] {
+        let o = declivity(&["budget", "--config", config, "--width", "1000", "--height", "720", "--n-max", "100", "--dispmax", "64", "--clock-mhz", "125", "--json"], dir.path());
+        let (out, err) = text(&o);
+        assert!(o.status.success(), "stdout {out}\nstderr {err}");
+        let j: serde_json::Value = serde_json::from_str(&out).expect("one JSON object");
+        assert_eq!(j["config"], config);
+        assert_eq!((j["hardware"]["w_max"].as_u64(), j["hardware"]["n_max"].as_u64(), j["hardware"]["cells"].as_u64()), (Some(w_max), Some(n_max), Some(cells)));
+        assert_eq!(j["cells"].as_u64(), Some(cells), "{config}: the sensor's array by default");
     }
 }
 

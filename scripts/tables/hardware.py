@@ -233,6 +233,68 @@ def hw_budget_examples():
     )
 
 
+# The HD video formats in the hd configuration, each at its pixel clock: (format, timing,
+# total pixels per line, total lines, pixel clock MHz, budget file stem with {n} for N).
+# docs/data/budget-WxH-nN-hblankC-hd-MHZ.json, each written by
+#   declivity budget --config hd --width W --height H --n-max N --dispmax 128
+#     --clock-mhz MHZ --hblank C --json
+# (scripts/doc-data.sh budget).
+HD_FORMATS = [
+    ("1280×720 at 60 fps", "CEA-861 720p60", 1650, 750, 74.25, "budget-1280x720-n{n}-hblank370-hd-74.25.json"),
+    ("1280×800 at 120 fps", "CVT-RB", 1440, 847, 146.25, "budget-1280x800-n{n}-hblank160-hd-146.25.json"),
+    ("1920×1080 at 30 fps", "CEA-861 1080p30", 2200, 1125, 74.25, "budget-1920x1080-n{n}-hblank280-hd-74.25.json"),
+    ("1920×1080 at 60 fps", "CEA-861 1080p60", 2200, 1125, 148.5, "budget-1920x1080-n{n}-hblank280-hd-148.5.json"),
+    ("1920×1080 at 60 fps", "CVT-RB", 2080, 1111, 138.5, "budget-1920x1080-n{n}-hblank160-hd-138.5.json"),
+]
+HD_N = [160, 256]
+
+
+@table("hw-budget-hd")
+def hw_budget_hd():
+    """The HD formats in hd at their pixel clocks: line period against the line's clocks, the
+    vertical blanking needed against the format's, and whether the format fits."""
+    rows = []
+    for title, timing, htotal, vtotal, mhz, stem in HD_FORMATS:
+        for n in HD_N:
+            b = load_jsonl(stem.format(n=n))[0]
+            assert b["config"] == "hd" and b["hblank"] == htotal - b["width"] and b["clock_mhz"] == mhz
+            vblank = vtotal - b["height"]
+            line_ok = b["line_period_cycles"] <= htotal
+            frame_ok = b["vblank_lines"] <= vblank
+            slowest = b["slowest_stage"] if b["stall_cycles_per_line"] else "the input"
+            rows.append([
+                title if n == HD_N[0] else "",
+                f"{timing}: {htotal} × {vtotal}, {mhz} MHz" if n == HD_N[0] else "",
+                n,
+                f"{_n(b['line_period_cycles'])} ({slowest})",
+                f"{b['vblank_lines']} of {vblank}",
+                f"{b['latency_cycles'] / mhz:.1f} µs",
+                "**fits**" if line_ok and frame_ok else f"no: P over {htotal} by {_n(b['line_period_cycles'] - htotal)} clk" if not line_ok else "no: vertical blanking",
+            ])
+    return markdown(["format", "timing (total pixels × lines, pixel clock = the processor's clock)", "N per line",
+                     "line period P, clk (slowest stage)", "vertical blanking needed, lines", "latency", "fits"],
+                    rows, ["---", "---", "--:", "--:", "--:", "--:", "---"])
+
+
+@table("hw-configurations")
+def hw_configurations():
+    """The configurations: their sizes (the budgets' `hardware`) and memories as generated."""
+    # docs/data/budget-512x512-n128.json (sd) and budget-1920x1080-n256-hblank280-hd-148.5.json
+    # (hd): declivity budget [--config hd] ... --json (scripts/doc-data.sh budget)
+    rows = []
+    for name in ["budget-512x512-n128.json", "budget-1920x1080-n256-hblank280-hd-148.5.json"]:
+        b = load_jsonl(name)[0]
+        h, r = b["hardware"], b["resources"]
+        rows.append([
+            f"`{h['config']}`", _n(h["w_max"]), h["n_max"], f"{h['cells']} × {h['rows_per_cell']}",
+            h["pos_bits"], h["dispmax_bits"], f"{h['height_bits']} (up to {_n((1 << h['height_bits']) - 1)} rows)",
+            _n(r["memory_bits"]), r["dp16kd_instances"], _n(r["reference_row_dpr16x4"]),
+        ])
+    return markdown(["`--config`", "`W_MAX`, px", "`N_MAX`", "gain cells × rows", "disparity and position bits (`m_tdata`, 4 fraction)",
+                     "`dispmax` bits", "`height` bits", "memory bits", "DP16KD instantiated", "TRELLIS_DPR16X4"],
+                    rows, ["---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"])
+
+
 @table("hw-budget-stages")
 def hw_budget_stages():
     """The stages of one example (512×512, N = 128): clocks per line and latency terms."""

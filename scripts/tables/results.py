@@ -237,8 +237,27 @@ def results_rtl():
                     rows, ["---", "---"] + ["---:"] * 11)
 
 
-def evals_rtl():
-    return {r["pair"]: r for r in load_jsonl("eval-rtl.jsonl")}
+def evals_rtl(name="eval-rtl.jsonl"):
+    return {r["pair"]: r for r in load_jsonl(name)}
+
+
+@table("results-rtl-hd")
+def results_rtl_hd():
+    """The hd configuration on the pairs up-scaled 2x."""
+    # docs/data/eval-rtl-hd-2x.jsonl: declivity eval --rtl --config hd --engine verilator --json
+    #   on the folders of sim/examples/upscale_pairs.rs OUT 2 (scripts/doc-data.sh hd)
+    rtl = evals_rtl("eval-rtl-hd-2x.jsonl")
+    rows = []
+    for p in PAIRS:
+        r = run = rtl[p]
+        assert run["config"] == "hd"
+        dropped = f"{run['records_dropped']}, {run['lines_dropped']}, {run['pixels_dropped']}"
+        rows.append([p, f"{run['width']}×{run['height']}", f"{run['exact_px']:.4f}", f"{run['exact_depth_px']:.4f}",
+                     f"{run['px_per_clk']:.4f}", fmt(run["stall_cycles"], ","), fmt(run["latency_cycles"], ","),
+                     fmt(r["bad2"], ".2f"), fmt(r["golden_bad2"], ".2f"), dropped, fmt(run["cycles"], ",")])
+    return markdown(["pair (2×)", "size", "exact_px", "exact_depth_px", "px_per_clk", "stall clocks",
+                     "latency (clocks)", "bad2 rtl (%)", "bad2 golden, same stages (%)", "dropped (records, lines, pixels)", "clocks"],
+                    rows, ["---", "---"] + ["---:"] * 9)
 
 
 # ---------------------------------------------------------------------------

@@ -7,7 +7,7 @@ use rtl::params::{MEDIAN_HALF, POS_FRAC_BITS, ROWS_PER_CELL};
 use sim::budget::{budget, max_height, report_text, BudgetRequest, MIN_HEIGHT};
 use sim::{Config, SimError};
 
-use crate::args::{config_help, per_config, CliConfig};
+use crate::args::{cells_per_config, config_help, per_config, CliConfig};
 
 /// Latency budget of the hardware: clocks per line per stage, line period, latency, frame rate, resources.
 #[derive(Args, Debug)]
@@ -104,7 +104,7 @@ fn cells_help() -> String {
     format!(
         "Gain cells of the matcher's systolic array K ({}; each holds up to {ROWS_PER_CELL} reference \
          declivities, so N <= {ROWS_PER_CELL}·K) [default: the configuration's sensor: {}]",
-        Config::ALL.iter().map(|c| format!("{c}: one of {:?}", c.matcher_cells())).collect::<Vec<_>>().join("; "),
+        cells_per_config(),
         per_config(|s| s.cells)
     )
 }

@@ -6,7 +6,7 @@ use clap::Args;
 use rtl::params::ROWS_PER_CELL;
 use sim::{Config, SimError};
 
-use crate::args::{config_help, per_config, CliConfig, CliRule, CliTop};
+use crate::args::{cells_per_config, config_help, per_config, CliConfig, CliRule, CliTop};
 
 /// Write the Verilog of a hardware block.
 #[derive(Args, Debug)]
@@ -43,7 +43,7 @@ fn cells_help() -> String {
     format!(
         "Gain cells of the matcher's systolic array ({}; each holds up to {ROWS_PER_CELL} reference \
          declivities; --top matcher and stereo only) [default: the configuration's sensor: {}]",
-        Config::ALL.iter().map(|c| format!("{c}: one of {:?}", c.matcher_cells())).collect::<Vec<_>>().join("; "),
+        cells_per_config(),
         per_config(|s| s.cells)
     )
 }

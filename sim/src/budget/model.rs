@@ -237,7 +237,7 @@ fn matcher_stage(s: &Sizes) -> StageBudget {
                 1 << DIAG_BITS,
                 CHOICE_WORDS * CHOICE_WORD_BITS,
                 Some(CHOICE_WORDS * dp16kd_of(CHOICE_WORD_BITS, 1 << CHOICE_ADDR_BITS)),
-                "SystolicMatcher::ram[0..8] (one per row group of 16 rows: its 2-bit choices of an anti-diagonal in a word), two banks: the traceback of a line reads one while the next line's sweep writes the other",
+                "SystolicMatcher::ram[g] (one per row group g of 16 rows, CHOICE_WORDS in all: its 2-bit choices of an anti-diagonal in a word), two banks: the traceback of a line reads one while the next line's sweep writes the other",
             ),
             Memory::new(NAME, "traceback stack", 1, 1, 1 << INDEX_BITS, 2 * INDEX_BITS, None, "Traceback::stack_i, stack_j"),
         ])
