@@ -211,12 +211,13 @@ pub const RECIP_BITS: usize = 16;
 /// `2^RECIP_BITS`.
 pub const RECIP_SHIFT: usize = POS_BITS - 1 + RECIP_BITS;
 /// Address bits of the interpolator's segment memory (`2^SEG_ADDR_BITS`
-/// = 1024 entries): with a full line queue, the other `LINE_QUEUE - 1`
-/// lines' segments, at most `N_MAX - 1` each (889), leave a line's reserve
+/// = `8·N_MAX` entries, 1024 in `sd`): with a full line queue, the other
+/// `LINE_QUEUE - 1` lines' segments, at most `N_MAX - 1` each (889 in
+/// `sd`), leave a line's reserve
 /// ([`SEG_RESERVE`](crate::post::interpolator::SEG_RESERVE),
-/// `N_MAX - 1 + 4` = 131) free, so a line the queue has room for is never
-/// dropped for want of segments. One `DP16KD` per field (1024 words of 18
-/// bits, the most one holds).
+/// `N_MAX - 1 + 4` = 131 in `sd`) free, so a line the queue has room for is
+/// never dropped for want of segments. In `sd` one `DP16KD` per field (1024
+/// words of 18 bits), in `hd` one per 9 bits (2048 words).
 pub const SEG_ADDR_BITS: usize = INDEX_BITS + 3;
 /// Address bits of the interpolator's line queue (8 lines,
 /// [`LINE_QUEUE`](crate::post::interpolator::LINE_QUEUE)). Lines reach the

@@ -103,7 +103,8 @@
 //! those `D` clocks besides its usual one or two. Real pairs have such
 //! stretches (a busy run of lines puts the matcher several line times
 //! behind), so the queue must hold several lines at once. A queue sized
-//! for every backlog the record queues allow is large: they hold
+//! for every backlog the record queues allow is large (the figures that
+//! follow are `sd`'s): they hold
 //! [`RECORD_FIFO_DEPTH`](crate::stream::record_fifo::RECORD_FIFO_DEPTH)
 //! (1024) beats per side, the matching of up to eight full
 //! lines (`line_period` 845 clocks per 129 beats back to back, 14 for an
@@ -123,7 +124,8 @@
 //! overflow is `records_dropped`). The interpolator then never drops a
 //! line: when one starts, the other lines in its queue are in flight, at
 //! most `LINE_QUEUE - 1`, and their segments, at most `N_MAX - 1` each
-//! (889), leave its reserve free (`SEG_RESERVE` = 131 of 1024). Nothing
+//! (889 in `sd`), leave its reserve free (`SEG_RESERVE` = 131 of 1024 in
+//! `sd`). Nothing
 //! waits on itself: the row check holds back only the last row it got (for
 //! the next marker), the matcher and the interpolator finish their lines
 //! by themselves, so with two or more lines allowed one always leaves. The
