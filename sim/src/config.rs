@@ -84,6 +84,17 @@ impl Config {
         Config::ALL.into_iter().find(|c| width <= c.sizes().w_max)
     }
 
+    /// What to do with lines of `width` pixels too wide for some
+    /// configuration: the configuration that takes them (`the hd
+    /// configuration takes lines up to 2048 pixels: --config hd`), or that
+    /// none does.
+    pub fn fitting_hint(width: usize) -> String {
+        match Config::fitting(width) {
+            Some(c) => format!("the {c} configuration takes lines up to {} pixels: --config {c}", c.sizes().w_max),
+            None => "no configuration takes lines this wide".to_string(),
+        }
+    }
+
     /// The gain-cell counts its matcher can be generated with (`--cells`):
     /// up to the sensor's cells, arrays of fewer than 16 cells dividing 16
     /// (their phases share a word of the choice memory,

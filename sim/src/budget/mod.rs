@@ -259,7 +259,7 @@ pub enum BudgetError {
     /// `W > W_MAX`.
     #[error(
         "--width {width}: wider than the {config} line processor's W_MAX = {w_max} pixels (it would process the first {w_max} of each line and flag it wide); {}",
-        match fits { Some(c) => format!("the {c} configuration takes lines up to {} pixels: --config {c}", c.sizes().w_max), None => "no configuration takes lines this wide".to_string() }
+        Config::fitting_hint(*width)
     )]
     TooWide {
         /// The width asked for.

@@ -130,11 +130,8 @@ fn run_pair(
     let lsb = dispmax_lsb(dispmax, config)?;
     let w_max = config.sizes().w_max;
     if left.width() > w_max {
-        let fits = match Config::fitting(left.width()) {
-            Some(c) => format!("the {c} configuration takes lines up to {} px (--config {c})", c.sizes().w_max),
-            None => "no configuration takes lines this wide".to_string(),
-        };
-        return Err(SimError::Argument(format!("{name}: lines of {} px are wider than the {config} hardware's W_MAX = {w_max} px; {fits}", left.width())));
+        let hint = Config::fitting_hint(left.width());
+        return Err(SimError::Argument(format!("{name}: lines of {} px are wider than the {config} hardware's W_MAX = {w_max} px; {hint}", left.width())));
     }
     if engine == Engine::RustHdl && config != Config::Sd {
         return Err(SimError::Argument(format!(
