@@ -184,15 +184,6 @@ pub fn max_height(config: Config) -> usize {
     }
 }
 
-/// Every row the worst for `n` declivities per side in `config`
-/// ([`sd::worst_load`]).
-pub fn worst_load(config: Config, n: usize) -> RowLoad {
-    match config {
-        Config::Sd => sd::worst_load(n),
-        Config::Hd => hd::worst_load(n),
-    }
-}
-
 /// What the budget is asked for (the options of `declivity budget`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BudgetRequest {
