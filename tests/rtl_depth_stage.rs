@@ -297,7 +297,7 @@ fn cameras_outside_the_range_are_refused_with_typed_errors() {
 /// one row per line period: every depth as golden's.
 fn real_pair(pair: &str, cam: DepthCamera) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
-    let disparity = sim::drive::stereo::golden_map(&data.left, &data.right, data.dispmax + 1.0, sim::Config::Sd).expect("golden runs");
+    let disparity = sim::drive::stereo::golden_map(&data.left, &data.right, 0.0, data.dispmax + 1.0, sim::Config::Sd).expect("golden runs");
     let w = data.left.width();
     let lines: Vec<Vec<u64>> = disparity.chunks(w).map(|r| r.iter().map(|&d| disparity_lsb(d, sim::Config::Sd)).collect()).collect();
     let want = sim::drive::stereo::golden_depth_map(&disparity, &cam, sim::Config::Sd);

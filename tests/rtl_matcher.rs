@@ -37,9 +37,10 @@ use rtl::matcher::declivity_matcher::{
 use rtl::matcher::traceback::traceback_cycles;
 use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
 use sim::drive::matcher::{
-    agreement, check_line, golden_match, image_lines, match_image, Agreement, MatchLine, MatchRecord, MatchedLine,
-    MatcherSim,
+    agreement, check_line, golden_match, golden_match_in, image_lines, match_image, Agreement, MatchLine, MatchRecord,
+    MatchedLine, MatcherSim,
 };
+use sim::formats::SearchArea;
 
 /// Cells of the matcher in the generated cases.
 const CELLS: usize = 16;
@@ -280,6 +281,27 @@ proptest! {
         }
     }
 
+    /// Eq. 6 with a lower bound, `dispmin < d < dispmax`: the matcher's
+    /// `dispmin` input (the columns' positions moved by it in the engine)
+    /// gives golden's path for the same area, and no match outside it.
+    #[test]
+    fn prop_with_a_dispmin_rtl_path_is_golden_optimal_path_and_every_disparity_is_inside_dispmin_dispmax(
+        (cases, dispmax, rule) in any_stream(),
+        permille in 0u32..1000,
+    ) {
+        let area = SearchArea { dispmin: (dispmax - PX - 1) * permille / 1000, dispmax };
+        let mut sim = MatcherSim::<CELLS>::in_area(rule, area);
+        let got = sim.run(&pairs_of(&cases), false, || {});
+        prop_assert_eq!(got.len(), cases.len(), "one marker per line pair");
+        for (c, g) in cases.iter().zip(&got) {
+            let want = golden_match_in(&c.reference, &c.other, area, rule);
+            prop_assert_eq!(agreement(&want, &g.pairs()), Agreement::Identical, "{:?}\n{}", area, describe(c, g, dispmax, rule));
+            for b in &g.matches {
+                prop_assert!(b.disp > area.dispmin && b.disp < dispmax, "disparity {} LSB outside {:?}", b.disp, area);
+            }
+        }
+    }
+
     /// `line_cycles(n, m, stop_diag, k, CELLS)` from the engine taking a pair
     /// (`TAKE_AFTER_MARKER` clocks after its second marker, engine idle) to its
     /// marker.
@@ -407,7 +429,7 @@ fn real_pair(pair: &str, rule: GainRule) {
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(pair)).expect("the pair loads");
     let lines = image_lines(&data.left, &data.right);
     let dispmax = ((data.dispmax + 1.0) * PX as f64) as u32;
-    let (report, outcomes) = match_image::<N_CELLS>(pair, &lines, rule, dispmax, 2, &|| {});
+    let (report, outcomes) = match_image::<N_CELLS>(pair, &lines, rule, SearchArea::below(dispmax), 2, &|| {});
     eprintln!("{}", serde_json::to_string(&report).expect("serializes"));
     for (y, o) in outcomes.iter().enumerate() {
         assert_eq!(o.agreement, Agreement::Identical, "{pair} row {y}: golden {:?}, rtl {:?}", o.golden.nodes, o.rtl.pairs());
@@ -430,6 +452,27 @@ fn every_row_of_tsukuba_matches_golden_node_for_node_robust() {
 #[test]
 fn every_row_of_tsukuba_matches_golden_node_for_node_paper() {
     real_pair("tsukuba", GainRule::Paper);
+}
+
+/// Eq. 6's lower bound on real lines: rows of tsukuba (dispmax 16 px) with
+/// `dispmin` 6 px match golden's paths for that area node for node, every
+/// match is inside it, and the bound changes the paths (golden without it
+/// matches some of these declivities at 6 px or less).
+#[test]
+fn with_a_dispmin_real_rows_match_golden_node_for_node_and_every_disparity_is_inside_the_area() {
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
+    let lines: Vec<_> = image_lines(&data.left, &data.right).into_iter().skip(100).take(32).collect();
+    let area = SearchArea { dispmin: 6 * PX, dispmax: ((data.dispmax + 1.0) * PX as f64) as u32 };
+    let (report, outcomes) = match_image::<N_CELLS>("tsukuba", &lines, GainRule::Robust, area, 2, &|| {});
+    assert_eq!((report.identical_lines, report.mismatch_lines, report.malformed_lines), (lines.len(), 0, 0), "{report:?}");
+    let inside = outcomes.iter().flat_map(|o| &o.rtl.matches).all(|b| b.disp > area.dispmin && b.disp < area.dispmax);
+    assert!(inside, "a match outside {area:?}");
+    assert!(report.matches_rtl > 0, "matches above dispmin: {report:?}");
+    let below = lines.iter().flat_map(|(r, o)| {
+        let g = golden_match(r, o, area.dispmax, GainRule::Robust);
+        g.nodes.into_iter().map(move |(i, j)| r.records[i].pos as i64 - o.records[j].pos as i64)
+    });
+    assert!(below.filter(|&d| d <= area.dispmin as i64).count() > 0, "the rows have matches at or below dispmin without it");
 }
 
 /// An image wider than `W_MAX`: each line is its first `W_MAX` pixels, as

@@ -41,7 +41,7 @@ fn check_blocks_and_golden_after_matcher(run: &StereoRun, blocks: &BlocksRun, wi
 /// the shares of pixels with the same disparity and the same depth, and
 /// within 1/4 px.
 fn against_golden(run: &StereoRun, left: &golden::GreyImage, right: &golden::GreyImage, dispmax: f64) -> (f64, f64, f64) {
-    let golden = golden_map(left, right, dispmax, sim::Config::Sd).expect("golden runs");
+    let golden = golden_map(left, right, 0.0, dispmax, sim::Config::Sd).expect("golden runs");
     let rtl = run.disparity_px(left.height());
     let depth = run.depth_mm(left.height());
     let golden_depth = golden_depth_map(&golden, &DepthCamera::default(), sim::Config::Sd);

@@ -59,11 +59,17 @@ pub(crate) struct MethodArgs {
     pub hardware_parity: bool,
     #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("--hardware-parity and --rtl"))]
     pub config: CliConfig,
-    /// Lower search bound in px: a match needs dispmin < d < dispmax (eq. 6; the paper's 0).
-    /// For a verged or offset rig, or a scene with a known nearest range. Golden only: the
-    /// line processor has none, so --hardware-parity takes 0 only.
-    #[arg(long, default_value_t = 0.0, value_parser = parse_non_negative)]
+    #[arg(long, default_value_t = 0.0, value_parser = parse_non_negative, help = dispmin_help())]
     pub dispmin: f64,
+}
+
+fn dispmin_help() -> String {
+    format!(
+        "Lower search bound in px: a match needs dispmin < d < dispmax (eq. 6; the paper's 0). For a \
+         verged or offset rig, or a scene with a known nearest range. --hardware-parity and --rtl take it \
+         as the line processor's `dispmin` input does, a multiple of 1/{} px",
+        1u32 << POS_FRAC_BITS
+    )
 }
 
 fn hardware_parity_help() -> String {

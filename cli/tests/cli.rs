@@ -124,9 +124,12 @@ fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
         (&["depth", "l.png", "r.png", "--dispmax", "8", "--focal-px", "0", "--baseline-m", "0.16"], "finite number greater than 0"),
         (&["depth", "l.png", "r.png", "--dispmax", "8", "--focal-px=-5", "--baseline-m", "0.16"], "finite number greater than 0"),
         (&["depth", "l.png", "r.png", "--dispmax", "8", "--focal-px", "500", "--baseline-m", "nan"], "finite number greater than 0"),
-        // Eq. 6's lower bound below the upper one, and none in hardware parity.
+        // Eq. 6's lower bound below the upper one, and on the positions' grid
+        // where the line processor takes it.
         (&["depth", "l.png", "r.png", "--dispmax", "8", "--dispmin", "7.5"], "dispmin must be at least 0 and less than dispmax"),
-        (&["depth", "l.png", "r.png", "--dispmax", "8", "--dispmin", "2", "--hardware-parity"], "hardware parity takes dispmin 0 only"),
+        (&["depth", "l.png", "r.png", "--dispmax", "8", "--dispmin", "2.03", "--hardware-parity"], "multiple of 1/16"),
+        (&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--dispmin", "2.03"], "multiple of 1/16"),
+        (&["rtl", "match", "l.png", "r.png", "--dispmax", "8", "--dispmin", "7"], "dispmin must be at least 0 and less than dispmax"),
         (&["depth", "l.png", "r.png", "--dispmax", "8", "--dispmin=-1"], "0 or more"),
         // No silent defaults: zero runs, and options --rtl does not use.
         (&["eval", "--runs", "0", "empty"], "--runs"),

@@ -26,7 +26,8 @@ pub enum GoldenError {
     /// of search below `dispmax`.
     #[error("dispmin must be at least 0 and less than dispmax − 1 = {} (got {dispmin}): eq. 6 needs dispmin < d < dispmax", dispmax - 1.0)]
     InvalidDispmin { dispmin: f64, dispmax: f64 },
-    /// Hardware parity with a lower search bound the line processor lacks.
-    #[error("dispmin {0}: the line processor has no lower search bound, so hardware parity takes dispmin 0 only")]
-    DispminInHardware(f64),
+    /// Hardware parity with a lower search bound between the positions'
+    /// values: the line processor takes it on their grid.
+    #[error("dispmin {dispmin}: the line processor takes the search bounds in 1/{unit} px, so hardware parity takes a multiple of 1/{unit}")]
+    DispminOffGrid { dispmin: f64, unit: f64 },
 }

@@ -233,8 +233,8 @@ impl Params {
     }
 
     /// Checks the search bounds: eq. 6 needs room for a positive disparity
-    /// above `dispmin ≥ 0`; the line processor has no lower bound, so
-    /// hardware parity takes `dispmin = 0` only.
+    /// above `dispmin ≥ 0`; in hardware parity `dispmin` is on the
+    /// positions' grid, as the line processor takes it.
     pub fn validate(&self) -> Result<(), GoldenError> {
         if self.dispmax.is_nan() || self.dispmax <= 1.0 || self.dispmax.is_infinite() {
             return Err(GoldenError::InvalidDispmax(self.dispmax));
@@ -242,8 +242,11 @@ impl Params {
         if !(self.dispmin >= 0.0 && self.dispmin < self.dispmax - 1.0) {
             return Err(GoldenError::InvalidDispmin { dispmin: self.dispmin, dispmax: self.dispmax });
         }
-        if self.hardware.is_some() && self.dispmin != 0.0 {
-            return Err(GoldenError::DispminInHardware(self.dispmin));
+        if let Some(hw) = self.hardware {
+            let unit = (1u64 << hw.pos_frac_bits) as f64;
+            if (self.dispmin * unit).fract() != 0.0 {
+                return Err(GoldenError::DispminOffGrid { dispmin: self.dispmin, unit });
+            }
         }
         Ok(())
     }

@@ -35,7 +35,10 @@
 //!   slice's, a register: it follows the detector's, high except between
 //!   lines of widths below the detector's `MIN_LINE_PERIOD`, one clock
 //!   later).
-//! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits; `height`:
+//! - `dispmin`, `dispmax`: eq. 6's search area `dispmin < d < dispmax`,
+//!   [`POS_FRAC_BITS`] fraction bits (`dispmin` 0: the paper's); the
+//!   matcher reads them as it sweeps a line, so change them between frames.
+//!   `height`:
 //!   the frame's rows (its last row ends the frame for the row check and
 //!   the median, which then flush it; registered, so it must hold from two
 //!   clocks before a frame's first marker reaches the row check to the
@@ -229,6 +232,7 @@ pub struct StereoLineProcessor<const N: usize> {
     pub r_tuser: Signal<In, Bit>,
     pub r_tlast: Signal<In, Bit>,
     pub r_tready: Signal<Out, Bit>,
+    pub dispmin: Signal<In, Bits<DISPMAX_BITS>>,
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
     pub height: Signal<In, Bits<HEIGHT_BITS>>,
     pub m_tvalid: Signal<Out, Bit>,
@@ -373,6 +377,7 @@ impl<const N: usize> StereoLineProcessor<N> {
             r_tuser: Default::default(),
             r_tlast: Default::default(),
             r_tready: Default::default(),
+            dispmin: Default::default(),
             dispmax: Default::default(),
             height: Default::default(),
             m_tvalid: Default::default(),
@@ -580,6 +585,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         // `LINES_IN_FLIGHT` lines are in flight (it can then rise only on the
         // clock after a reference marker is taken, so lines are held whole).
         self.hold.next = self.hold_q.q.val();
+        self.matcher.dispmin.next = self.dispmin.val();
         self.matcher.dispmax.next = self.dispmax.val();
         self.matcher.r_valid.next = self.l_queue.r_valid.val() & !self.hold.val();
         self.l_queue.r_ready.next = self.matcher.r_ready.val() & !self.hold.val();

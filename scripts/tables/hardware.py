@@ -67,7 +67,10 @@ PORT_GROUPS = [
         "r_tready": "The pixel is taken; as `l_tready`.",
     }),
     ("Run-time inputs", {
-        "dispmax": "Eq. 6's search bound: a node exists for `0 < d < dispmax`. Unsigned, 4 "
+        "dispmin": "Eq. 6's lower search bound: a node exists for `dispmin < d < dispmax` "
+                   "(0: the paper's `0 < d`). Unsigned, 4 fraction bits (1/16 px). Hold it "
+                   "during a frame.",
+        "dispmax": "Eq. 6's search bound: a node exists for `dispmin < d < dispmax`. Unsigned, 4 "
                    "fraction bits (1/16 px). Hold it during a frame.",
         "height": "Rows of the frame: its last row ends the frame for the row check and the "
                   "median, which then flush it. Registered: set it before the frame and keep it "
@@ -398,6 +401,31 @@ def hw_synth_stereo():
         ])
     return markdown(["seed", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "run time", "critical path"],
                     rows, ["--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"])
+
+
+@table("hw-synth-hd")
+def hw_synth_hd():
+    """The hd top (64 gain cells x 4 rows) on each speed grade and placer seed measured, with
+    its target clock and critical path."""
+    # docs/data/synth-hd-stereo-speed<S>-seed<N>.json:
+    #   declivity synth --config hd --top stereo --speed S --seed N --mhz F --json
+    runs = []
+    for f in sorted(DATA.glob("synth-hd-stereo-speed*-seed*.json")):
+        m = re.fullmatch(r"synth-hd-stereo-speed(\d)-seed(\d+)\.json", f.name)
+        if m:
+            runs.append((int(m.group(1)), int(m.group(2)), load_jsonl(f.name)[0]))
+    rows = []
+    for speed, seed, r in runs:
+        if not r["device"].startswith(f"LFE5U-85F-{speed} "):
+            raise SystemExit(f"hw-synth-hd: synth-hd-stereo-speed{speed}-seed{seed}.json is of {r['device']}")
+        rows.append([
+            speed, seed, f"{r['target_mhz']:g} MHz", _lut_share(r), _n(r["ffs"]), _n(r["lutram"]), r["brams"], r["dsps"],
+            f"**{r['fmax_mhz']:.1f} MHz**" if r["meets_target"] else f"{r['fmax_mhz']:.1f} MHz",
+            f"{r['seconds'] / 60:.0f} min",
+            _short_path(r.get("critical_path") or []),
+        ])
+    return markdown(["speed", "seed", "target", "LUT4 (of 83 640)", "FF", "LUT RAM", "DP16KD", "MULT18X18D", "Fmax", "run time", "critical path"],
+                    rows, ["--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"])
 
 
 def _short_path(path):

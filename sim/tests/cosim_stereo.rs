@@ -101,7 +101,7 @@ mod frames {
         let design = sim::hdl::verilog::generate_with(sim::Config::Sd, sim::hdl::verilog::Top::Stereo, N, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
         let (want, model_rate) = model::<N>(left, right, hblank, dispmax);
         assert!(want.rows.len() == left.height() && want.pixels_in > 0, "{what}: the model ran the frame");
-        let got = run_frame(simulator, sim::Config::Sd, &design, left, right, hblank, dispmax, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+        let got = run_frame(simulator, sim::Config::Sd, &design, left, right, hblank, sim::formats::SearchArea::below(dispmax), &Options::default()).unwrap_or_else(|e| panic!("{e}"));
         eprintln!(
             "{what}: {} clocks; rust-hdl {model_rate:.0} clocks/s, {} {:.0} clocks/s (build {:.1} s{})",
             want.cycles,
@@ -137,7 +137,7 @@ mod frames {
         let (want, _) = model::<{ super::CELLS }>(&left, &right, 7, dispmax);
         let mut files = Vec::new();
         for simulator in [Simulator::Icarus, Simulator::Verilator] {
-            let got = run_frame(simulator, sim::Config::Sd, &design, &left, &right, 7, dispmax, &opts).unwrap_or_else(|e| panic!("{e}"));
+            let got = run_frame(simulator, sim::Config::Sd, &design, &left, &right, 7, sim::formats::SearchArea::below(dispmax), &opts).unwrap_or_else(|e| panic!("{e}"));
             let diff = differences(&want, &got.run);
             assert!(diff.is_empty(), "{} differs from the rust-hdl model: {diff:#?}", simulator.name());
             let dir = got.work_dir.expect("kept");
@@ -206,14 +206,14 @@ mod frames {
             ] {
                 let what = format!("{config}: {what}");
                 let lsb = sim::formats::dispmax_lsb(dispmax, config).expect("dispmax");
-                let got = run_frame(Simulator::Verilator, config, &design, &left, &right, hblank, lsb, &Options::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+                let got = run_frame(Simulator::Verilator, config, &design, &left, &right, hblank, sim::formats::SearchArea::below(lsb), &Options::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
                 let run = &got.run;
                 assert_eq!(run.rows.len(), left.height(), "{what}: every line out");
                 assert_eq!((run.lines_dropped, run.records_dropped, run.pixels_dropped), (0, 0, 0), "{what}: nothing dropped");
                 assert_eq!(run.lines_full > 0, over_n_max, "{what}: lines over N_MAX = {n_max} flagged full ({})", run.lines_full);
                 assert_eq!(run.lines_wide, 0, "{what}: no line wider than W_MAX = {w_max}");
                 let rtl = run.disparity_px(left.height());
-                let gold = golden_map(&left, &right, dispmax, config).expect("golden runs");
+                let gold = golden_map(&left, &right, 0.0, dispmax, config).expect("golden runs");
                 let depth = run.depth_mm(left.height());
                 let gold_depth = golden_depth_map(&gold, &DepthCamera::default(), config);
                 let matched = rtl.iter().filter(|&&d| d > 0.0).count();
@@ -227,6 +227,30 @@ mod frames {
                     assert_eq!(a, b, "{what}: depth at ({}, {}) differs from golden's hardware parity", i % left.width(), i / left.width());
                 }
             }
+        }
+    }
+
+    /// Eq. 6 with a lower bound through the processor's `dispmin` input,
+    /// in each configuration (tsukuba, and tsukuba up-scaled 2× in `hd`):
+    /// every disparity and depth equal to golden's hardware parity for the
+    /// same area, every disparity inside it, and the bound changes the map
+    /// (golden without it has disparities at or below it).
+    #[test]
+    fn with_a_dispmin_real_frames_under_verilator_equal_golden_hardware_parity_and_stay_inside_the_area() {
+        use sim::jobs::rtl_depth::{evaluate_pair_rtl, Engine};
+        let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
+        for (config, scale) in [(sim::Config::Sd, 1), (sim::Config::Hd, 2)] {
+            let data = sim::eval::upscale::upscale_pair(&data, scale).expect("up-scaled");
+            let (dispmin, dispmax) = (5.0 * scale as f64, data.dispmax + 1.0);
+            let r = evaluate_pair_rtl(config, &data, dispmin, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{config}: {e}"));
+            eprintln!("{}", serde_json::to_string(&r).expect("serializes"));
+            assert_eq!((r.run.dispmin, r.run.lines_out), (dispmin, data.left.height()), "{config}: the area run, every line out");
+            assert_eq!((r.run.exact_px, r.run.exact_depth_px), (1.0, 1.0), "{config}: equal to golden's hardware parity with dispmin {dispmin}");
+            let gold = sim::drive::stereo::golden_map(&data.left, &data.right, dispmin, dispmax, config).expect("golden runs");
+            assert!(gold.iter().all(|&d| d == 0.0 || (d > dispmin && d < dispmax)), "{config}: a disparity outside {dispmin} < d < {dispmax}");
+            assert!(r.density > 50.0, "{config}: a map above dispmin ({} %)", r.density);
+            let without = sim::drive::stereo::golden_map(&data.left, &data.right, 0.0, dispmax, config).expect("golden runs");
+            assert!(without.iter().any(|&d| d > 0.0 && d <= dispmin), "{config}: without dispmin some disparities are at or below it");
         }
     }
 
@@ -250,7 +274,7 @@ mod frames {
                 assert!(counted >= n_max, "{config}: {counted} declivities");
                 let img = GreyImage::new(w_max, 12, row.repeat(12)).expect("a frame");
                 let lsb = sim::formats::dispmax_lsb(16.0, config).expect("dispmax");
-                let got = run_frame(Simulator::Verilator, config, &design, &img, &img, 0, lsb, &Options::default()).unwrap_or_else(|e| panic!("{config}: {e}"));
+                let got = run_frame(Simulator::Verilator, config, &design, &img, &img, 0, sim::formats::SearchArea::below(lsb), &Options::default()).unwrap_or_else(|e| panic!("{config}: {e}"));
                 assert_eq!(got.run.rows.len(), 12, "{config}: every line out");
                 assert_eq!(got.run.lines_full > 0, full, "{config}: {counted} declivities a line, {} lines full", got.run.lines_full);
             }
@@ -272,7 +296,7 @@ mod frames {
         for p in pairs {
             let data = sim::eval::upscale::upscale_pair(&sim::eval::io::load_pair_dir(&p).expect("the pair loads"), 2).expect("2x");
             widest = widest.max(data.left.width());
-            let r = evaluate_pair_rtl(sim::Config::Hd, &data, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", data.name));
+            let r = evaluate_pair_rtl(sim::Config::Hd, &data, 0.0, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", data.name));
             eprintln!("{}", serde_json::to_string(&r).expect("serializes"));
             let run = &r.run;
             assert_eq!(run.lines_out, data.left.height(), "{}: every line out", data.name);
@@ -297,7 +321,7 @@ mod frames {
         assert_eq!(pairs.len(), 8, "the eight Middlebury pairs of data/stereo");
         for p in pairs {
             let data = sim::eval::io::load_pair_dir(&p).expect("the pair loads");
-            let r = evaluate_pair_rtl(sim::Config::Sd, &data, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", data.name));
+            let r = evaluate_pair_rtl(sim::Config::Sd, &data, 0.0, 0, Engine::Verilator, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", data.name));
             eprintln!("{}", serde_json::to_string(&r).expect("serializes"));
             let run = &r.run;
             assert_eq!(run.lines_out, data.left.height(), "{}: every line out", data.name);

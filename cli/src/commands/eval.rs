@@ -50,7 +50,7 @@ pub(crate) struct EvalArgs {
     /// Run each pair through the cycle-accurate line processor instead (the default mode in
     /// hardware) and report its exact_px, exact_depth_px, agree_quarter_px, px_per_clk,
     /// stall_cycles, latency_cycles, bad2, nonocc_bad2 and golden's bad2 with the same stages.
-    #[arg(long, conflicts_with_all = ["mode", "ref_view", "ends", "hardware_parity", "dispmin"])]
+    #[arg(long, conflicts_with_all = ["mode", "ref_view", "ends", "hardware_parity"])]
     rtl: bool,
     /// With --rtl: what simulates the line processor [default: verilator if installed, else rust-hdl].
     #[arg(long, value_enum, requires = "rtl")]
@@ -65,7 +65,7 @@ pub(crate) fn run(a: EvalArgs) -> Result<(), SimError> {
     let params = a.method.params(f64::MAX)?;
     let dirs = expand_pair_dirs(&a.pairs)?;
     if a.rtl {
-        return eval_rtl(&dirs, a.method.config.0, engine(a.engine), a.json);
+        return eval_rtl(&dirs, a.method.config.0, a.method.dispmin, engine(a.engine), a.json);
     }
     let job = EvalJob { params, runs: a.runs as usize, diagnose: a.diagnose, out: a.out.clone() };
     let bar = Progress::new(dirs.len(), "pairs", "eval", a.json);
@@ -120,7 +120,7 @@ fn pairs_failed(failed: &[PathBuf], total: usize) -> Result<(), SimError> {
 }
 
 /// `eval --rtl`: each pair through the line processor.
-fn eval_rtl(dirs: &[PathBuf], config: Config, engine: Engine, json: bool) -> Result<(), SimError> {
+fn eval_rtl(dirs: &[PathBuf], config: Config, dispmin: f64, engine: Engine, json: bool) -> Result<(), SimError> {
     if !json {
         eprintln!("engine: {}, configuration {config}", engine.name());
     }
@@ -131,7 +131,7 @@ fn eval_rtl(dirs: &[PathBuf], config: Config, engine: Engine, json: bool) -> Res
             let pair = load_pair_dir(dir)?;
             super::print_notes(&pair.notes);
             let bar = super::rtl::frame_progress(pair.left.height(), format!("{} through the line processor", pair.name), engine, json);
-            let report = evaluate_pair_rtl(config, &pair, 0, engine, |n| bar.set(n));
+            let report = evaluate_pair_rtl(config, &pair, dispmin, 0, engine, |n| bar.set(n));
             bar.finish();
             report
         };

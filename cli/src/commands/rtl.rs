@@ -128,6 +128,8 @@ struct PairArgs {
     right: PathBuf,
     #[arg(long, help = dispmax_help())]
     dispmax: f64,
+    #[arg(long, default_value_t = 0.0, help = dispmin_help())]
+    dispmin: f64,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -135,9 +137,18 @@ struct PairArgs {
 
 fn dispmax_help() -> String {
     format!(
-        "Search bound of eq. 6 in pixels: 0 < d < DISPMAX (greater than 1, at most W_MAX = {W_MAX}, a \
+        "Search bound of eq. 6 in pixels: DISPMIN < d < DISPMAX (greater than 1, at most W_MAX = {W_MAX}, a \
          multiple of 1/{unit} px: the matcher takes it in 1/{unit} px)",
         unit = 1u32 << POS_FRAC_BITS
+    )
+}
+
+fn dispmin_help() -> String {
+    format!(
+        "Lower search bound of eq. 6 in pixels (the paper's 0), the line processor's `dispmin` input: for a \
+         verged or offset rig, or a scene with a known nearest range (0 or more, below DISPMAX - 1, a \
+         multiple of 1/{} px)",
+        1u32 << POS_FRAC_BITS
     )
 }
 
@@ -240,14 +251,14 @@ fn detect(a: DetectArgs) -> Result<(), SimError> {
 }
 
 fn match_pair(a: MatchArgs) -> Result<(), SimError> {
-    let dispmax = sim::formats::dispmax_lsb(a.pair.dispmax, Config::Sd)?;
+    let area = sim::formats::SearchArea::from_px(a.pair.dispmin, a.pair.dispmax, Config::Sd)?;
     let (left, right, notes) = load_pair_images(&a.pair.left, &a.pair.right)?;
     super::print_notes(&notes);
     let rows = a.rows.clone().unwrap_or(0..left.height());
     let matchers = std::thread::available_parallelism().map_or(2, |n| n.get()).min(rows.len().max(1));
     let job = MatchJob {
         rule: a.rule.rule(),
-        dispmax,
+        area,
         graph_line: a.graph_line.unwrap_or(rows.start + rows.len() / 2),
         rows,
         out: super::out_dir(&a.out, "rtl-match", &a.pair.left),
@@ -262,8 +273,8 @@ fn match_pair(a: MatchArgs) -> Result<(), SimError> {
         super::print_json(&outcome);
     } else {
         println!(
-            "{}: {} line pairs (rows {}..{}), {} rule, dispmax {} px, {matchers} matchers",
-            r.image, r.lines, outcome.rows[0], outcome.rows[1], r.rule, r.dispmax
+            "{}: {} line pairs (rows {}..{}), {} rule, {} < d < {} px, {matchers} matchers",
+            r.image, r.lines, outcome.rows[0], outcome.rows[1], r.rule, r.dispmin, r.dispmax
         );
         println!("  declivities         left {}, right {}", r.declivities_ref, r.declivities_other);
         println!("  matches             rtl {}, golden {}", r.matches_rtl, r.matches_golden);
@@ -301,6 +312,7 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
     let rows = a.rows.clone().unwrap_or(0..left.height());
     let job = RtlDepthJob {
         config: a.config.0,
+        dispmin: a.pair.dispmin,
         dispmax: a.pair.dispmax,
         hblank: a.hblank as usize,
         rows: rows.clone(),
@@ -319,7 +331,7 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
         return Ok(());
     }
     let r = &report;
-    println!("{}: {}x{} (rows {}..{}), dispmax {} px, hblank {}", r.image, r.width, r.height, rows.start, rows.end, r.dispmax, r.hblank);
+    println!("{}: {}x{} (rows {}..{}), {} < d < {} px, hblank {}", r.image, r.width, r.height, rows.start, rows.end, r.dispmin, r.dispmax, r.hblank);
     println!("  pixels              {} in {} clocks, {:.4} px/clk, {} stall clocks", r.pixels, r.cycles, r.px_per_clk, r.stall_cycles);
     match r.latency_cycles {
         Some(c) => println!("  latency             {c} clocks (first pixel in to first disparity out)"),

@@ -111,6 +111,14 @@ pub const fn marker_latency(width: usize) -> usize {
     1 + THRESHOLD_LATENCY + 1 + 1 + 1 + (width - 1) + TRACKER_CENTER + 1 + 1 + 1 + DIVIDER_LATENCY
 }
 
+/// [`marker_latency`] of a camera line `width` pixels wide: the detector
+/// stores its first `W_MAX` pixels (a wider line is flagged), and a line
+/// has one pixel at least.
+pub const fn camera_marker_latency(width: usize) -> usize {
+    let stored = if width > W_MAX { W_MAX } else if width == 0 { 1 } else { width };
+    marker_latency(stored)
+}
+
 const BANK_FREE: u64 = 0;
 const BANK_FULL: u64 = 1;
 const BANK_READY: u64 = 2;

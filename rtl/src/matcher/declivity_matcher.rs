@@ -28,7 +28,11 @@
 //!   pair is handed to the engine, nor while a complete pair waits). A
 //!   side's records beyond `4·N` (four per cell; [`N_MAX`] in the sensor's
 //!   [`N_CELLS`] cells) are dropped and the line flagged full.
-//! - `dispmax`: eq. 6's bound, [`POS_FRAC_BITS`] fraction bits.
+//! - `dispmin`, `dispmax`: eq. 6's search area `dispmin < X_i - X_j <
+//!   dispmax`, [`POS_FRAC_BITS`] fraction bits (the paper's area is
+//!   `dispmin` = 0). Read every clock, as the line's columns enter the
+//!   array: change them between frames. A `dispmax` of at most `dispmin + 1`
+//!   LSB leaves no node.
 //! - Out, a stream without back-pressure: `m_valid` with `m_last` low is a
 //!   match, reference order: `m_ref`, `m_other` (indices in their lines),
 //!   `m_x_ref` (`X_i`), `m_disp` (`X_i - X_j`, [`POS_FRAC_BITS`] fraction
@@ -254,6 +258,7 @@ pub struct DeclivityMatcher<const N: usize> {
     pub o_wide: Signal<In, Bit>,
     pub o_full: Signal<In, Bit>,
     pub o_ready: Signal<Out, Bit>,
+    pub dispmin: Signal<In, Bits<DISPMAX_BITS>>,
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
     pub m_valid: Signal<Out, Bit>,
     pub m_last: Signal<Out, Bit>,
@@ -464,6 +469,8 @@ pub struct DeclivityMatcher<const N: usize> {
     sc_base: Signal<Local, Bits<SWEEP_BITS>>,
     sc_off: Signal<Local, Bits<SWEEP_BITS>>,
     sc_j: Signal<Local, Bits<SWEEP_BITS>>,
+    c_pos_min: Signal<Local, Bits<{ POS_BITS + 1 }>>,
+    band: Signal<Local, Bits<{ POS_BITS + 1 }>>,
     col_ok: Signal<Local, Bit>,
     col_j: Signal<Local, Bits<INDEX_BITS>>,
     tw: Signal<Local, Bits<SWEEP_BITS>>,
@@ -524,6 +531,8 @@ pub struct DeclivityMatcher<const N: usize> {
     lev_at4: Constant<Bits<8>>,
     lev_at5: Constant<Bits<8>>,
     bit0: Constant<Bits<8>>,
+    pos_carry: Constant<Bits<8>>,
+    pos_max: Constant<Bits<POS_BITS>>,
     bit1: Constant<Bits<8>>,
     bit2: Constant<Bits<8>>,
     dt_frac: Constant<Bits<8>>,
@@ -566,6 +575,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_wide: Default::default(),
             o_full: Default::default(),
             o_ready: Default::default(),
+            dispmin: Default::default(),
             dispmax: Default::default(),
             m_valid: Default::default(),
             m_last: Default::default(),
@@ -741,6 +751,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             sc_base: Default::default(),
             sc_off: Default::default(),
             sc_j: Default::default(),
+            c_pos_min: Default::default(),
+            band: Default::default(),
             col_ok: Default::default(),
             col_j: Default::default(),
             tw: Default::default(),
@@ -800,6 +812,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             lev_at4: Constant::new((4 * LEVEL_BITS as u64).into()),
             lev_at5: Constant::new((5 * LEVEL_BITS as u64).into()),
             bit0: Constant::new(0u64.into()),
+            pos_carry: Constant::new((POS_BITS as u64).into()),
+            pos_max: Constant::new(((1u64 << POS_BITS) - 1).into()),
             bit1: Constant::new(1u64.into()),
             bit2: Constant::new(2u64.into()),
             dt_frac: Constant::new((MATCH_DT_FRAC_BITS as u64).into()),
@@ -1282,7 +1296,17 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.c_phase_e2.d.next = self.c_phase_e.q.val();
         self.c_valid_q.d.next = self.c_valid_e2.q.val();
         self.c_phase_q.d.next = self.c_phase_e2.q.val();
-        self.c_pos_q.d.next = self.o_mem.pos.val();
+        // The column's position moved by dispmin, `X_j + dispmin`, so that
+        // the cells' test of `0 < X_i - X_j' < dispmax - dispmin` is eq. 6's
+        // `dispmin < X_i - X_j < dispmax` with no adder in the cell. A sum
+        // past the format saturates at its largest value, which no `X_i`
+        // exceeds: `X_i - X_j' ≤ 0` either way, no node.
+        self.c_pos_min.next = bit_cast::<{ POS_BITS + 1 }, POS_BITS>(self.o_mem.pos.val())
+            + bit_cast::<{ POS_BITS + 1 }, DISPMAX_BITS>(self.dispmin.val());
+        self.c_pos_q.d.next = bit_cast::<POS_BITS, { POS_BITS + 1 }>(self.c_pos_min.val());
+        if self.c_pos_min.val().get_bit(self.pos_carry.val().index()) {
+            self.c_pos_q.d.next = self.pos_max.val();
+        }
         self.c_levs_q.d.next = self.c_levs.val();
         self.c_rising_q.d.next = self.o_mem.rising.val();
         self.array.ld_first.next = self.ld_first.q.val();
@@ -1295,10 +1319,13 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.array.c_pos.next = self.c_pos_q.q.val();
         self.array.c_levs.next = self.c_levs_q.q.val();
         self.array.c_rising.next = self.c_rising_q.q.val();
-        // Eq. 6's bound less one LSB (0 for a zero bound: no node then).
+        // The width of eq. 6's area less one LSB, `dispmax - dispmin - 1`
+        // (0 for an empty area: no node then).
+        self.band.next = bit_cast::<{ POS_BITS + 1 }, DISPMAX_BITS>(self.dispmax.val())
+            - bit_cast::<{ POS_BITS + 1 }, DISPMAX_BITS>(self.dispmin.val());
         self.dm1_reg.d.next = 0.into();
-        if self.dispmax.val().any() {
-            self.dm1_reg.d.next = bit_cast::<{ POS_BITS + 1 }, DISPMAX_BITS>(self.dispmax.val()) - 1;
+        if self.dispmax.val() > self.dispmin.val() {
+            self.dm1_reg.d.next = self.band.val() - 1;
         }
         self.array.dispmax_m1.next = self.dm1_reg.q.val();
         self.array.below2.next = self.below2_reg.q.val();

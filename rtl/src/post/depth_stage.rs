@@ -55,9 +55,10 @@ use std::fmt;
 
 /// Clocks from a pixel on `p_*` to its depth on `z_*`: the normalisation
 /// (two clocks, two shift levels each), the table's address register and the
-/// table, the table's data registered, the product, the interpolated entry,
-/// the shift, the rounding and saturation.
-pub const DEPTH_LAG: usize = 8;
+/// table, the table's output register, its word split into entry and slope
+/// (the slope into the DSP block's input register), the product, the
+/// interpolated entry, the shift, the rounding and saturation.
+pub const DEPTH_LAG: usize = 9;
 
 /// The camera pair as the depth stage needs it: eq. 1's `f/p` and `b`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -232,6 +233,11 @@ pub struct DepthStage {
     s3_sof: DFF<Bit>,
     s3_zero: DFF<Bit>,
     s3_d: DFF<Bits<POS_BITS>>,
+    t_valid: DFF<Bit>,
+    t_last: DFF<Bit>,
+    t_sof: DFF<Bit>,
+    t_zero: DFF<Bit>,
+    t_d: DFF<Bits<POS_BITS>>,
     s4_valid: DFF<Bit>,
     s4_last: DFF<Bit>,
     s4_sof: DFF<Bit>,
@@ -254,7 +260,7 @@ pub struct DepthStage {
     s7_d: DFF<Bits<POS_BITS>>,
     // ---- The arithmetic. S1: two shift levels; S2: two more (m, lz);
     // S3: the table's read, the weight, the shift and the saturation flag;
-    // S4: the table's word; S5: the step's product; S6: the interpolated
+    // T: the table's output register; S4: the entry and the slope; S5: the step's product; S6: the interpolated
     // entry; S7: the entry shifted.
     s1_n: DFF<Bits<POS_BITS>>,
     s1_lz: DFF<Bits<LZ_BITS>>,
@@ -264,6 +270,14 @@ pub struct DepthStage {
     s3_w: DFF<Bits<16>>,
     s3_sat: DFF<Bit>,
     s3_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
+    // T: the table's word in its output register, nothing between the
+    // block RAM's data out and it (in a DP16KD, its own output register),
+    // so that the RAM's clock-to-out and the route to the DSP column are
+    // not in one clock.
+    t_word: DFF<Bits<DEPTH_WORD_BITS>>,
+    t_w: DFF<Bits<16>>,
+    t_sat: DFF<Bit>,
+    t_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
     s4_t: DFF<Bits<DEPTH_TABLE_BITS>>,
     // S4's slope and weight in the DSP block's own input registers, so
     // that the route into the DSP column, the product and the route out
@@ -391,6 +405,15 @@ impl DepthStage {
             s3_w: Default::default(),
             s3_sat: Default::default(),
             s3_shift: Default::default(),
+            t_word: Default::default(),
+            t_w: Default::default(),
+            t_sat: Default::default(),
+            t_shift: Default::default(),
+            t_valid: Default::default(),
+            t_last: Default::default(),
+            t_sof: Default::default(),
+            t_zero: Default::default(),
+            t_d: Default::default(),
             s4_t: Default::default(),
             slope_w: Default::default(),
             s4_sat: Default::default(),
@@ -459,7 +482,7 @@ impl Default for DepthStage {
 impl Logic for DepthStage {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, s1_valid, s1_last, s1_sof, s1_zero, s1_d, s2_valid, s2_last, s2_sof, s2_zero, s2_d, s3_valid, s3_last, s3_sof, s3_zero, s3_d, s4_valid, s4_last, s4_sof, s4_zero, s4_d, s5_valid, s5_last, s5_sof, s5_zero, s5_d, s6_valid, s6_last, s6_sof, s6_zero, s6_d, s7_valid, s7_last, s7_sof, s7_zero, s7_d, s1_n, s1_lz, s2_m, s2_lz, s3_w, s3_sat, s3_shift, s4_t, s4_sat, s4_shift, s5_t, s5_prod, s5_sat, s5_shift, s6_t, s6_sat, s6_shift, s7_half, s7_sat, o_valid, o_last, o_sof, o_z, o_d);
+        dff_setup!(self, clock, s1_valid, s1_last, s1_sof, s1_zero, s1_d, s2_valid, s2_last, s2_sof, s2_zero, s2_d, s3_valid, s3_last, s3_sof, s3_zero, s3_d, t_valid, t_last, t_sof, t_zero, t_d, s4_valid, s4_last, s4_sof, s4_zero, s4_d, s5_valid, s5_last, s5_sof, s5_zero, s5_d, s6_valid, s6_last, s6_sof, s6_zero, s6_d, s7_valid, s7_last, s7_sof, s7_zero, s7_d, s1_n, s1_lz, s2_m, s2_lz, s3_w, s3_sat, s3_shift, t_word, t_w, t_sat, t_shift, s4_t, s4_sat, s4_shift, s5_t, s5_prod, s5_sat, s5_shift, s6_t, s6_sat, s6_shift, s7_half, s7_sat, o_valid, o_last, o_sof, o_z, o_d);
         self.depth_rom.clock.next = self.clock.val();
         // The pixel's flags and disparity travel beside the arithmetic.
         self.s1_valid.d.next = self.p_valid.val();
@@ -483,11 +506,16 @@ impl Logic for DepthStage {
         self.s3_sof.d.next = self.s2_sof.q.val();
         self.s3_zero.d.next = self.s2_zero.q.val();
         self.s3_d.d.next = self.s2_d.q.val();
-        self.s4_valid.d.next = self.s3_valid.q.val();
-        self.s4_last.d.next = self.s3_last.q.val();
-        self.s4_sof.d.next = self.s3_sof.q.val();
-        self.s4_zero.d.next = self.s3_zero.q.val();
-        self.s4_d.d.next = self.s3_d.q.val();
+        self.t_valid.d.next = self.s3_valid.q.val();
+        self.t_last.d.next = self.s3_last.q.val();
+        self.t_sof.d.next = self.s3_sof.q.val();
+        self.t_zero.d.next = self.s3_zero.q.val();
+        self.t_d.d.next = self.s3_d.q.val();
+        self.s4_valid.d.next = self.t_valid.q.val();
+        self.s4_last.d.next = self.t_last.q.val();
+        self.s4_sof.d.next = self.t_sof.q.val();
+        self.s4_zero.d.next = self.t_zero.q.val();
+        self.s4_d.d.next = self.t_d.q.val();
         self.s5_valid.d.next = self.s4_valid.q.val();
         self.s5_last.d.next = self.s4_last.q.val();
         self.s5_sof.d.next = self.s4_sof.q.val();
@@ -544,14 +572,20 @@ impl Logic for DepthStage {
         self.s3_w.d.next = bit_cast::<16, POS_BITS>(self.s2_m.q.val() & self.weight_mask.val());
         self.s3_sat.d.next = self.s2_lz.q.val() > self.scale_less1.val();
         self.s3_shift.d.next = self.scale_less1.val() - self.s2_lz.q.val();
-        // S4: the table's word registered (nothing between the RAM and its
-        // register).
-        self.s4_t.d.next = bit_cast::<DEPTH_TABLE_BITS, DEPTH_WORD_BITS>(self.depth_rom.data.val() >> self.slope_bits.val());
+        // T: the table's word in its output register (nothing between the
+        // RAM and it).
+        self.t_word.d.next = self.depth_rom.data.val();
+        self.t_w.d.next = self.s3_w.q.val();
+        self.t_sat.d.next = self.s3_sat.q.val();
+        self.t_shift.d.next = self.s3_shift.q.val();
+        // S4: the entry registered, the slope and the weight into the DSP
+        // block's input registers.
+        self.s4_t.d.next = bit_cast::<DEPTH_TABLE_BITS, DEPTH_WORD_BITS>(self.t_word.q.val() >> self.slope_bits.val());
         self.slope_w.clock.next = self.clock.val();
-        self.slope_w.a.next = bit_cast::<16, DEPTH_WORD_BITS>(self.depth_rom.data.val() & self.slope_mask.val());
-        self.slope_w.b.next = self.s3_w.q.val();
-        self.s4_sat.d.next = self.s3_sat.q.val();
-        self.s4_shift.d.next = self.s3_shift.q.val();
+        self.slope_w.a.next = bit_cast::<16, DEPTH_WORD_BITS>(self.t_word.q.val() & self.slope_mask.val());
+        self.slope_w.b.next = self.t_w.q.val();
+        self.s4_sat.d.next = self.t_sat.q.val();
+        self.s4_shift.d.next = self.t_shift.q.val();
         // S5: slope · w (the DSP block, after its input registers; the
         // product registered in the fabric).
         self.prod.next = self.slope_w.p.val();

@@ -4,7 +4,7 @@
 use rtl::detector::adaptive_threshold::THRESHOLD_LATENCY;
 use rtl::primitives::block_ram::{dp16kd_count, DP16KD_WIDTH};
 use rtl::primitives::lut_ram::DPR16X4_WIDTH;
-use rtl::detector::declivity_detector::{line_starts, MIN_LINE_PERIOD};
+use rtl::detector::declivity_detector::{camera_marker_latency, line_starts, MIN_LINE_PERIOD};
 use rtl::matcher::declivity_matcher::{line_cycles, line_period, sweep_cycles, ENGINE_LAG, TAKE_AFTER_MARKER};
 use rtl::post::depth_stage::DEPTH_LAG;
 use rtl::post::interpolator::{LINE_BITS, LINE_QUEUE, PIXEL_LAG, SEGMENT_BITS, SEGMENT_LAG};
@@ -27,12 +27,6 @@ use super::{lines, render, Budget, BudgetError, BudgetRequest, Memory, Resources
 use super::{CHOICE_MEMORY, DEPTH_TABLE, HISTOGRAM, LINE_BUFFER, MEDIAN_LINE_BUFFER, POSITION_COPY, RECORD_MEMORY, RECORD_QUEUE, ROW_MEMORY};
 use crate::config::Config;
 use crate::formats::dispmax_lsb;
-
-/// [`rtl::detector::declivity_detector::marker_latency`] for an image
-/// `width` wide (the stored width is at most `W_MAX`).
-fn marker_latency_of(width: usize) -> u64 {
-    rtl::detector::declivity_detector::marker_latency(width.clamp(1, W_MAX)) as u64
-}
 
 /// The fewest rows of a frame the budget models: row `y`'s output waits for
 /// rows `y + 1` (the row check) and `y + MEDIAN_HALF` (the vertical
@@ -134,7 +128,7 @@ fn detector_stage(s: &Sizes) -> StageBudget {
     let latency_terms = vec![
         Term::new("SKID_LAG", SKID_LAG),
         Term::new("(W − 1)", s.width - 1),
-        Term::new("marker_latency(W')", marker_latency_of(s.width) as usize),
+        Term::new("marker_latency(W')", camera_marker_latency(s.width)),
     ];
     StageBudget::new(NAME, 2, cycles, formula, latency_terms, "a row's first pixel accepted → its marker out")
         .dsp_blocks(2 * 3)
@@ -549,7 +543,7 @@ pub fn budget_with_load(r: &BudgetRequest, load: &RowLoad) -> Result<Budget, Bud
     } else if r.width < MIN_LINE_PERIOD {
         notes.push("W < MIN_LINE_PERIOD with hblank: the line starts are not modelled (line_starts takes back-to-back lines); the frame's end assumes rows every P".to_string());
     }
-    let marker_latency = marker_latency_of(r.width) as usize;
+    let marker_latency = camera_marker_latency(r.width);
     notes.push(format!(
         "marker_latency(W') = W' + {} clocks, of which THRESHOLD_LATENCY = {THRESHOLD_LATENCY} are the σ scan (the |ΔI| histogram's median and d_t)",
         marker_latency - sizes.stored_width

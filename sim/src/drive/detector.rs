@@ -11,7 +11,7 @@ use golden::declivity::Declivity;
 use golden::hardware::{detect_line, LimitedLine};
 
 use rtl::detector::declivity_detector::DeclivityDetector;
-use rtl::params::{DT_FRAC_BITS, POS_FRAC_BITS, W_MAX};
+use rtl::params::{DT_FRAC_BITS, POS_FRAC_BITS};
 use rust_hdl::core::vcd_probe::VCDProbe;
 use rust_hdl::prelude::*;
 use serde::Serialize;
@@ -452,12 +452,6 @@ pub(crate) fn as_features(lines: &[HwLine]) -> Vec<golden::line::LineFeatures> {
             declivities: l.records.iter().map(to_declivity).collect(),
         })
         .collect()
-}
-
-/// [`rtl::detector::declivity_detector::marker_latency`] for an image `width` wide
-/// (the stored width is at most `W_MAX`).
-pub(crate) fn marker_latency_estimate(width: usize) -> u64 {
-    rtl::detector::declivity_detector::marker_latency(width.clamp(1, W_MAX)) as u64
 }
 
 /// The beats of `lines` streamed as one frame (`tuser` on the first pixel,

@@ -23,7 +23,7 @@ use rtl::params::{DT_FRAC_BITS, MATCH_DT_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_FR
 use serde::Serialize;
 
 use crate::blocks::build_matcher;
-use crate::formats::position_lsb;
+use crate::formats::{position_lsb, SearchArea};
 
 /// One declivity record as the matcher takes it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -102,6 +102,8 @@ pub struct MatcherSim<const N: usize> {
     pub cycle: u64,
     /// Eq. 6's bound, `dispmax · 2^POS_FRAC_BITS`.
     pub dispmax: u32,
+    /// Eq. 6's lower bound (`dispmin < d`), same unit; 0 from [`Self::new`].
+    pub dispmin: u32,
     /// Called every clock at the sampling point (inputs applied and settled,
     /// before the rising edge): sees that clock's input and output ports
     /// (`sim::hdl::traces` records co-simulation traces with it).
@@ -112,7 +114,12 @@ impl<const N: usize> MatcherSim<N> {
     /// A matcher of `N` cells for `rule`, with the search bound
     /// `dispmax · 2^POS_FRAC_BITS`.
     pub fn new(rule: GainRule, dispmax: u32) -> Self {
-        MatcherSim { uut: build_matcher::<N>(rule), cycle: 0, dispmax, observer: None }
+        Self::in_area(rule, SearchArea::below(dispmax))
+    }
+
+    /// A matcher of `N` cells for `rule`, with eq. 6's search area `area`.
+    pub fn in_area(rule: GainRule, area: SearchArea) -> Self {
+        MatcherSim { uut: build_matcher::<N>(rule), cycle: 0, dispmax: area.dispmax, dispmin: area.dispmin, observer: None }
     }
 
     /// One clock: apply the two sides' beats, settle, sample; returns whether
@@ -120,6 +127,7 @@ impl<const N: usize> MatcherSim<N> {
     fn cycle(&mut self, r: SideBeat, o: SideBeat) -> (bool, bool, Option<MatchBeat>) {
         let u = &mut *self.uut;
         u.clock.next = false.into();
+        u.dispmin.next = (self.dispmin as u64).into();
         u.dispmax.next = (self.dispmax as u64).into();
         u.r_valid.next = r.valid;
         u.r_last.next = r.last;
@@ -340,14 +348,21 @@ impl GoldenMatch {
     }
 }
 
-/// Golden's matcher on the quantized pair (see [`GoldenMatch`]).
+/// Golden's matcher on the quantized pair (see [`GoldenMatch`]), eq. 6's
+/// area `0 < d < dispmax`.
 pub fn golden_match(reference: &MatchLine, other: &MatchLine, dispmax: u32, rule: GainRule) -> GoldenMatch {
+    golden_match_in(reference, other, SearchArea::below(dispmax), rule)
+}
+
+/// Golden's matcher on the quantized pair (see [`GoldenMatch`]), eq. 6's
+/// area `area`.
+pub fn golden_match_in(reference: &MatchLine, other: &MatchLine, area: SearchArea, rule: GainRule) -> GoldenMatch {
     let (r, dt_r) = dequantize(reference);
     let (o, dt_o) = dequantize(other);
     let g = gmax(dt_r, dt_o);
-    let dispmax = dispmax as f64 / (1u32 << POS_FRAC_BITS) as f64;
+    let px = |lsb: u32| lsb as f64 / (1u32 << POS_FRAC_BITS) as f64;
     let mode = golden_mode(rule);
-    let table = GainTable::from_fn(r.len(), o.len(), |i, j| node_gain(&r[i], &o[j], g, (0.0, dispmax), RefView::Left, mode));
+    let table = GainTable::from_fn(r.len(), o.len(), |i, j| node_gain(&r[i], &o[j], g, (px(area.dispmin), px(area.dispmax)), RefView::Left, mode));
     let tables = prefix_max_dp(&table);
     // golden::dp::traceback, keeping the last cell it decides on.
     let (mut i, mut j) = (r.len(), o.len());
@@ -452,6 +467,8 @@ pub struct MatchReport {
     pub image: String,
     /// The gain rule the matcher was generated for.
     pub rule: &'static str,
+    /// Eq. 6's area `dispmin < d < dispmax`, px.
+    pub dispmin: f64,
     pub dispmax: f64,
     pub lines: usize,
     pub declivities_ref: usize,
@@ -504,12 +521,13 @@ fn match_lines<const N: usize>(
     let got = sim.run(pairs, false, &mut progress);
     let secs = t0.elapsed().as_secs_f64();
     let cycles = sim.cycle - c0;
-    let dispmax = sim.dispmax;
-    let golden: Vec<GoldenMatch> = pairs.par_iter().map(|(r, o)| golden_match(r, o, dispmax, rule)).collect();
+    let area = SearchArea { dispmin: sim.dispmin, dispmax: sim.dispmax };
+    let golden: Vec<GoldenMatch> = pairs.par_iter().map(|(r, o)| golden_match_in(r, o, area, rule)).collect();
     let mut report = MatchReport {
         image: name.to_string(),
         rule: golden_mode(rule).name(),
-        dispmax: dispmax as f64 / (1u32 << POS_FRAC_BITS) as f64,
+        dispmin: area.dispmin_px(),
+        dispmax: area.dispmax as f64 / (1u32 << POS_FRAC_BITS) as f64,
         lines: pairs.len(),
         declivities_ref: pairs.iter().map(|p| p.0.records.len()).sum(),
         declivities_other: pairs.iter().map(|p| p.1.records.len()).sum(),
@@ -573,7 +591,7 @@ pub fn match_image<const N: usize>(
     name: &str,
     pairs: &[(MatchLine, MatchLine)],
     rule: GainRule,
-    dispmax: u32,
+    area: SearchArea,
     chunks: usize,
     progress: &(dyn Fn() + Sync),
 ) -> (MatchReport, Vec<LineOutcome>) {
@@ -585,7 +603,7 @@ pub fn match_image<const N: usize>(
             .chunks(size)
             .map(|part| {
                 s.spawn(move || {
-                    let mut sim = MatcherSim::<N>::new(rule, dispmax);
+                    let mut sim = MatcherSim::<N>::in_area(rule, area);
                     match_lines(&mut sim, rule, name, part, progress)
                 })
             })
@@ -595,7 +613,7 @@ pub fn match_image<const N: usize>(
     let secs = t0.elapsed().as_secs_f64();
     let mut iter = parts.into_iter();
     let (mut report, mut outcomes) = iter.next().unwrap_or_else(|| {
-        let mut sim = MatcherSim::<N>::new(rule, dispmax);
+        let mut sim = MatcherSim::<N>::in_area(rule, area);
         match_lines(&mut sim, rule, name, &[], progress)
     });
     let mut offset = outcomes.len();

@@ -262,6 +262,8 @@ pub struct StereoSim<const N: usize> {
     pub cycle: u64,
     /// Eq. 6's bound, `1/2^POS_FRAC_BITS` px.
     pub dispmax: u32,
+    /// Eq. 6's lower bound (`dispmin < d`), same unit; 0 from [`Self::new`].
+    pub dispmin: u32,
     vcd: Option<StereoVcd>,
 }
 
@@ -336,7 +338,7 @@ impl<const N: usize> StereoSim<N> {
     /// (`1/2^POS_FRAC_BITS` px) and the depth stage's `camera`, eq. 6's
     /// bound `dispmax` in the same unit.
     pub fn new(rule: GainRule, jump: Option<u64>, camera: DepthCamera, dispmax: u32) -> Result<Self, rtl::post::depth_stage::DepthError> {
-        Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax, vcd: None })
+        Ok(StereoSim { uut: build_stereo::<N>(rule, jump, camera)?, cycle: 0, dispmax, dispmin: 0, vcd: None })
     }
 
     /// The default mode's line processor: [`GainRule::Robust`], the edge jump
@@ -374,6 +376,7 @@ impl<const N: usize> StereoSim<N> {
         loop {
             let u = &mut *self.uut;
             u.clock.next = false.into();
+            u.dispmin.next = (self.dispmin as u64).into();
             u.dispmax.next = (self.dispmax as u64).into();
             u.height.next = (height as u64).into();
             let offers = [cams[0].offer(), cams[1].offer()];
@@ -442,12 +445,12 @@ impl<const N: usize> StereoSim<N> {
 
 /// golden's disparity map of the pair for what the line processor of
 /// `config` computes: the default mode (its row check, edge jump and
-/// vertical median) in hardware parity, left reference, `dispmax` px. Its
-/// values are multiples of `1/2^POS_FRAC_BITS` px: the line processor's
-/// output must equal it.
-pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmax: f64, config: Config) -> Result<Vec<f64>, golden::GoldenError> {
-    let mut params = golden::Params::new(dispmax)?;
-    params.hardware = Some(config.limits());
+/// vertical median) in hardware parity, left reference, eq. 6's area
+/// `dispmin < d < dispmax` (px). Its values are multiples of
+/// `1/2^POS_FRAC_BITS` px: the line processor's output must equal it.
+pub fn golden_map(left: &GreyImage, right: &GreyImage, dispmin: f64, dispmax: f64, config: Config) -> Result<Vec<f64>, golden::GoldenError> {
+    let params = golden::Params { dispmin, hardware: Some(config.limits()), ..golden::Params::new(dispmax)? };
+    params.validate()?;
     Ok(golden::process_frame(left, right, &params, golden::Threads::All)?.disparity)
 }
 

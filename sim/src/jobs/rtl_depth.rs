@@ -10,7 +10,7 @@ use crate::drive::stereo::{golden_depth_map, golden_map, StereoSim};
 use crate::error::SimError;
 use crate::eval::io::PairData;
 use crate::eval::scores::{agree_quarter_px, dense_scores, exact_share};
-use crate::formats::dispmax_lsb;
+use crate::formats::SearchArea;
 use crate::hdl::cosim::{Options, Simulator};
 use crate::hdl::frame::run_frame;
 use crate::hdl::verilog::{generate, Top};
@@ -25,7 +25,8 @@ pub struct StereoReport {
     pub hardware: Sizes,
     pub width: usize,
     pub height: usize,
-    /// Eq. 6's bound, px.
+    /// Eq. 6's area `dispmin < d < dispmax`, px.
+    pub dispmin: f64,
     pub dispmax: f64,
     /// Idle clocks after each line of the cameras.
     pub hblank: usize,
@@ -121,13 +122,13 @@ fn run_pair(
     name: &str,
     left: &GreyImage,
     right: &GreyImage,
-    dispmax: f64,
+    (dispmin, dispmax): (f64, f64),
     hblank: usize,
     engine: Engine,
     vcd: Option<(&std::path::Path, &std::ops::Range<usize>)>,
     progress: impl FnMut(usize),
 ) -> Result<(StereoReport, Vec<f64>, Vec<f64>, Vec<u16>), SimError> {
-    let lsb = dispmax_lsb(dispmax, config)?;
+    let area = SearchArea::from_px(dispmin, dispmax, config)?;
     let w_max = config.sizes().w_max;
     if left.width() > w_max {
         let hint = Config::fitting_hint(left.width());
@@ -146,7 +147,8 @@ fn run_pair(
     }
     let (run, seconds, build_seconds) = match engine {
         Engine::RustHdl => {
-            let mut sim = StereoSim::<{ N_CELLS }>::robust(lsb);
+            let mut sim = StereoSim::<{ N_CELLS }>::robust(area.dispmax);
+            sim.dispmin = area.dispmin;
             if let Some((path, lines)) = vcd {
                 sim.trace_lines_to(path, lines.clone()).map_err(|source| SimError::Io { path: path.to_path_buf(), source })?;
             }
@@ -157,12 +159,12 @@ fn run_pair(
         Engine::Verilator | Engine::Icarus => {
             let simulator = if engine == Engine::Verilator { Simulator::Verilator } else { Simulator::Icarus };
             let design = generate(config, Top::Stereo);
-            let frame = run_frame(simulator, config, &design, left, right, hblank, lsb, &Options::default())?;
+            let frame = run_frame(simulator, config, &design, left, right, hblank, area, &Options::default())?;
             (frame.run, frame.sim.as_secs_f64(), frame.compile.as_secs_f64())
         }
     };
     let rtl = run.disparity_px(left.height());
-    let gold = golden_map(left, right, dispmax, config)?;
+    let gold = golden_map(left, right, dispmin, dispmax, config)?;
     let depth = run.depth_mm(left.height());
     let gold_depth = golden_depth_map(&gold, &rtl::post::depth_stage::DepthCamera::default(), config);
     let report = StereoReport {
@@ -171,6 +173,7 @@ fn run_pair(
         hardware: config.sizes(),
         width: left.width(),
         height: left.height(),
+        dispmin,
         dispmax,
         hblank,
         pixels: run.pixels_in,
@@ -218,10 +221,10 @@ pub struct RtlEvalReport {
 }
 
 /// Runs a pair folder through `config`'s line processor with the search
-/// bound `dispmax + 1` (as `eval`) and scores the map against the left
-/// ground truth.
-pub fn evaluate_pair_rtl(config: Config, pair: &PairData, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, SimError> {
-    let (run, rtl, gold, _) = run_pair(config, &pair.name, &pair.left, &pair.right, pair.dispmax + 1.0, hblank, engine, None, progress)?;
+/// area `dispmin < d < dispmax + 1` (the upper bound as `eval`'s) and scores
+/// the map against the left ground truth.
+pub fn evaluate_pair_rtl(config: Config, pair: &PairData, dispmin: f64, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, SimError> {
+    let (run, rtl, gold, _) = run_pair(config, &pair.name, &pair.left, &pair.right, (dispmin, pair.dispmax + 1.0), hblank, engine, None, progress)?;
     let gt = &pair.gt_left;
     let all = dense_scores(&rtl, gt, None);
     Ok(RtlEvalReport {
@@ -266,7 +269,8 @@ pub fn rtl_markdown_table(reports: &[RtlEvalReport]) -> String {
 pub struct RtlDepthJob {
     /// The line processor's configuration.
     pub config: Config,
-    /// Eq. 6's bound, px.
+    /// Eq. 6's area `dispmin < d < dispmax`, px.
+    pub dispmin: f64,
     pub dispmax: f64,
     /// Idle clocks after each line of the cameras.
     pub hblank: usize,
@@ -309,7 +313,7 @@ pub fn rtl_depth(
     }
     std::fs::create_dir_all(&job.out).map_err(|source| SimError::Io { path: job.out.clone(), source })?;
     let vcd = job.vcd.as_ref().map(|v| (v.path.as_path(), &v.rows));
-    let (report, rtl, gold, depth) = run_pair(job.config, name, &l, &r, job.dispmax, job.hblank, job.engine, vcd, progress)?;
+    let (report, rtl, gold, depth) = run_pair(job.config, name, &l, &r, (job.dispmin, job.dispmax), job.hblank, job.engine, vcd, progress)?;
 
     let (w, h) = (l.width(), l.height());
     let files = vec![

@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use golden::GreyImage;
 use rtl::params::W_MAX;
 
-use crate::drive::detector::{as_features, detect_image, marker_latency_estimate, DetectReport, DetectorSim};
+use crate::drive::detector::{as_features, detect_image, DetectReport, DetectorSim};
+use rtl::detector::declivity_detector::camera_marker_latency;
 use crate::error::SimError;
 use crate::eval::pictures;
 
@@ -34,7 +35,7 @@ pub fn rtl_detect(name: &str, image: &GreyImage, out: &Path, vcd: Option<&Wavefo
         // Lines stream back to back: row y enters at about y·W clocks and its
         // records leave within one marker latency.
         let w = image.width().min(W_MAX) as u64;
-        let range = v.rows.start as u64 * w..v.rows.end as u64 * w + marker_latency_estimate(image.width()) + w;
+        let range = v.rows.start as u64 * w..v.rows.end as u64 * w + camera_marker_latency(image.width()) as u64 + w;
         sim.trace_to(&v.path, range).map_err(|source| SimError::Io { path: v.path.clone(), source })?;
     }
     let (report, lines) = detect_image(&mut sim, name, image, progress).map_err(|e| SimError::Argument(e.to_string()))?;

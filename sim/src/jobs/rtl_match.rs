@@ -13,15 +13,15 @@ use serde::Serialize;
 use crate::drive::matcher::{dequantize, golden_mode, image_lines, match_image, Agreement, MatchLine, MatchReport};
 use crate::error::SimError;
 use crate::eval::pictures;
-use crate::formats::POSITION_UNIT;
+use crate::formats::{SearchArea, POSITION_UNIT};
 
 /// What `rtl match` was asked for besides the pair.
 #[derive(Debug, Clone)]
 pub struct MatchJob {
     /// The gain rule the matcher is generated for (golden runs the same).
     pub rule: GainRule,
-    /// Eq. 6's bound in `1/2^POS_FRAC_BITS` px ([`crate::formats::dispmax_lsb`]).
-    pub dispmax: u32,
+    /// Eq. 6's area in `1/2^POS_FRAC_BITS` px ([`SearchArea::from_px`]).
+    pub area: SearchArea,
     /// The rows to run.
     pub rows: Range<usize>,
     /// The row whose matching graph is drawn (in `rows`).
@@ -72,7 +72,7 @@ pub fn rtl_match(name: &str, left: &GreyImage, right: &GreyImage, job: &MatchJob
         first.0.sof = true;
     }
     let t0 = std::time::Instant::now();
-    let (mut report, outcomes) = match_image::<{ N_CELLS }>(name, &pairs, job.rule, job.dispmax, job.matchers, progress);
+    let (mut report, outcomes) = match_image::<{ N_CELLS }>(name, &pairs, job.rule, job.area, job.matchers, progress);
     let seconds = t0.elapsed().as_secs_f64();
     report.max_cycles_line += rows.start;
 
@@ -82,7 +82,7 @@ pub fn rtl_match(name: &str, left: &GreyImage, right: &GreyImage, job: &MatchJob
         golden::line::LineFeatures { sigma: dt / golden::noise::THRESHOLD_FACTOR, dt, declivities }
     };
     let (fr, fo) = (features(&pairs[k].0), features(&pairs[k].1));
-    let params = Params::with_mode(golden_mode(job.rule), job.dispmax as f64 / POSITION_UNIT)?;
+    let params = Params { dispmin: job.area.dispmin_px(), ..Params::with_mode(golden_mode(job.rule), job.area.dispmax as f64 / POSITION_UNIT)? };
     let line = &outcomes[k];
     let graph = job.out.join(format!("graph_rtl_line_{}.png", job.graph_line));
     let picture = pictures::matching_graph_two_paths(&fr, &fo, &params, &line.golden.table, &line.golden.nodes, &line.rtl.pairs());
