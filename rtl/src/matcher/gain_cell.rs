@@ -10,7 +10,10 @@
 //! line uses up to four, and each row has four clocks per node (`p4`).
 //!
 //! Per node the cell computes, in fixed point:
-//! - eq. 6, the search area: `0 < X_i - X_j < dispmax` (left reference);
+//! - eq. 6, the search area: `0 < X_i - X_j' < dispmax - dispmin`, where
+//!   the column's position comes moved by the lower bound, `X_j' = X_j +
+//!   dispmin` (the matcher's engine adds it): `dispmin < X_i - X_j <
+//!   dispmax` (left reference);
 //! - eq. 4–5, the doubled photometric distances `2·lpd`, `2·rpd` over the
 //!   three neighbour levels on each side, in the [`LEVEL_BITS`] format (the
 //!   loader has made the levels offset-compensated or not, per the gain
@@ -42,8 +45,8 @@
 //! - `up_p`: the `P` register of the cell above (cell `index - 1`; for cell
 //!   0, the last cell's, one clock later, and read as 0 in phase 0, the
 //!   table's first rows); out `p`, this cell's.
-//! - Per line: `dispmax_m1` (eq. 6's bound less one LSB; 0 for a zero
-//!   bound), `below2` (`⌈2·gmax⌉`, compared with doubled
+//! - Per line: `dispmax_m1` (the area's width `dispmax - dispmin` less one
+//!   LSB; 0 for an empty area), `below2` (`⌈2·gmax⌉`, compared with doubled
 //!   distances), `f1` (`gmax`) and `f3` (`3·gmax`) in gain units, `p4` (the
 //!   line's rows have four clocks per node); per design: `same_polarity`,
 //!   `one_sided`.

@@ -260,8 +260,8 @@ pub struct DepthStage {
     s7_d: DFF<Bits<POS_BITS>>,
     // ---- The arithmetic. S1: two shift levels; S2: two more (m, lz);
     // S3: the table's read, the weight, the shift and the saturation flag;
-    // T: the table's output register; S4: the entry and the slope; S5: the step's product; S6: the interpolated
-    // entry; S7: the entry shifted.
+    // T: the table's output register; S4: the entry and the slope; S5: the
+    // step's product; S6: the interpolated entry; S7: the entry shifted.
     s1_n: DFF<Bits<POS_BITS>>,
     s1_lz: DFF<Bits<LZ_BITS>>,
     s2_m: DFF<Bits<POS_BITS>>,
