@@ -414,6 +414,8 @@ def hw_synth_hd():
         m = re.fullmatch(r"synth-hd-stereo-speed(\d)-seed(\d+)\.json", f.name)
         if m:
             runs.append((int(m.group(1)), int(m.group(2)), load_jsonl(f.name)[0]))
+    if not runs:
+        return "No run of the design as it is yet (the first, before `dispmin` and the depth table's register, is in\n[`docs/timing-closure.md`](../timing-closure.md))."
     rows = []
     for speed, seed, r in runs:
         if not r["device"].startswith(f"LFE5U-85F-{speed} "):
