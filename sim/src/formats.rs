@@ -72,15 +72,15 @@ impl SearchArea {
     }
 
     /// `--dispmin` and `--dispmax` (px) in the matcher's unit: `dispmax` as
-    /// [`dispmax_lsb`] takes it, `dispmin` at least 0 and less than
-    /// `dispmax - 1` (golden's rule: a pixel of search at least), on the
-    /// same grid.
+    /// [`dispmax_lsb`] takes it, `dispmin` as golden's hardware parity in
+    /// `config` does (`golden::Params::validate`: at least 0, less than
+    /// `dispmax - 1`, on the positions' grid).
     pub fn from_px(dispmin: f64, dispmax: f64, config: Config) -> Result<Self, DispmaxError> {
         let max = dispmax_lsb(dispmax, config)?;
         let err = |why: String| DispmaxError { option: "dispmin", value: dispmin, why };
-        if !(dispmin >= 0.0 && dispmin < dispmax - 1.0) {
-            return Err(err(format!("dispmin must be at least 0 and less than dispmax − 1 = {} px (eq. 6 searches dispmin < d < dispmax)", dispmax - 1.0)));
-        }
+        golden::Params::new(dispmax)
+            .and_then(|p| golden::Params { dispmin, hardware: Some(config.limits()), ..p }.validate())
+            .map_err(|e| err(e.to_string()))?;
         Ok(SearchArea { dispmin: on_grid(dispmin, 0.0).map_err(err)?, dispmax: max })
     }
 
