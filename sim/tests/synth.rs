@@ -4,8 +4,8 @@
 
 use rust_hdl::prelude::*;
 use sim::hdl::synth::{
-    install_hint, parse_nextpnr_report, report_table, synthesize, synthesize_with,
-    yosys_latch_check, IoMode, SynthError, SynthOptions,
+    detach_unread_carry_outs, install_hint, parse_nextpnr_report, report_table, synthesize,
+    synthesize_with, yosys_latch_check, IoMode, SynthError, SynthOptions,
 };
 
 /// A 16-bit accumulator with an enable: `acc += data` when `enable`.
@@ -110,10 +110,13 @@ fn accumulator_on_ecp5() {
         r.yosys_cells
     );
     assert_eq!(r.yosys_cells.len(), 2, "{:?}", r.yosys_cells);
-    // nextpnr counts each CCU2C as two TRELLIS_COMB (16), plus the carry cells
-    // its packer adds at the ends of the chain and its VCC/GND drivers
-    // (nextpnr 0.11: 2 CCU2C + 2 = 22).
-    assert!((16..=24).contains(&r.luts), "luts {}", r.luts);
+    // nextpnr counts each CCU2C as two TRELLIS_COMB (16), plus the carry cell
+    // its packer adds at the head of the chain and its VCC/GND drivers
+    // (nextpnr 0.11: 1 CCU2C + 2 = 20). The accumulator drops the carry out
+    // of its top bit: the flow disconnects it, and nextpnr adds no pass-out
+    // cell at the chain's end.
+    assert_eq!(r.carry_outs_detached, 1);
+    assert!((16..=22).contains(&r.luts), "luts {}", r.luts);
     assert_eq!((r.brams, r.dsps, r.lutram), (0, 0, 0));
     // 1 clock + 1 enable + 16 data + 16 sum, on pads (they fit).
     assert_eq!(r.io_mode, "pads");
@@ -175,6 +178,60 @@ fn accumulator_on_ecp5() {
     assert_eq!(o.luts, r.luts);
     assert_eq!(o.clock_net, "clock");
     assert!(o.fmax_mhz > 100.0);
+
+    // The netlist as yosys wrote it: nextpnr ends the chain with a pass-out
+    // carry cell (two TRELLIS_COMB) for the carry nobody reads.
+    let k = ok(synthesize_with(
+        &v,
+        &SynthOptions {
+            detach_unread_carry_outs: false,
+            ..Default::default()
+        },
+    ));
+    assert_eq!(k.carry_outs_detached, 0);
+    assert_eq!(k.luts, r.luts + 2, "kept {} vs detached {}", k.luts, r.luts);
+    assert_eq!((k.ffs, k.yosys_cells.clone()), (r.ffs, r.yosys_cells.clone()));
+}
+
+/// A netlist of three carry cells: `a` feeds `b`'s carry in, `b`'s carry out
+/// goes nowhere, `c`'s drives an output port (as a comparison's borrow would).
+/// Only `b`'s is disconnected; every other connection is as it was.
+#[test]
+fn only_carry_outs_that_nothing_reads_are_disconnected() {
+    let netlist = serde_json::json!({
+        "modules": { "top": {
+            "ports": {
+                "x": { "direction": "input", "bits": [2, 3] },
+                "lt": { "direction": "output", "bits": [9] },
+                "s": { "direction": "output", "bits": [5, 6] }
+            },
+            "cells": {
+                "a": { "type": "CCU2C",
+                    "port_directions": { "A0": "input", "CIN": "input", "S0": "output", "COUT": "output" },
+                    "connections": { "A0": [2], "CIN": ["0"], "S0": [5], "COUT": [4] } },
+                "b": { "type": "CCU2C",
+                    "port_directions": { "A0": "input", "CIN": "input", "S0": "output", "COUT": "output" },
+                    "connections": { "A0": [3], "CIN": [4], "S0": [6], "COUT": [7] } },
+                "c": { "type": "CCU2C",
+                    "port_directions": { "A0": "input", "CIN": "input", "S0": "output", "COUT": "output" },
+                    "connections": { "A0": [3], "CIN": ["0"], "S0": [8], "COUT": [9] } },
+                "f": { "type": "TRELLIS_FF",
+                    "port_directions": { "DI": "input", "Q": "output" },
+                    "connections": { "DI": [8], "Q": [10] } }
+            }
+        } }
+    });
+    let (out, n) = ok(detach_unread_carry_outs(&netlist.to_string(), "top"));
+    assert_eq!(n, 1);
+    let out: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let cells = &out["modules"]["top"]["cells"];
+    assert_eq!(cells["b"]["connections"]["COUT"], serde_json::json!(["x"]));
+    assert_eq!(cells["a"]["connections"]["COUT"], serde_json::json!([4]));
+    assert_eq!(cells["c"]["connections"]["COUT"], serde_json::json!([9]));
+    let mut expected = netlist.clone();
+    expected["modules"]["top"]["cells"]["b"]["connections"]["COUT"] = serde_json::json!(["x"]);
+    assert_eq!(out, expected, "nothing else changes");
+    assert!(matches!(detach_unread_carry_outs(&netlist.to_string(), "other"), Err(SynthError::Parse { .. })));
 }
 
 #[test]

