@@ -409,13 +409,9 @@ def hw_synth_hd():
     its target clock and critical path."""
     # docs/data/synth-hd-stereo-speed<S>-seed<N>.json:
     #   declivity synth --config hd --top stereo --speed S --seed N --mhz F --json
-    runs = []
-    for f in sorted(DATA.glob("synth-hd-stereo-speed*-seed*.json")):
-        m = re.fullmatch(r"synth-hd-stereo-speed(\d)-seed(\d+)\.json", f.name)
-        if m:
-            runs.append((int(m.group(1)), int(m.group(2)), load_jsonl(f.name)[0]))
+    runs = _hd_runs()
     if not runs:
-        return "No run of the design as it is yet (the first, before `dispmin` and the depth table's register, is in\n[`docs/timing-closure.md`](../timing-closure.md))."
+        return "No run of the design and flow as they are yet (the earlier runs are in\n[`docs/timing-closure.md`](../timing-closure.md))."
     rows = []
     for speed, seed, r in runs:
         if not r["device"].startswith(f"LFE5U-85F-{speed} "):
@@ -447,20 +443,41 @@ def _short_path(path):
     return head.replace("|", "\\|")
 
 
+def _hd_runs():
+    """The hd top's runs: (speed, seed, report) of each docs/data/synth-hd-stereo-speed<S>-seed<N>.json."""
+    runs = []
+    for f in sorted(DATA.glob("synth-hd-stereo-speed*-seed*.json")):
+        m = re.fullmatch(r"synth-hd-stereo-speed(\d)-seed(\d+)\.json", f.name)
+        if m:
+            runs.append((int(m.group(1)), int(m.group(2)), load_jsonl(f.name)[0]))
+    return runs
+
+
+def _carry_outs(r):
+    """How the run gave nextpnr the carry outputs nothing reads (reports from before the
+    flow disconnected them have no such field)."""
+    n = r.get("carry_outs_detached")
+    return "kept" if n is None or n == 0 else "disconnected"
+
+
 @table("hw-synth-tools")
 def hw_synth_tools():
     """The flow's tools and options as the reports record them, one row per distinct set."""
     # docs/data/synth-<top>-seed<N>.json: declivity synth --top <top> --seed N --json
+    # docs/data/synth-hd-stereo-speed<S>-seed<N>.json: declivity synth --config hd --top stereo ...
     groups = {}
     for top, _ in SYNTH_BLOCKS:
         for seed in (1, 2, 3):
             if not (DATA / f"synth-{top}-seed{seed}.json").exists():
                 continue
             r = _synth(top, seed)
-            key = (r["tools"], r["device"], f"{r['target_mhz']:.0f} MHz", r["timing_weight"])
+            key = (r["tools"], r["device"], f"{r['target_mhz']:.0f} MHz", r["timing_weight"], _carry_outs(r))
             groups.setdefault(key, []).append(f"`{top}` seed {seed}")
+    for speed, seed, r in _hd_runs():
+        key = (r["tools"], r["device"], f"{r['target_mhz']:.0f} MHz", r["timing_weight"], _carry_outs(r))
+        groups.setdefault(key, []).append(f"`hd` `stereo` speed {speed} seed {seed}")
     rows = [[*key, ", ".join(runs)] for key, runs in groups.items()]
-    return markdown(["tools", "device", "target", "placer timing weight", "runs"], rows)
+    return markdown(["tools", "device", "target", "placer timing weight", "unread carry outs", "runs"], rows)
 
 
 if __name__ == "__main__":
