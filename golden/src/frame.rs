@@ -7,7 +7,7 @@ use crate::error::GoldenError;
 use crate::hardware::interpolate::Interpolator;
 use crate::hardware::row_check::{row_check, FixedMatch};
 use crate::hardware::HardwareLimits;
-use crate::line::{process_line_in, LineBuffers, LineResult, Match};
+use crate::line::{process_line_in, ContourPoint, LineBuffers, LineResult, Match};
 use crate::params::{Params, CONSISTENT_DD, CONSISTENT_DX};
 
 /// An 8-bit grey image, row-major.
@@ -52,7 +52,8 @@ impl GreyImage {
 }
 
 /// How many threads process the lines. Results are identical either way:
-/// lines are independent.
+/// lines are independent (a mode with inter-scanline support,
+/// [`crate::Features::contour`], matches them in order on one thread).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Threads {
     /// The calling thread only.
@@ -138,9 +139,11 @@ fn flag_edge_matches(matches: &mut [Match], jump: f64) {
 }
 
 /// Runs the method on a rectified pair: every row of `left` with the same
-/// row of `right`, then (as the mode asks) the check of matches against the
-/// neighbouring rows, the flag on matches next to a depth edge,
-/// interpolation along each reference row, and a vertical median.
+/// row of `right` (with inter-scanline support, top to bottom, each row
+/// with the matches of the row above), then (as the mode asks) the check
+/// of matches against the neighbouring rows, the flag on matches next to a
+/// depth edge, interpolation along each reference row, and a vertical
+/// median.
 pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threads: Threads) -> Result<FrameResult, GoldenError> {
     params.validate()?;
     if left.width != right.width || left.height != right.height {
@@ -153,14 +156,27 @@ pub fn process_frame(left: &GreyImage, right: &GreyImage, params: &Params, threa
     }
     let (w, h) = (left.width, left.height);
     // 1. Every pair of lines, independently (each thread reuses its working
-    // vectors from line to line).
-    let one_line = |buffers: &mut LineBuffers, y: usize| process_line_in(buffers, left.row(y), right.row(y), params);
-    let lines: Vec<LineResult> = match threads {
-        Threads::One => {
+    // vectors from line to line), or with inter-scanline support in order,
+    // each with the row above's matches.
+    let one_line = |buffers: &mut LineBuffers, y: usize| process_line_in(buffers, left.row(y), right.row(y), params, None);
+    let lines: Vec<LineResult> = match (params.mode.features().contour, threads) {
+        (Some(support), _) => {
+            let mut buffers = LineBuffers::default();
+            let mut above: Vec<ContourPoint> = Vec::new();
+            (0..h)
+                .map(|y| {
+                    let line = process_line_in(&mut buffers, left.row(y), right.row(y), params, Some((&above, support)));
+                    above.clear();
+                    above.extend(line.contour_points());
+                    line
+                })
+                .collect()
+        }
+        (None, Threads::One) => {
             let mut buffers = LineBuffers::default();
             (0..h).map(|y| one_line(&mut buffers, y)).collect()
         }
-        Threads::All => (0..h).into_par_iter().map_init(LineBuffers::default, one_line).collect(),
+        (None, Threads::All) => (0..h).into_par_iter().map_init(LineBuffers::default, one_line).collect(),
     };
     Ok(finish_frame(lines, w, h, params, threads))
 }
@@ -493,6 +509,44 @@ mod tests {
                     assert_eq!(&row[..limits.w_max], &want[..], "{mode:?}");
                 }
             }
+        }
+    }
+
+    /// Rows of 80 px on a background of 100 with bars of `bar` (start,
+    /// level) 4 px wide.
+    fn bars(bar: &[(usize, u8)]) -> Vec<u8> {
+        let mut row = vec![100u8; 80];
+        for &(x, level) in bar {
+            row[x..x + 4].fill(level);
+        }
+        row
+    }
+
+    #[test]
+    fn the_row_above_picks_the_texture_period_with_inter_scanline_support() {
+        use crate::params::Mode;
+        // Three bars of period 8 on the left, the true disparity 5. Row 0's
+        // right view holds their three partners: only d = 5 matches them
+        // all. Row 1's right view has a fourth bar 8 px further left, so
+        // d = 13 matches every edge too, and its bars are exact where one of
+        // d = 5's partners is a grey level brighter: alone, row 1 is matched
+        // one period off.
+        let left = bars(&[(30, 160), (38, 160), (46, 160)]);
+        let right0 = bars(&[(25, 160), (33, 160), (41, 160)]);
+        let right1 = bars(&[(17, 160), (25, 160), (33, 160), (41, 161)]);
+        let disparities = |l: &LineResult| l.matches.iter().map(|m| m.disparity).collect::<Vec<f64>>();
+        let robust = Params::with_mode(Mode::Robust, 16.0).unwrap();
+        assert_eq!(disparities(&crate::line::process_line(&left, &right0, &robust)), vec![5.0; 6]);
+        assert_eq!(disparities(&crate::line::process_line(&left, &right1, &robust)), vec![13.0; 6]);
+        // With the row above's matches, row 1's edges continue contours at
+        // d = 5, and the bonus makes the DP take that period.
+        let (l, r) = ([left.clone(), left].concat(), [right0, right1].concat());
+        let (l, r) = (GreyImage::new(80, 2, l).unwrap(), GreyImage::new(80, 2, r).unwrap());
+        let params = Params::with_mode(Mode::Contour, 16.0).unwrap();
+        for threads in [Threads::One, Threads::All] {
+            let frame = process_frame(&l, &r, &params, threads).unwrap();
+            assert_eq!(disparities(&frame.lines[0]), vec![5.0; 6], "{threads:?}");
+            assert_eq!(disparities(&frame.lines[1]), vec![5.0; 6], "{threads:?}");
         }
     }
 

@@ -111,6 +111,22 @@ pub fn local_gain(lpd: f64, rpd: f64, gmax: f64, mode: Mode) -> Option<f64> {
     }
 }
 
+/// Inter-scanline support ([`crate::Features::contour`], after Ohta and
+/// Kanade's inter-scanline search): the term added to the gain of eq. 7 of
+/// a node of disparity `d` whose reference declivity continues an edge
+/// contour matched at disparity `d_contour` in the row above, `bonus`
+/// (`weight · gmax`) when `|d - d_contour| ≤ dd` and 0 otherwise. A
+/// declivity on no contour has `d_contour = NaN`, which is within no
+/// distance of any disparity. A rejected node (`-∞`) stays rejected.
+#[inline(always)]
+pub fn contour_term(d: f64, d_contour: f64, dd: f64, bonus: f64) -> f64 {
+    if (d - d_contour).abs() <= dd {
+        bonus
+    } else {
+        0.0
+    }
+}
+
 /// The value standing for a rejected node in the hot path ([`LineGain`]):
 /// `-∞`, which no gain beats and which stays `-∞` whatever is added to it
 /// (the DP's "no node").

@@ -43,4 +43,4 @@ pub use declivity::Declivity;
 pub use error::GoldenError;
 pub use frame::{process_frame, FrameResult, GreyImage, Threads};
 pub use line::{process_line, LineResult, Match};
-pub use params::{EndRule, Features, Mode, Params, RefView};
+pub use params::{ContourSupport, EndRule, Features, Mode, Params, RefView};

@@ -35,6 +35,9 @@ pub enum Mode {
     /// All of the above: the default, the best measured combination.
     #[default]
     Robust,
+    /// Robust + inter-scanline support: the row above's matches enter the
+    /// gain of the declivities that continue them ([`Features::contour`]).
+    Contour,
 }
 
 /// The changes to the paper's method that a [`Mode`] switches on.
@@ -90,6 +93,43 @@ pub struct Features {
     /// Hardware: one match of look-ahead in the traceback's output (2
     /// comparators and a flag bit per match). Latency: one match.
     pub edge_flag: Option<f64>,
+    /// Inter-scanline support (Ohta and Kanade's intra- and inter-scanline
+    /// search, 1985): a reference declivity that continues a matched
+    /// reference declivity of the row above (same polarity, positions within
+    /// [`ContourSupport::dx`]) lies on an edge contour, and a node of it
+    /// whose disparity is within [`ContourSupport::dd`] of the contour's
+    /// disparity in the row above gets [`ContourSupport::weight`]` · gmax`
+    /// added to its gain (`crate::gain::contour_term`), so that the per-line
+    /// DP (eq. 9) chooses with the contour. Rows are then matched in order,
+    /// each after the row above.
+    /// Hardware: a line buffer of the row above's matches as the traceback
+    /// emits them, two banks (written, read) of `N_MAX` entries of position
+    /// (14 bits), disparity (11 bits) and polarity (1 bit): one `DP16KD`;
+    /// the record loader merges each reference record with it (sorted
+    /// positions: 2 comparators, `|Δx| ≤ dx` and the polarity) and stores
+    /// the contour's disparity and a valid bit in the record memory (12 more
+    /// bits per reference declivity, read by its processing element); per
+    /// processing element a subtractor and a comparator (`|d - d_c| ≤ dd`)
+    /// and an adder of `weight · gmax` (computed once per line). Latency:
+    /// the row's sweep needs the row above's traceback finished, so the
+    /// traceback no longer overlaps the next sweep (the matcher's line
+    /// period becomes sweep + traceback instead of their maximum) unless
+    /// the row two above is used.
+    pub contour: Option<ContourSupport>,
+}
+
+/// The settings of [`Features::contour`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContourSupport {
+    /// Largest position difference (px) between a reference declivity and
+    /// the matched declivity of the row above that it continues.
+    pub dx: f64,
+    /// Largest difference (px) between a node's disparity and the
+    /// contour's for the node to get the bonus.
+    pub dd: f64,
+    /// The bonus as a fraction of `gmax` (eq. 8); 0 leaves every gain as
+    /// it is.
+    pub weight: f64,
 }
 
 /// [`Features::consistent`]: largest position difference (px) of a
@@ -107,6 +147,8 @@ pub const EDGE_JUMP: f64 = 6.0;
 /// 3 and 4 px, the smallest that keeps `match_frac` at or above the paper
 /// mode's on every pair.
 const EDGE_FLAG_JUMP: f64 = 2.0;
+/// [`Features::contour`] of the modes that use it.
+pub const CONTOUR: ContourSupport = ContourSupport { dx: 1.0, dd: 1.0, weight: 1.0 };
 /// [`Features::median_rows`] of the modes that use it: of 5, 7, 9 and 11
 /// rows (`sim` example `accuracy_limits -- medians`), 9 is the fewest that
 /// brings the robust mode's mean bad2 on the eight pairs below SGBM's.
@@ -114,8 +156,17 @@ pub const MEDIAN_ROWS: usize = 9;
 
 impl Mode {
     /// Every mode, in the order the CLI lists them.
-    pub const ALL: [Mode; 8] =
-        [Mode::Paper, Mode::Relative, Mode::OneSided, Mode::Consistent, Mode::Edges, Mode::Median, Mode::EdgeFlag, Mode::Robust];
+    pub const ALL: [Mode; 9] = [
+        Mode::Paper,
+        Mode::Relative,
+        Mode::OneSided,
+        Mode::Consistent,
+        Mode::Edges,
+        Mode::Median,
+        Mode::EdgeFlag,
+        Mode::Robust,
+        Mode::Contour,
+    ];
 
     /// The name used on the command line and in reports.
     pub fn name(self) -> &'static str {
@@ -128,6 +179,7 @@ impl Mode {
             Mode::Median => "median",
             Mode::EdgeFlag => "edge-flag",
             Mode::Robust => "robust",
+            Mode::Contour => "contour",
         }
     }
 
@@ -142,6 +194,7 @@ impl Mode {
             Mode::Median => "Paper + a vertical median over nine rows of the dense map",
             Mode::EdgeFlag => "Paper + matches next to a disparity jump flagged as depth-edge matches, not reported",
             Mode::Robust => "All of the above (the best measured combination)",
+            Mode::Contour => "Robust + inter-scanline support: the row above's matches enter the gain of the declivities continuing them",
         }
     }
 
@@ -163,7 +216,9 @@ impl Mode {
                 edge_jump: Some(EDGE_JUMP),
                 median_rows: MEDIAN_ROWS,
                 edge_flag: Some(EDGE_FLAG_JUMP),
+                contour: None,
             },
+            Mode::Contour => Features { contour: Some(CONTOUR), ..Mode::Robust.features() },
         }
     }
 }
