@@ -998,3 +998,44 @@ fn lines_one_pixel_shorter_than_min_line_period_back_to_back_stall() {
         run.px_per_clk()
     );
 }
+
+/// The `hd` configuration's detector (`rtl-hd`, `W_MAX` 2048, `N_MAX` 256)
+/// on lines `sd` cannot hold whole: rows of the motorcycle pair up-scaled 2×
+/// (1 482 px, as `declivity rtl detect --config hd` runs them), generated
+/// lines of 1 025 to 2 048 px and one of 2 049, back to back with random
+/// idle clocks. Every line equals golden's hardware parity in `hd`'s limits
+/// record for record; the up-scaled rows are wider than `sd`'s W_MAX and
+/// come out whole (not `wide`), the 2 049-px line `wide`; the same rows
+/// through `sd`'s detector are all `wide`.
+#[test]
+fn in_the_hd_configuration_lines_wider_than_sd_holds_equal_golden_record_for_record() {
+    use sim::drive::detector::{golden_lines_in, HdDetector};
+    use sim::Config;
+    let hd_w_max = Config::Hd.sizes().w_max;
+    let pair = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("motorcycle"))
+        .unwrap_or_else(|e| panic!("the test needs the motorcycle pair: {e}"));
+    let up = sim::eval::upscale::upscale_pair(&pair, 2).expect("2x");
+    let mut lines: Vec<Vec<u8>> = (500..516).map(|y| up.left.row(y).to_vec()).collect();
+    assert!(lines[0].len() > W_MAX && lines[0].len() <= hd_w_max, "{} px", lines[0].len());
+    let mut rng = seeded(35);
+    for width in [W_MAX + 1, 1_280, 1_920, hd_w_max, hd_w_max + 1] {
+        lines.push(block_line(&mut rng, width));
+    }
+    let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
+    let mut sim = DetectorSim::<HdDetector>::build();
+    let run = run_lines(&mut sim, &refs, random_gaps(0.05, 35), |_| {}).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(run.lines.len(), lines.len(), "one marker per line");
+    let gold = golden_lines_in(&refs, Config::Hd);
+    let mut records = 0;
+    for (y, (h, g)) in run.lines.iter().zip(&gold).enumerate() {
+        let c = compare_line(h, g);
+        assert_eq!(c.mismatches, 0, "{}", describe_difference(y, &lines[y], h, g, &c));
+        assert_eq!(h.marker.wide, lines[y].len() > hd_w_max, "line {y} of {} px", lines[y].len());
+        records += h.records.len();
+    }
+    assert!(records > 1_000, "{records} records compared");
+    // sd keeps the first W_MAX pixels of the same rows and marks them wide.
+    let mut sd = DetectorSim::new();
+    let sd_run = run_lines(&mut sd, &refs[..16], |_| false, |_| {}).unwrap_or_else(|e| panic!("{e}"));
+    assert!(sd_run.lines.iter().all(|l| l.marker.wide), "sd marks every up-scaled row wide");
+}

@@ -310,6 +310,35 @@ fn rtl_detect_json_reports_agreement_throughput_and_writes_the_overlay_and_wavef
     assert!(vcd.contains("$var") && vcd.contains("s_tdata") && vcd.contains("#"), "a VCD with the ports");
 }
 
+/// `--config hd` runs `rtl-hd`'s detector: a line wider than `sd`'s W_MAX
+/// (1 024 px) comes out whole there, while `sd` keeps its first 1 024 pixels,
+/// marks it wide and says which configuration takes it.
+#[test]
+fn rtl_detect_config_hd_takes_lines_sd_cuts_and_sd_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    // Tsukuba's rows three times side by side: 1 152 px.
+    let t = image::open(bundled_left()).unwrap().to_luma8();
+    let wide = image::GrayImage::from_fn(3 * t.width(), 40, |x, y| *t.get_pixel(x % t.width(), y + 100));
+    let path = dir.path().join("wide.png");
+    wide.save(&path).unwrap();
+    let run = |config: &str| {
+        let o = declivity(&["rtl", "detect", path.to_str().unwrap(), "--json", "--out", "o", "--config", config], dir.path());
+        let (out, err) = text(&o);
+        assert!(o.status.success(), "stdout {out}\nstderr {err}");
+        (serde_json::from_str::<serde_json::Value>(out.trim()).expect("one JSON object"), err)
+    };
+    let (hd, hd_err) = run("hd");
+    assert_eq!(hd["config"], "hd", "{hd}");
+    assert_eq!((hd["mismatches"].as_u64(), hd["wide_lines"].as_u64()), (Some(0), Some(0)), "{hd}");
+    assert!(!hd_err.contains("wider"), "{hd_err}");
+    let (sd, sd_err) = run("sd");
+    assert_eq!(sd["config"], "sd", "{sd}");
+    assert_eq!((sd["mismatches"].as_u64(), sd["wide_lines"].as_u64()), (Some(0), Some(40)), "{sd}");
+    assert!(sd_err.contains("wider than the sd detector's W_MAX = 1024") && sd_err.contains("--config hd"), "{sd_err}");
+    // The first 1 024 pixels hold fewer declivities than the whole lines.
+    assert!(sd["declivities_rtl"].as_u64() < hd["declivities_rtl"].as_u64(), "{sd}\n{hd}");
+}
+
 #[test]
 fn rtl_detect_rejects_rows_outside_the_image_and_unreadable_files() {
     let dir = tempfile::tempdir().unwrap();

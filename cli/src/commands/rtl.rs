@@ -29,7 +29,7 @@ pub(crate) enum RtlCommand {
 fn detect_about() -> String {
     format!(
         "Stream every row of an 8-bit grey image (colour is converted with ITU-R 601 luma) through the \
-cycle-accurate declivity detector (rtl::detector::declivity_detector, W_MAX = {W_MAX}, N_MAX = {N_MAX}), \
+cycle-accurate declivity detector (rtl::detector::declivity_detector; W_MAX, N_MAX of --config: {w}; {n}), \
 back to back at one pixel per clock, and compare each line's records with golden's detector in \
 hardware-parity mode, which computes the detector's fixed-point values exactly. Prints lines, pixels, \
 cycles, px_per_clk, declivities_rtl, declivities_golden, mismatches (every difference in a record or a \
@@ -39,7 +39,9 @@ max_dt_err_lsb (d_t error in 1/{} grey level) and sim_cycles_per_s, or one JSON 
 records over the image) into --out, and with --vcd a waveform of the clocks during which --lines \
 stream through.",
         1u32 << POS_FRAC_BITS,
-        1u32 << DT_FRAC_BITS
+        1u32 << DT_FRAC_BITS,
+        w = crate::args::per_config(|s| s.w_max),
+        n = crate::args::per_config(|s| s.n_max)
     )
 }
 
@@ -116,6 +118,8 @@ pub(crate) struct DetectArgs {
     /// Lines to trace in the VCD, as A..B (rows A to B-1).
     #[arg(long, value_parser = parse_range, requires = "vcd")]
     lines: Option<Range<usize>>,
+    #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("the detector"))]
+    config: CliConfig,
 }
 
 /// What `rtl match` and `rtl depth` both take: a rectified pair, eq. 6's
@@ -225,8 +229,19 @@ fn detect(a: DetectArgs) -> Result<(), SimError> {
     let image = loaded.image;
     let out = super::out_dir(&a.out, "rtl", &a.image);
     let vcd = a.vcd.clone().zip(a.lines.clone()).map(|(path, rows)| Waveform { path, rows });
-    let bar = Progress::new(image.height(), "lines", "rtl detector", a.json);
-    let (report, overlay) = rtl_detect(&a.image.display().to_string(), &image, &out, vcd.as_ref(), |n| bar.set(n))?;
+    let config = a.config.0;
+    let w_max = config.sizes().w_max;
+    if image.width() > w_max {
+        eprintln!(
+            "note: {}: lines of {} px are wider than the {config} detector's W_MAX = {w_max} px: it keeps the first {w_max} pixels of each \
+             and marks the line wide, as golden does; {}",
+            a.image.display(),
+            image.width(),
+            sim::Config::fitting_hint(image.width())
+        );
+    }
+    let bar = Progress::new(image.height(), "lines", format!("rtl detector ({config})"), a.json);
+    let (report, overlay) = rtl_detect(config, &a.image.display().to_string(), &image, &out, vcd.as_ref(), |n| bar.set(n))?;
     bar.finish();
     if a.json {
         super::print_json(&report);

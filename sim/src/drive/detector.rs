@@ -16,6 +16,92 @@ use rust_hdl::core::vcd_probe::VCDProbe;
 use rust_hdl::prelude::*;
 use serde::Serialize;
 
+use crate::config::Config;
+
+// The record formats the driver reads are the same in every configuration
+// (only the position's integer bits grow); the driver's fixed-point units
+// are `rtl`'s.
+const _: () = assert!(
+    rtl_hd::params::POS_FRAC_BITS == POS_FRAC_BITS
+        && rtl_hd::params::DT_FRAC_BITS == DT_FRAC_BITS
+        && rtl_hd::params::PIXEL_BITS == rtl::params::PIXEL_BITS
+);
+
+/// A declivity detector of one configuration's crate (`rtl` is `sd`,
+/// `rtl-hd` is `hd`: the same source with other widths), as the driver
+/// drives its ports.
+pub trait DetectorDut: Block + Sized {
+    /// The configuration the detector is built in.
+    const CONFIG: Config;
+    /// Clocks from a line's last pixel in to its marker out, for a line of
+    /// `width` pixels (`camera_marker_latency` of the block's crate).
+    fn marker_latency(width: usize) -> usize;
+    /// A detector with its ports connected.
+    fn build() -> Self;
+    /// Sets the clock input and the pixel port's inputs.
+    fn drive(&mut self, clock: bool, beat: PixelBeat);
+    /// Raises the clock.
+    fn rise(&mut self);
+    /// `s_tready`.
+    fn tready(&self) -> bool;
+    /// The output beat, when `m_valid`.
+    fn beat(&self) -> Option<RecordBeat>;
+}
+
+macro_rules! detector_dut {
+    ($krate:ident, $config:expr) => {
+        impl DetectorDut for $krate::detector::declivity_detector::DeclivityDetector {
+            const CONFIG: Config = $config;
+            fn marker_latency(width: usize) -> usize {
+                $krate::detector::declivity_detector::camera_marker_latency(width)
+            }
+            fn build() -> Self {
+                let mut uut = Self::default();
+                uut.connect_all();
+                uut
+            }
+            fn drive(&mut self, clock: bool, b: PixelBeat) {
+                self.clock.next = clock.into();
+                self.s_tdata.next = (b.tdata as u64).into();
+                self.s_tvalid.next = b.tvalid;
+                self.s_tuser.next = b.tuser;
+                self.s_tlast.next = b.tlast;
+            }
+            fn rise(&mut self) {
+                self.clock.next = true.into();
+            }
+            fn tready(&self) -> bool {
+                self.s_tready.val()
+            }
+            fn beat(&self) -> Option<RecordBeat> {
+                // The amplitude is PIXEL_BITS + 1 bits, two's complement.
+                let amp_bits = 1u64 << (rtl::params::PIXEL_BITS + 1);
+                let amp = self.m_amp.val().to_u64();
+                self.m_valid.val().then(|| RecordBeat {
+                    marker: self.m_last.val(),
+                    start: self.m_start.val().to_u64() as u32,
+                    end: self.m_end.val().to_u64() as u32,
+                    amplitude: if 2 * amp >= amp_bits { amp as i32 - amp_bits as i32 } else { amp as i32 },
+                    pos: self.m_pos.val().to_u64() as u32,
+                    left: [self.m_left0.val(), self.m_left1.val(), self.m_left2.val()].map(|v| v.to_u64() as u8),
+                    right: [self.m_right0.val(), self.m_right1.val(), self.m_right2.val()].map(|v| v.to_u64() as u8),
+                    dt: self.m_dt.val().to_u64() as u32,
+                    count: self.m_count.val().to_u64() as u32,
+                    wide: self.m_wide.val(),
+                    full: self.m_full.val(),
+                    sof: self.m_sof.val(),
+                })
+            }
+        }
+    };
+}
+
+detector_dut!(rtl, Config::Sd);
+detector_dut!(rtl_hd, Config::Hd);
+
+/// The `hd` configuration's detector (`rtl-hd`).
+pub type HdDetector = rtl_hd::detector::declivity_detector::DeclivityDetector;
+
 /// One input beat of the AXI4-Stream video port.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct PixelBeat {
@@ -64,9 +150,10 @@ impl HwLine {
     }
 }
 
-/// The detector under direct drive.
-pub struct DetectorSim {
-    pub uut: DeclivityDetector,
+/// The detector under direct drive: `sd`'s by default, [`HdDetector`] for
+/// `hd`.
+pub struct DetectorSim<D: DetectorDut = DeclivityDetector> {
+    pub uut: D,
     /// Clocks so far.
     pub cycle: u64,
     vcd: Option<VcdState>,
@@ -85,10 +172,16 @@ impl Default for DetectorSim {
 }
 
 impl DetectorSim {
+    /// The `sd` configuration's detector.
     pub fn new() -> Self {
-        let mut uut = DeclivityDetector::default();
-        uut.connect_all();
-        DetectorSim { uut, cycle: 0, vcd: None }
+        Self::build()
+    }
+}
+
+impl<D: DetectorDut> DetectorSim<D> {
+    /// The detector of `D`'s configuration.
+    pub fn build() -> Self {
+        DetectorSim { uut: D::build(), cycle: 0, vcd: None }
     }
 
     /// Writes a VCD of the clocks in `range` to `path`.
@@ -108,14 +201,10 @@ impl DetectorSim {
     /// was accepted (`tvalid && tready`) and the output beat, if any.
     fn cycle(&mut self, input: PixelBeat) -> (bool, Option<RecordBeat>) {
         let u = &mut self.uut;
-        u.clock.next = false.into();
-        u.s_tdata.next = (input.tdata as u64).into();
-        u.s_tvalid.next = input.tvalid;
-        u.s_tuser.next = input.tuser;
-        u.s_tlast.next = input.tlast;
+        u.drive(false, input);
         settle(u, SETTLE_LOW);
-        let accepted = input.tvalid && u.s_tready.val();
-        let out = u.m_valid.val().then(|| read_beat(u));
+        let accepted = input.tvalid && u.tready();
+        let out = u.beat();
         if let Some(state) = &mut self.vcd {
             if state.range.contains(&self.cycle) {
                 if let Some(mut probe) = state.probe.take() {
@@ -126,7 +215,7 @@ impl DetectorSim {
             }
         }
         let u = &mut self.uut;
-        u.clock.next = true.into();
+        u.rise();
         settle(u, SETTLE_HIGH);
         if let Some(state) = &mut self.vcd {
             if state.range.contains(&self.cycle) {
@@ -149,26 +238,8 @@ impl DetectorSim {
 const SETTLE_LOW: usize = 3;
 const SETTLE_HIGH: usize = 5;
 
-fn settle(u: &mut DeclivityDetector, passes: usize) {
+fn settle<D: DetectorDut>(u: &mut D, passes: usize) {
     crate::drive::settle_block(u, passes, 200, "the detector");
-}
-
-fn read_beat(u: &DeclivityDetector) -> RecordBeat {
-    let amp9 = u.m_amp.val().to_u64() as i32;
-    RecordBeat {
-        marker: u.m_last.val(),
-        start: u.m_start.val().to_u64() as u32,
-        end: u.m_end.val().to_u64() as u32,
-        amplitude: if amp9 >= 256 { amp9 - 512 } else { amp9 },
-        pos: u.m_pos.val().to_u64() as u32,
-        left: [u.m_left0.val(), u.m_left1.val(), u.m_left2.val()].map(|v| v.to_u64() as u8),
-        right: [u.m_right0.val(), u.m_right1.val(), u.m_right2.val()].map(|v| v.to_u64() as u8),
-        dt: u.m_dt.val().to_u64() as u32,
-        count: u.m_count.val().to_u64() as u32,
-        wide: u.m_wide.val(),
-        full: u.m_full.val(),
-        sof: u.m_sof.val(),
-    }
 }
 
 /// The result of streaming lines through the detector.
@@ -216,8 +287,8 @@ pub struct DetectorHang {
 /// `tuser`), with `tvalid` low on the clocks `c` where `gap(c)` says so, and
 /// collects each line's records with their clocks; `progress` is called with
 /// the number of lines done.
-pub fn run_lines(
-    sim: &mut DetectorSim,
+pub fn run_lines<D: DetectorDut>(
+    sim: &mut DetectorSim<D>,
     lines: &[&[u8]],
     mut gap: impl FnMut(u64) -> bool,
     mut progress: impl FnMut(usize),
@@ -347,9 +418,16 @@ pub fn compare_line(hw: &HwLine, gold: &LimitedLine) -> LineComparison {
     c
 }
 
-/// golden's declivities of every line in parity mode.
+/// golden's declivities of every line in parity mode, in the `sd`
+/// configuration's limits.
 pub fn golden_lines(lines: &[&[u8]]) -> Vec<LimitedLine> {
-    let limits = crate::config::Config::Sd.limits();
+    golden_lines_in(lines, Config::Sd)
+}
+
+/// golden's declivities of every line in parity mode, in `config`'s limits
+/// (`W_MAX`, `N_MAX`).
+pub fn golden_lines_in(lines: &[&[u8]], config: Config) -> Vec<LimitedLine> {
+    let limits = config.limits();
     lines.iter().map(|l| detect_line(l, limits)).collect()
 }
 
@@ -368,6 +446,8 @@ fn to_declivity(r: &RecordBeat) -> Declivity {
 /// The report of `declivity rtl detect` (its JSON object).
 #[derive(Debug, Clone, Serialize)]
 pub struct DetectReport {
+    /// The configuration the detector was generated in.
+    pub config: Config,
     pub image: String,
     pub width: usize,
     pub lines: usize,
@@ -401,8 +481,8 @@ pub struct DetectReport {
 /// Runs every row of `image` through the detector (back to back, no gaps)
 /// and compares each with golden in parity mode. Returns the report and the
 /// per-line records.
-pub(crate) fn detect_image(
-    sim: &mut DetectorSim,
+pub(crate) fn detect_image<D: DetectorDut>(
+    sim: &mut DetectorSim<D>,
     name: &str,
     image: &golden::GreyImage,
     progress: impl FnMut(usize),
@@ -411,8 +491,9 @@ pub(crate) fn detect_image(
     let t0 = std::time::Instant::now();
     let run = run_lines(sim, &lines, |_| false, progress)?;
     let secs = t0.elapsed().as_secs_f64();
-    let gold = golden_lines(&lines);
+    let gold = golden_lines_in(&lines, D::CONFIG);
     let mut report = DetectReport {
+        config: D::CONFIG,
         image: name.to_string(),
         width: image.width(),
         lines: lines.len(),
