@@ -147,8 +147,13 @@ pub const EDGE_JUMP: f64 = 6.0;
 /// 3 and 4 px, the smallest that keeps `match_frac` at or above the paper
 /// mode's on every pair.
 const EDGE_FLAG_JUMP: f64 = 2.0;
-/// [`Features::contour`] of the modes that use it.
-pub const CONTOUR: ContourSupport = ContourSupport { dx: 1.0, dd: 1.0, weight: 1.0 };
+/// [`Features::contour`] of the modes that use it: contours within 1 px,
+/// disparities within 1 px, a bonus of `gmax / 2`. Of the weights 0.25,
+/// 0.5, 1 and 2 (with `dx = dd = 1`), and of `dx` 0.5 and 2 and `dd` 0.5
+/// (with weight 1), none moved the mean `sparse_acc1` on the eight pairs by
+/// more than 0.15 point from the robust mode's (docs/method.md, "Inter-scanline
+/// support"); 0.5 adds matches at the least cost in accuracy.
+pub const CONTOUR: ContourSupport = ContourSupport { dx: 1.0, dd: 1.0, weight: 0.5 };
 /// [`Features::median_rows`] of the modes that use it: of 5, 7, 9 and 11
 /// rows (`sim` example `accuracy_limits -- medians`), 9 is the fewest that
 /// brings the robust mode's mean bad2 on the eight pairs below SGBM's.
