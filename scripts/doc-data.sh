@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 BIN=${DECLIVITY:-target/release/declivity}
 DATA=data/stereo
 OUT=docs/data
-MODES="paper relative one-sided consistent edges median edge-flag robust"
+MODES="paper relative one-sided consistent edges median edge-flag robust contour"
 PAIRS="tsukuba venus sawtooth map cones teddy art motorcycle"
 STEPS=${*:-accuracy bench robustness rtl hd detect budget}
 run() { nice -n 10 "$@"; }
