@@ -525,19 +525,21 @@ mod tests {
     #[test]
     fn the_row_above_picks_the_texture_period_with_inter_scanline_support() {
         use crate::params::Mode;
-        // Three bars of period 8 on the left, the true disparity 5. Row 0's
-        // right view holds their three partners: only d = 5 matches them
-        // all. Row 1's right view has a fourth bar 8 px further left, so
+        // Five bars of period 8 on the left, the true disparity 5. Row 0's
+        // right view holds their five partners: only d = 5 matches them
+        // all. Row 1's right view has a sixth bar 8 px further left, so
         // d = 13 matches every edge too, and its bars are exact where one of
         // d = 5's partners is a grey level brighter: alone, row 1 is matched
-        // one period off.
-        let left = bars(&[(30, 160), (38, 160), (46, 160)]);
-        let right0 = bars(&[(25, 160), (33, 160), (41, 160)]);
-        let right1 = bars(&[(17, 160), (25, 160), (33, 160), (41, 161)]);
+        // one period off. (The lines' σ is the floor, so gmax = 5.6/√12; the
+        // brighter bar costs d = 5 two nodes of 3 levels each, less than
+        // ten bonuses of gmax/2.)
+        let left = bars(&[(30, 160), (38, 160), (46, 160), (54, 160), (62, 160)]);
+        let right0 = bars(&[(25, 160), (33, 160), (41, 160), (49, 160), (57, 160)]);
+        let right1 = bars(&[(17, 160), (25, 160), (33, 160), (41, 160), (49, 160), (57, 161)]);
         let disparities = |l: &LineResult| l.matches.iter().map(|m| m.disparity).collect::<Vec<f64>>();
         let robust = Params::with_mode(Mode::Robust, 16.0).unwrap();
-        assert_eq!(disparities(&crate::line::process_line(&left, &right0, &robust)), vec![5.0; 6]);
-        assert_eq!(disparities(&crate::line::process_line(&left, &right1, &robust)), vec![13.0; 6]);
+        assert_eq!(disparities(&crate::line::process_line(&left, &right0, &robust)), vec![5.0; 10]);
+        assert_eq!(disparities(&crate::line::process_line(&left, &right1, &robust)), vec![13.0; 10]);
         // With the row above's matches, row 1's edges continue contours at
         // d = 5, and the bonus makes the DP take that period.
         let (l, r) = ([left.clone(), left].concat(), [right0, right1].concat());
@@ -545,8 +547,8 @@ mod tests {
         let params = Params::with_mode(Mode::Contour, 16.0).unwrap();
         for threads in [Threads::One, Threads::All] {
             let frame = process_frame(&l, &r, &params, threads).unwrap();
-            assert_eq!(disparities(&frame.lines[0]), vec![5.0; 6], "{threads:?}");
-            assert_eq!(disparities(&frame.lines[1]), vec![5.0; 6], "{threads:?}");
+            assert_eq!(disparities(&frame.lines[0]), vec![5.0; 10], "{threads:?}");
+            assert_eq!(disparities(&frame.lines[1]), vec![5.0; 10], "{threads:?}");
         }
     }
 
