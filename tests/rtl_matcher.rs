@@ -500,3 +500,39 @@ fn lines_wider_than_w_max_are_matched_on_their_first_w_max_pixels_and_flagged_wi
         assert_eq!(g.pairs(), want.nodes);
     }
 }
+
+/// The `hd` configuration's matcher (`rtl-hd`: 64 cells, `N_MAX` 256) on
+/// rows of the motorcycle pair up-scaled 2× (1 482 px) with more than
+/// `sd`'s 128 declivities, and on a generated pair of 256: every path
+/// golden's node for node (golden in `hd`'s limits, where `sd` would cut
+/// the lines at 128 records and flag them full), every marker on the clock
+/// `hd`'s documented schedule gives.
+#[test]
+fn in_the_hd_configuration_rows_of_more_than_128_declivities_match_golden_node_for_node_on_schedule() {
+    use sim::drive::matcher::{image_lines_in, match_image_on, HdMatcher};
+    use sim::Config;
+    const HD: usize = 64;
+    let hd = Config::Hd.sizes();
+    assert_eq!((hd.cells, hd.n_max), (HD, 256));
+    let pair = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("motorcycle")).expect("the pair loads");
+    let up = sim::eval::upscale::upscale_pair(&pair, 2).expect("2x");
+    let all = image_lines_in(&up.left, &up.right, Config::Hd);
+    // The rows with the most reference declivities, and a 256 × 256 pair.
+    let mut rows: Vec<usize> = (0..all.len()).collect();
+    rows.sort_by_key(|&y| std::cmp::Reverse(all[y].0.records.len()));
+    let mut lines: Vec<_> = rows[..6].iter().map(|&y| all[y].clone()).collect();
+    assert!(lines.iter().all(|(l, _)| l.records.len() > N_MAX && !l.full), "rows above sd's N_MAX, whole");
+    let (l, r) = ([100, 110, 120], [150, 160, 170]);
+    let reference = MatchLine { dt: 400, records: (0..hd.n_max as u32).map(|k| record(PX * (40 + 7 * k), true, l, r)).collect(), ..MatchLine::default() };
+    let other = MatchLine { records: reference.records.iter().map(|r| MatchRecord { pos: r.pos - 3 * PX, ..*r }).collect(), ..reference.clone() };
+    lines.push((reference, other));
+    let area = SearchArea::below(((2.0 * pair.dispmax + 1.0) * PX as f64) as u32);
+    let (report, outcomes) = match_image_on::<HD, HdMatcher<HD>>("motorcycle 2x", &lines, GainRule::Robust, area, 2, &|| {});
+    eprintln!("{}", serde_json::to_string(&report).expect("serializes"));
+    for (k, o) in outcomes.iter().enumerate() {
+        assert_eq!(o.agreement, Agreement::Identical, "line {k}: golden {:?}, rtl {:?}", o.golden.nodes, o.rtl.pairs());
+    }
+    assert_eq!((report.mismatch_lines, report.malformed_lines, report.off_schedule_lines), (0, 0, 0), "{report:?}");
+    assert_eq!(outcomes.last().map(|o| o.rtl.matches.len()), Some(hd.n_max), "the generated pair takes every node");
+    assert!(report.max_engine_period <= hd.w_max as u64, "{report:?}");
+}

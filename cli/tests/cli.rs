@@ -446,6 +446,16 @@ fn rtl_match_json_on_a_few_rows_agrees_with_golden_and_draws_the_graph() {
     assert!(img.width() > 200 && img.height() > 200);
     // Both paths are drawn: golden's rings (green) and the rtl boxes (orange).
     assert!(img.pixels().any(|p| p.0 == [0, 255, 0]) && img.pixels().any(|p| p.0 == [255, 150, 0]));
+
+    // The same rows on the hd configuration's matcher: its 64 cells, the
+    // same paths (no tsukuba row has more than sd's 128 declivities).
+    let o = declivity(&["rtl", "match", &l, &r, "--dispmax", "16", "--rows", "140..142", "--json", "--out", "o", "--config", "hd"], dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let h: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    assert_eq!((h["config"].as_str(), h["cells"].as_u64()), (Some("hd"), Some(64)), "{out}");
+    assert_eq!(v["config"], "sd", "the default configuration");
+    assert_eq!((h["identical_lines"].as_u64(), h["off_schedule_lines"].as_u64()), (Some(2), Some(0)), "{out}");
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! matcher of 32 cells of signals does not fit on a default stack, so they
 //! are built (and their Verilog generated) on a thread with a large one.
 
-use rtl::matcher::declivity_matcher::{DeclivityMatcher, GainRule};
+use rtl::matcher::declivity_matcher::GainRule;
 use rtl::post::depth_stage::{DepthCamera, DepthError};
 use rtl::stereo_line_processor::StereoLineProcessor;
 use rust_hdl::prelude::*;
@@ -28,11 +28,6 @@ pub(crate) fn build_block<B: Block + Send + 'static>(what: &str, make: impl FnOn
         uut.connect_all();
         uut
     })
-}
-
-/// Builds and connects the matcher of `N` cells for the gain rule `rule`.
-pub(crate) fn build_matcher<const N: usize>(rule: GainRule) -> Box<DeclivityMatcher<N>> {
-    build_block("building the matcher", move || DeclivityMatcher::<N>::new(rule))
 }
 
 /// Builds and connects the line processor: the matcher of `N` cells for

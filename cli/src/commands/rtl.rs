@@ -5,7 +5,7 @@ use std::ops::Range;
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use rtl::params::{DT_FRAC_BITS, MATCH_DT_FRAC_BITS, MEDIAN_HALF, N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
+use rtl::params::{DT_FRAC_BITS, MATCH_DT_FRAC_BITS, MEDIAN_HALF, POS_FRAC_BITS, ROWS_PER_CELL};
 use sim::eval::io::{load_grey, load_pair_images};
 use sim::jobs::rtl_depth::{rtl_depth, Engine, RtlDepthJob};
 use sim::jobs::rtl_detect::{rtl_detect, Waveform};
@@ -48,8 +48,8 @@ stream through.",
 fn match_about() -> String {
     format!(
         "Run the rows of a rectified stereo pair (8-bit grey; colour is converted with ITU-R 601 luma) \
-through the cycle-accurate matcher (rtl::matcher::declivity_matcher: a systolic array of N_CELLS = \
-{N_CELLS} gain cells, each holding up to {ROWS_PER_CELL} of the N_MAX = {N_MAX} reference declivities, \
+through the cycle-accurate matcher (rtl::matcher::declivity_matcher: a systolic array of N_CELLS gain \
+cells ({cells} by --config), each holding up to {ROWS_PER_CELL} of the N_MAX reference declivities ({n}), \
 and its traceback; left view as reference) and compare every line with golden's matcher (eq. 4-9).
 
 Both matchers get the same inputs: golden's declivities of each row (hardware-parity detector), \
@@ -67,7 +67,9 @@ max_cycles_line, max_engine_period, cycles, sim_cycles_per_s, rows, seconds and 
 --out graph_rtl_line_Y.png: the matching graph of row Y (fig. 4) with golden's gains, golden's optimal \
 path as green rings and the rtl path as orange boxes.",
         pos = 1u32 << POS_FRAC_BITS,
-        dt = 1u32 << MATCH_DT_FRAC_BITS
+        dt = 1u32 << MATCH_DT_FRAC_BITS,
+        cells = crate::args::per_config(|s| s.cells),
+        n = crate::args::per_config(|s| s.n_max)
     )
 }
 
@@ -76,7 +78,7 @@ fn depth_about() -> String {
     format!(
         "Run a rectified stereo pair (8-bit grey; colour is converted with ITU-R 601 luma) through the \
 cycle-accurate line processor (rtl::stereo_line_processor: two declivity detectors, a record queue per \
-side, the matcher of N_CELLS = {N_CELLS} cells in the default gain rule, the row check, the \
+side, the matcher of N_CELLS cells ({cells} by --config) in the default gain rule, the row check, the \
 interpolator with the default mode's edge jump, the vertical median of {rows} rows, and the depth \
 stage for the camera it is generated for: focal length {f} px, baseline {b} mm), the two cameras \
 streaming one pixel per clock with --hblank idle clocks after each line, and compare the disparity map \
@@ -98,7 +100,8 @@ depth_mm_rtl.png (its depth in millimetres, 0 = none).",
         rows = 2 * MEDIAN_HALF + 1,
         f = camera.focal_px,
         b = camera.baseline_mm,
-        unit = 1u32 << POS_FRAC_BITS
+        unit = 1u32 << POS_FRAC_BITS,
+        cells = crate::args::per_config(|s| s.cells)
     )
 }
 
@@ -141,9 +144,10 @@ struct PairArgs {
 
 fn dispmax_help() -> String {
     format!(
-        "Search bound of eq. 6 in pixels: DISPMIN < d < DISPMAX (greater than 1, at most W_MAX = {W_MAX}, a \
-         multiple of 1/{unit} px: the matcher takes it in 1/{unit} px)",
-        unit = 1u32 << POS_FRAC_BITS
+        "Search bound of eq. 6 in pixels: DISPMIN < d < DISPMAX (greater than 1, at most the configuration's \
+         W_MAX: {w}; a multiple of 1/{unit} px: the matcher takes it in 1/{unit} px)",
+        unit = 1u32 << POS_FRAC_BITS,
+        w = crate::args::per_config(|s| s.w_max)
     )
 }
 
@@ -172,6 +176,8 @@ pub(crate) struct MatchArgs {
     /// Rows to run, as A..B (rows A to B-1) [default: all].
     #[arg(long, value_parser = parse_range)]
     rows: Option<Range<usize>>,
+    #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("the matcher (its N_CELLS gain cells)"))]
+    config: CliConfig,
 }
 
 #[derive(Args, Debug)]
@@ -266,12 +272,23 @@ fn detect(a: DetectArgs) -> Result<(), SimError> {
 }
 
 fn match_pair(a: MatchArgs) -> Result<(), SimError> {
-    let area = sim::formats::SearchArea::from_px(a.pair.dispmin, a.pair.dispmax, Config::Sd)?;
+    let config = a.config.0;
+    let area = sim::formats::SearchArea::from_px(a.pair.dispmin, a.pair.dispmax, config)?;
     let (left, right, notes) = load_pair_images(&a.pair.left, &a.pair.right)?;
     super::print_notes(&notes);
+    let w_max = config.sizes().w_max;
+    if left.width() > w_max {
+        eprintln!(
+            "note: lines of {} px are wider than the {config} matcher's W_MAX = {w_max} px: it matches the declivities of the first \
+             {w_max} pixels of each, as the detector sends them; {}",
+            left.width(),
+            sim::Config::fitting_hint(left.width())
+        );
+    }
     let rows = a.rows.clone().unwrap_or(0..left.height());
     let matchers = std::thread::available_parallelism().map_or(2, |n| n.get()).min(rows.len().max(1));
     let job = MatchJob {
+        config,
         rule: a.rule.rule(),
         area,
         graph_line: a.graph_line.unwrap_or(rows.start + rows.len() / 2),
@@ -280,7 +297,7 @@ fn match_pair(a: MatchArgs) -> Result<(), SimError> {
         matchers,
     };
     check_rows(&job, left.height(), &a.pair.left)?;
-    let bar = Progress::new(job.rows.len(), "lines", format!("rtl matcher x{matchers}"), a.pair.json);
+    let bar = Progress::new(job.rows.len(), "lines", format!("rtl matcher ({config}) x{matchers}"), a.pair.json);
     let outcome = rtl_match(&a.pair.left.display().to_string(), &left, &right, &job, &|| bar.inc())?;
     bar.finish();
     let r = &outcome.report;
@@ -288,8 +305,8 @@ fn match_pair(a: MatchArgs) -> Result<(), SimError> {
         super::print_json(&outcome);
     } else {
         println!(
-            "{}: {} line pairs (rows {}..{}), {} rule, {} < d < {} px, {matchers} matchers",
-            r.image, r.lines, outcome.rows[0], outcome.rows[1], r.rule, r.dispmin, r.dispmax
+            "{}: {} line pairs (rows {}..{}), {} rule, {} < d < {} px, {matchers} matchers of {} cells ({})",
+            r.image, r.lines, outcome.rows[0], outcome.rows[1], r.rule, r.dispmin, r.dispmax, r.cells, r.config
         );
         println!("  declivities         left {}, right {}", r.declivities_ref, r.declivities_other);
         println!("  matches             rtl {}, golden {}", r.matches_rtl, r.matches_golden);

@@ -17,13 +17,143 @@ use golden::dp::{prefix_max_dp, Choice, GainTable};
 use golden::gain::{gmax, node_gain};
 use golden::line::LineFeatures;
 use golden::params::{Mode, RefView};
-use rtl::matcher::declivity_matcher::{schedule, sweep_cycles, DeclivityMatcher, EngineLine, GainRule};
-use rtl::matcher::traceback::traceback_cycles;
-use rtl::params::{DT_FRAC_BITS, MATCH_DT_BITS, MATCH_DT_FRAC_BITS, N_MAX, POS_FRAC_BITS, W_MAX};
+use rtl::matcher::declivity_matcher::{DeclivityMatcher, EngineLine, GainRule};
+use rtl::params::{DT_FRAC_BITS, MATCH_DT_BITS, MATCH_DT_FRAC_BITS, POS_FRAC_BITS};
+use rust_hdl::prelude::*;
 use serde::Serialize;
 
-use crate::blocks::build_matcher;
+use crate::config::Config;
 use crate::formats::{position_lsb, SearchArea};
+
+// The record and `d_t` formats the driver speaks are the same in every
+// configuration (only the position's integer bits and the counts grow).
+const _: () = assert!(
+    rtl_hd::params::POS_FRAC_BITS == POS_FRAC_BITS
+        && rtl_hd::params::DT_FRAC_BITS == DT_FRAC_BITS
+        && rtl_hd::params::MATCH_DT_FRAC_BITS == MATCH_DT_FRAC_BITS
+        && rtl_hd::params::MATCH_DT_BITS == MATCH_DT_BITS
+);
+
+/// A matcher of one configuration's crate (`rtl` is `sd`, `rtl-hd` is
+/// `hd`: the same source with other widths) and cell count, as the driver
+/// drives its ports, with its crate's timing formulas.
+pub trait MatcherDut: Block + Send + Sized + 'static {
+    /// The configuration the matcher is built in.
+    const CONFIG: Config;
+    /// Its gain cells.
+    const CELLS: usize;
+    /// The matcher for `rule`, built and connected.
+    fn build(rule: GainRule) -> Box<Self>;
+    /// Sets the clock input, the search area and both sides' inputs.
+    fn drive(&mut self, clock: bool, area: SearchArea, r: &SideBeat, o: &SideBeat);
+    /// Raises the clock.
+    fn rise(&mut self);
+    /// `r_ready`, `o_ready`.
+    fn ready(&self) -> (bool, bool);
+    /// The output beat, when `m_valid`.
+    fn beat(&self) -> Option<MatchBeat>;
+    /// Clocks of the sweep of an `n × m` line pair.
+    fn sweep_cycles(n: usize, m: usize) -> u64;
+    /// Clocks of the traceback of an `n × m` pair that stops at diagonal
+    /// `stop_diag` after `nodes` matches.
+    fn traceback_cycles(n: usize, m: usize, stop_diag: usize, nodes: usize) -> u64;
+    /// `(take, start, marker)` of each line by the engine's documented
+    /// timing (`schedule` of the block's crate).
+    fn schedule(lines: &[EngineLine]) -> Vec<(u64, u64, u64)>;
+}
+
+macro_rules! matcher_dut {
+    ($k:ident, $config:expr) => {
+        impl<const N: usize> MatcherDut for $k::matcher::declivity_matcher::DeclivityMatcher<N> {
+            const CONFIG: Config = $config;
+            const CELLS: usize = N;
+            fn build(rule: GainRule) -> Box<Self> {
+                let rule = match rule {
+                    GainRule::Paper => $k::matcher::declivity_matcher::GainRule::Paper,
+                    GainRule::Robust => $k::matcher::declivity_matcher::GainRule::Robust,
+                };
+                crate::blocks::build_block("building the matcher", move || Self::new(rule))
+            }
+            fn drive(&mut self, clock: bool, area: SearchArea, r: &SideBeat, o: &SideBeat) {
+                let u = self;
+                u.clock.next = clock.into();
+                u.dispmin.next = (area.dispmin as u64).into();
+                u.dispmax.next = (area.dispmax as u64).into();
+                u.r_valid.next = r.valid;
+                u.r_last.next = r.last;
+                u.r_pos.next = (r.record.pos as u64).into();
+                u.r_amp.next = ((r.record.amplitude as i64 as u64) & AMP_MASK).into();
+                u.r_left0.next = (r.record.left[0] as u64).into();
+                u.r_left1.next = (r.record.left[1] as u64).into();
+                u.r_left2.next = (r.record.left[2] as u64).into();
+                u.r_right0.next = (r.record.right[0] as u64).into();
+                u.r_right1.next = (r.record.right[1] as u64).into();
+                u.r_right2.next = (r.record.right[2] as u64).into();
+                u.r_dt.next = (r.dt as u64).into();
+                u.r_wide.next = r.wide;
+                u.r_full.next = r.full;
+                u.r_sof.next = r.sof;
+                u.o_valid.next = o.valid;
+                u.o_last.next = o.last;
+                u.o_pos.next = (o.record.pos as u64).into();
+                u.o_amp.next = ((o.record.amplitude as i64 as u64) & AMP_MASK).into();
+                u.o_left0.next = (o.record.left[0] as u64).into();
+                u.o_left1.next = (o.record.left[1] as u64).into();
+                u.o_left2.next = (o.record.left[2] as u64).into();
+                u.o_right0.next = (o.record.right[0] as u64).into();
+                u.o_right1.next = (o.record.right[1] as u64).into();
+                u.o_right2.next = (o.record.right[2] as u64).into();
+                u.o_dt.next = (o.dt as u64).into();
+                u.o_wide.next = o.wide;
+                u.o_full.next = o.full;
+            }
+            fn rise(&mut self) {
+                self.clock.next = true.into();
+            }
+            fn ready(&self) -> (bool, bool) {
+                (self.r_ready.val(), self.o_ready.val())
+            }
+            fn beat(&self) -> Option<MatchBeat> {
+                let u = self;
+                u.m_valid.val().then(|| MatchBeat {
+                    marker: u.m_last.val(),
+                    ref_index: u.m_ref.val().to_u64() as u32,
+                    other_index: u.m_other.val().to_u64() as u32,
+                    x_ref: u.m_x_ref.val().to_u64() as u32,
+                    disp: u.m_disp.val().to_u64() as u32,
+                    count: u.m_count.val().to_u64() as u32,
+                    n: u.m_n.val().to_u64() as u32,
+                    m: u.m_m.val().to_u64() as u32,
+                    wide: u.m_wide.val(),
+                    full: u.m_full.val(),
+                    sof: u.m_sof.val(),
+                })
+            }
+            fn sweep_cycles(n: usize, m: usize) -> u64 {
+                $k::matcher::declivity_matcher::sweep_cycles(n, m, N) as u64
+            }
+            fn traceback_cycles(n: usize, m: usize, stop_diag: usize, nodes: usize) -> u64 {
+                $k::matcher::traceback::traceback_cycles(n, m, stop_diag, nodes) as u64
+            }
+            fn schedule(lines: &[EngineLine]) -> Vec<(u64, u64, u64)> {
+                let lines: Vec<_> = lines
+                    .iter()
+                    .map(|l| $k::matcher::declivity_matcher::EngineLine { input_done: l.input_done, sweep: l.sweep, traceback: l.traceback })
+                    .collect();
+                $k::matcher::declivity_matcher::schedule(&lines).into_iter().map(|t| (t.take, t.start, t.marker)).collect()
+            }
+        }
+    };
+}
+
+/// The record amplitude's bits (`PIXEL_BITS + 1`, two's complement).
+const AMP_MASK: u64 = (1 << (rtl::params::PIXEL_BITS + 1)) - 1;
+
+matcher_dut!(rtl, Config::Sd);
+matcher_dut!(rtl_hd, Config::Hd);
+
+/// The `hd` configuration's matcher of `N` cells (`rtl-hd`).
+pub type HdMatcher<const N: usize> = rtl_hd::matcher::declivity_matcher::DeclivityMatcher<N>;
 
 /// One declivity record as the matcher takes it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -85,19 +215,20 @@ impl MatchedLine {
 
 /// The inputs of one side for one clock.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-struct SideBeat {
-    valid: bool,
-    last: bool,
-    record: MatchRecord,
-    dt: u32,
-    wide: bool,
-    full: bool,
-    sof: bool,
+pub struct SideBeat {
+    pub valid: bool,
+    pub last: bool,
+    pub record: MatchRecord,
+    pub dt: u32,
+    pub wide: bool,
+    pub full: bool,
+    pub sof: bool,
 }
 
-/// The matcher under direct drive, with `N` cells.
-pub struct MatcherSim<const N: usize> {
-    pub uut: Box<DeclivityMatcher<N>>,
+/// The matcher under direct drive, with `N` cells: `sd`'s by default,
+/// [`HdMatcher`] for `hd`.
+pub struct MatcherSim<const N: usize, D: MatcherDut = DeclivityMatcher<N>> {
+    pub uut: Box<D>,
     /// Clocks so far.
     pub cycle: u64,
     /// Eq. 6's bound, `dispmax · 2^POS_FRAC_BITS`.
@@ -107,63 +238,45 @@ pub struct MatcherSim<const N: usize> {
     /// Called every clock at the sampling point (inputs applied and settled,
     /// before the rising edge): sees that clock's input and output ports
     /// (`sim::hdl::traces` records co-simulation traces with it).
-    pub observer: Option<Box<dyn FnMut(&DeclivityMatcher<N>) + Send>>,
+    pub observer: Option<Box<dyn FnMut(&D) + Send>>,
 }
 
 impl<const N: usize> MatcherSim<N> {
-    /// A matcher of `N` cells for `rule`, with the search bound
+    /// The `sd` matcher of `N` cells for `rule`, with the search bound
     /// `dispmax · 2^POS_FRAC_BITS`.
     pub fn new(rule: GainRule, dispmax: u32) -> Self {
         Self::in_area(rule, SearchArea::below(dispmax))
     }
 
-    /// A matcher of `N` cells for `rule`, with eq. 6's search area `area`.
+    /// The `sd` matcher of `N` cells for `rule`, with eq. 6's search area
+    /// `area`.
     pub fn in_area(rule: GainRule, area: SearchArea) -> Self {
-        MatcherSim { uut: build_matcher::<N>(rule), cycle: 0, dispmax: area.dispmax, dispmin: area.dispmin, observer: None }
+        Self::build(rule, area)
+    }
+}
+
+impl<const N: usize, D: MatcherDut> MatcherSim<N, D> {
+    /// The matcher `D` for `rule`, with eq. 6's search area `area`.
+    pub fn build(rule: GainRule, area: SearchArea) -> Self {
+        assert_eq!(D::CELLS, N, "the matcher type has N cells");
+        MatcherSim { uut: D::build(rule), cycle: 0, dispmax: area.dispmax, dispmin: area.dispmin, observer: None }
     }
 
     /// One clock: apply the two sides' beats, settle, sample; returns whether
     /// each side's beat was taken and the output beat, if any.
     fn cycle(&mut self, r: SideBeat, o: SideBeat) -> (bool, bool, Option<MatchBeat>) {
         let u = &mut *self.uut;
-        u.clock.next = false.into();
-        u.dispmin.next = (self.dispmin as u64).into();
-        u.dispmax.next = (self.dispmax as u64).into();
-        u.r_valid.next = r.valid;
-        u.r_last.next = r.last;
-        u.r_pos.next = (r.record.pos as u64).into();
-        u.r_amp.next = ((r.record.amplitude as i64 as u64) & 0x1ff).into();
-        u.r_left0.next = (r.record.left[0] as u64).into();
-        u.r_left1.next = (r.record.left[1] as u64).into();
-        u.r_left2.next = (r.record.left[2] as u64).into();
-        u.r_right0.next = (r.record.right[0] as u64).into();
-        u.r_right1.next = (r.record.right[1] as u64).into();
-        u.r_right2.next = (r.record.right[2] as u64).into();
-        u.r_dt.next = (r.dt as u64).into();
-        u.r_wide.next = r.wide;
-        u.r_full.next = r.full;
-        u.r_sof.next = r.sof;
-        u.o_valid.next = o.valid;
-        u.o_last.next = o.last;
-        u.o_pos.next = (o.record.pos as u64).into();
-        u.o_amp.next = ((o.record.amplitude as i64 as u64) & 0x1ff).into();
-        u.o_left0.next = (o.record.left[0] as u64).into();
-        u.o_left1.next = (o.record.left[1] as u64).into();
-        u.o_left2.next = (o.record.left[2] as u64).into();
-        u.o_right0.next = (o.record.right[0] as u64).into();
-        u.o_right1.next = (o.record.right[1] as u64).into();
-        u.o_right2.next = (o.record.right[2] as u64).into();
-        u.o_dt.next = (o.dt as u64).into();
-        u.o_wide.next = o.wide;
-        u.o_full.next = o.full;
+        let area = SearchArea { dispmin: self.dispmin, dispmax: self.dispmax };
+        u.drive(false, area, &r, &o);
         settle(u, SETTLE_LOW);
-        let r_taken = r.valid && u.r_ready.val();
-        let o_taken = o.valid && u.o_ready.val();
-        let out = u.m_valid.val().then(|| read_beat(u));
+        let (r_ready, o_ready) = u.ready();
+        let r_taken = r.valid && r_ready;
+        let o_taken = o.valid && o_ready;
+        let out = u.beat();
         if let Some(observe) = self.observer.as_mut() {
             observe(u);
         }
-        u.clock.next = true.into();
+        u.rise();
         settle(u, SETTLE_HIGH);
         self.cycle += 1;
         (r_taken, o_taken, out)
@@ -233,7 +346,7 @@ impl<const N: usize> MatcherSim<N> {
 const SETTLE_LOW: usize = 4;
 const SETTLE_HIGH: usize = 8;
 
-fn settle<const N: usize>(u: &mut DeclivityMatcher<N>, passes: usize) {
+fn settle<D: MatcherDut>(u: &mut D, passes: usize) {
     crate::drive::settle_block(u, passes, 200, "the matcher");
 }
 
@@ -253,22 +366,6 @@ fn side_beat(line: &MatchLine, k: usize) -> SideBeat {
     }
 }
 
-fn read_beat<const N: usize>(u: &DeclivityMatcher<N>) -> MatchBeat {
-    MatchBeat {
-        marker: u.m_last.val(),
-        ref_index: u.m_ref.val().to_u64() as u32,
-        other_index: u.m_other.val().to_u64() as u32,
-        x_ref: u.m_x_ref.val().to_u64() as u32,
-        disp: u.m_disp.val().to_u64() as u32,
-        count: u.m_count.val().to_u64() as u32,
-        n: u.m_n.val().to_u64() as u32,
-        m: u.m_m.val().to_u64() as u32,
-        wide: u.m_wide.val(),
-        full: u.m_full.val(),
-        sof: u.m_sof.val(),
-    }
-}
-
 /// The golden mode whose gain rule the matcher was generated for.
 pub(crate) fn golden_mode(rule: GainRule) -> Mode {
     match rule {
@@ -279,13 +376,13 @@ pub(crate) fn golden_mode(rule: GainRule) -> Mode {
 
 /// A line's declivities and `d_t` in the detector's formats: positions
 /// rounded down to `POS_FRAC_BITS` fraction bits (as the eq. 3 divider
-/// does), `d_t` rounded to `DT_FRAC_BITS`; at most `N_MAX` records (the
-/// detector's limit).
-fn quantize_line(f: &LineFeatures) -> MatchLine {
+/// does), `d_t` rounded to `DT_FRAC_BITS`; at most `n_max` records (the
+/// detector's limit, `N_MAX`).
+fn quantize_line(f: &LineFeatures, n_max: usize) -> MatchLine {
     let records = f
         .declivities
         .iter()
-        .take(N_MAX)
+        .take(n_max)
         .map(|d| MatchRecord {
             pos: position_lsb(d.position),
             amplitude: d.amplitude,
@@ -296,7 +393,7 @@ fn quantize_line(f: &LineFeatures) -> MatchLine {
     MatchLine {
         dt: (f.dt * (1u32 << DT_FRAC_BITS) as f64).round() as u32,
         records,
-        full: f.declivities.len() > N_MAX,
+        full: f.declivities.len() > n_max,
         ..MatchLine::default()
     }
 }
@@ -436,12 +533,19 @@ pub fn check_line(reference: &MatchLine, other: &MatchLine, got: &MatchedLine, g
     Ok(())
 }
 
-/// The line pairs of two images as the matcher takes them: golden's
-/// declivities of each row in hardware-parity mode, quantized
-/// ([`quantize_line`]); the first row carries the start of frame.
+/// The line pairs of two images as the `sd` matcher takes them
+/// ([`image_lines_in`]).
 pub fn image_lines(left: &golden::GreyImage, right: &golden::GreyImage) -> Vec<(MatchLine, MatchLine)> {
+    image_lines_in(left, right, Config::Sd)
+}
+
+/// The line pairs of two images as `config`'s matcher takes them: golden's
+/// declivities of each row in hardware-parity mode in `config`'s limits,
+/// quantized ([`quantize_line`]); the first row carries the start of frame.
+pub fn image_lines_in(left: &golden::GreyImage, right: &golden::GreyImage, config: Config) -> Vec<(MatchLine, MatchLine)> {
     use rayon::prelude::*;
-    let limits = golden::hardware::HardwareLimits::default();
+    let limits = config.limits();
+    let sizes = config.sizes();
     (0..left.height())
         .into_par_iter()
         .map(|y| {
@@ -452,7 +556,7 @@ pub fn image_lines(left: &golden::GreyImage, right: &golden::GreyImage) -> Vec<(
             let f = |img: &golden::GreyImage| {
                 let d = golden::hardware::detect_line(img.row(y), limits);
                 let features = LineFeatures { sigma: d.dt / golden::noise::THRESHOLD_FACTOR, dt: d.dt, declivities: d.declivities };
-                MatchLine { wide: img.width() > W_MAX, ..quantize_line(&features) }
+                MatchLine { wide: img.width() > sizes.w_max, ..quantize_line(&features, sizes.n_max) }
             };
             let (mut l, r) = (f(left), f(right));
             l.sof = y == 0;
@@ -464,6 +568,9 @@ pub fn image_lines(left: &golden::GreyImage, right: &golden::GreyImage) -> Vec<(
 /// What `declivity rtl match` reports for one pair of images.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MatchReport {
+    /// The configuration the matcher was generated in, and its cells.
+    pub config: Config,
+    pub cells: usize,
     pub image: String,
     /// The gain rule the matcher was generated for.
     pub rule: &'static str,
@@ -508,8 +615,8 @@ pub struct LineOutcome {
 }
 
 /// Runs every line pair through the matcher and golden and compares them.
-fn match_lines<const N: usize>(
-    sim: &mut MatcherSim<N>,
+fn match_lines<const N: usize, D: MatcherDut>(
+    sim: &mut MatcherSim<N, D>,
     rule: GainRule,
     name: &str,
     pairs: &[(MatchLine, MatchLine)],
@@ -524,6 +631,8 @@ fn match_lines<const N: usize>(
     let area = SearchArea { dispmin: sim.dispmin, dispmax: sim.dispmax };
     let golden: Vec<GoldenMatch> = pairs.par_iter().map(|(r, o)| golden_match_in(r, o, area, rule)).collect();
     let mut report = MatchReport {
+        config: D::CONFIG,
+        cells: N,
         image: name.to_string(),
         rule: golden_mode(rule).name(),
         dispmin: area.dispmin_px(),
@@ -546,15 +655,15 @@ fn match_lines<const N: usize>(
     };
     // The engine's takes by its documented timing (`rtl::matcher::declivity_matcher::
     // schedule`, checked against the measured markers by `tests/rtl_matcher.rs`).
-    let times = schedule(
+    let times = D::schedule(
         &got.iter()
             .zip(&golden)
             .map(|(rtl, g)| {
                 let (n, m) = (rtl.marker.n as usize, rtl.marker.m as usize);
                 EngineLine {
                     input_done: rtl.input_done_cycle,
-                    sweep: sweep_cycles(n, m, N) as u64,
-                    traceback: traceback_cycles(n, m, g.stop_diag, g.nodes.len()) as u64,
+                    sweep: D::sweep_cycles(n, m),
+                    traceback: D::traceback_cycles(n, m, g.stop_diag, g.nodes.len()),
                 }
             })
             .collect::<Vec<_>>(),
@@ -568,16 +677,29 @@ fn match_lines<const N: usize>(
             Agreement::Mismatch => report.mismatch_lines += 1,
         }
         report.malformed_lines += check_line(r, o, &rtl, &golden).is_err() as usize;
-        report.off_schedule_lines += usize::from(rtl.marker_cycle != t.marker);
-        let engine_cycles = rtl.marker_cycle - t.take;
+        let (take, start, marker) = t;
+        report.off_schedule_lines += usize::from(rtl.marker_cycle != marker);
+        let engine_cycles = rtl.marker_cycle - take;
         if engine_cycles > report.max_cycles_per_line {
             report.max_cycles_per_line = engine_cycles;
             report.max_cycles_line = k;
         }
-        report.max_engine_period = report.max_engine_period.max(t.start + 1 - t.take);
+        report.max_engine_period = report.max_engine_period.max(start + 1 - take);
         outcomes.push(LineOutcome { rtl, golden, agreement, engine_cycles });
     }
     (report, outcomes)
+}
+
+/// [`match_image_on`] with the `sd` matcher of `N` cells.
+pub fn match_image<const N: usize>(
+    name: &str,
+    pairs: &[(MatchLine, MatchLine)],
+    rule: GainRule,
+    area: SearchArea,
+    chunks: usize,
+    progress: &(dyn Fn() + Sync),
+) -> (MatchReport, Vec<LineOutcome>) {
+    match_image_on::<N, DeclivityMatcher<N>>(name, pairs, rule, area, chunks, progress)
 }
 
 /// [`match_lines`] on every row of an image pair, the rows cut into
@@ -587,7 +709,7 @@ fn match_lines<const N: usize>(
 /// at the seams differ). `progress` is called after every line, from any
 /// thread. The report's `cycles` is the sum over the runs and
 /// `sim_cycles_per_s` the clocks simulated per second of wall time.
-pub fn match_image<const N: usize>(
+pub fn match_image_on<const N: usize, D: MatcherDut>(
     name: &str,
     pairs: &[(MatchLine, MatchLine)],
     rule: GainRule,
@@ -603,7 +725,7 @@ pub fn match_image<const N: usize>(
             .chunks(size)
             .map(|part| {
                 s.spawn(move || {
-                    let mut sim = MatcherSim::<N>::in_area(rule, area);
+                    let mut sim = MatcherSim::<N, D>::build(rule, area);
                     match_lines(&mut sim, rule, name, part, progress)
                 })
             })
@@ -613,7 +735,7 @@ pub fn match_image<const N: usize>(
     let secs = t0.elapsed().as_secs_f64();
     let mut iter = parts.into_iter();
     let (mut report, mut outcomes) = iter.next().unwrap_or_else(|| {
-        let mut sim = MatcherSim::<N>::in_area(rule, area);
+        let mut sim = MatcherSim::<N, D>::build(rule, area);
         match_lines(&mut sim, rule, name, &[], progress)
     });
     let mut offset = outcomes.len();

@@ -6,11 +6,11 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use golden::{GreyImage, Params};
-use rtl::matcher::declivity_matcher::GainRule;
-use rtl::params::N_CELLS;
+use rtl::matcher::declivity_matcher::{DeclivityMatcher, GainRule};
 use serde::Serialize;
 
-use crate::drive::matcher::{dequantize, golden_mode, image_lines, match_image, Agreement, MatchLine, MatchReport};
+use crate::config::Config;
+use crate::drive::matcher::{dequantize, golden_mode, image_lines_in, match_image_on, Agreement, HdMatcher, MatchLine, MatchReport};
 use crate::error::SimError;
 use crate::eval::pictures;
 use crate::formats::{SearchArea, POSITION_UNIT};
@@ -18,6 +18,8 @@ use crate::formats::{SearchArea, POSITION_UNIT};
 /// What `rtl match` was asked for besides the pair.
 #[derive(Debug, Clone)]
 pub struct MatchJob {
+    /// The configuration whose matcher runs (its `N_CELLS` cells).
+    pub config: Config,
     /// The gain rule the matcher is generated for (golden runs the same).
     pub rule: GainRule,
     /// Eq. 6's area in `1/2^POS_FRAC_BITS` px ([`SearchArea::from_px`]).
@@ -61,18 +63,23 @@ pub fn check_rows(job: &MatchJob, height: usize, image: &Path) -> Result<(), Sim
 }
 
 /// Runs the rows of `left`/`right` through `job.matchers` matchers of
-/// `N_CELLS` cells and golden, and draws the graph of `job.graph_line` with
+/// `job.config`'s `N_CELLS` cells and golden, and draws the graph of `job.graph_line` with
 /// golden's gains and path and the rtl's path. `progress` is called after
 /// every line, from any thread.
 pub fn rtl_match(name: &str, left: &GreyImage, right: &GreyImage, job: &MatchJob, progress: &(dyn Fn() + Sync)) -> Result<MatchOutcome, SimError> {
     std::fs::create_dir_all(&job.out).map_err(|source| SimError::Io { path: job.out.clone(), source })?;
     let rows = job.rows.clone();
-    let mut pairs = image_lines(left, right).drain(rows.clone()).collect::<Vec<_>>();
+    let mut pairs = image_lines_in(left, right, job.config).drain(rows.clone()).collect::<Vec<_>>();
     if let Some(first) = pairs.first_mut() {
         first.0.sof = true;
     }
     let t0 = std::time::Instant::now();
-    let (mut report, outcomes) = match_image::<{ N_CELLS }>(name, &pairs, job.rule, job.area, job.matchers, progress);
+    const SD: usize = rtl::params::N_CELLS;
+    const HD: usize = rtl_hd::params::N_CELLS;
+    let (mut report, outcomes) = match job.config {
+        Config::Sd => match_image_on::<SD, DeclivityMatcher<SD>>(name, &pairs, job.rule, job.area, job.matchers, progress),
+        Config::Hd => match_image_on::<HD, HdMatcher<HD>>(name, &pairs, job.rule, job.area, job.matchers, progress),
+    };
     let seconds = t0.elapsed().as_secs_f64();
     report.max_cycles_line += rows.start;
 
