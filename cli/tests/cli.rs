@@ -358,7 +358,7 @@ fn rtl_detect_rejects_rows_outside_the_image_and_unreadable_files() {
 }
 
 #[test]
-fn verilog_command_writes_the_detector_with_its_ports() {
+fn verilog_command_writes_the_detectors_ip_folder_with_its_ports_and_models() {
     let dir = tempfile::tempdir().unwrap();
     // A position has 4 fraction bits below the line's index: 14 bits in sd (W_MAX 1024), 15 in hd (2048).
     for (config, pos) in [("sd", "output reg  [13:0] m_pos"), ("hd", "output reg  [14:0] m_pos")] {
@@ -366,8 +366,17 @@ fn verilog_command_writes_the_detector_with_its_ports() {
         let o = declivity(&["verilog", "--top", "detector", "--config", config, "--out", &out_dir], dir.path());
         let (out, err) = text(&o);
         assert!(o.status.success(), "stdout {out}\nstderr {err}");
-        let v = std::fs::read_to_string(dir.path().join(&out_dir).join("detector.v")).unwrap();
-        assert!(v.contains("module top"));
+        let ip = dir.path().join(&out_dir);
+        let v = std::fs::read_to_string(ip.join("declivity_detector.v")).unwrap();
+        assert!(v.contains("module declivity_detector(") && !v.contains("module top"));
+        // The primitives it instantiates have their models beside it, and the lists name them.
+        for f in ["sim_models/DP16KD.v", "sim_models/MULT18X18D.v", "declivity_detector.f", "declivity_detector.core", "README.md"] {
+            assert!(ip.join(f).is_file(), "{config}: {f}");
+            assert!(out.contains(f), "{config}: {f} not reported in {out}");
+        }
+        assert!(!ip.join("sim_models/TRELLIS_DPR16X4.v").exists(), "{config}: the detector has no LUT RAM");
+        let readme = std::fs::read_to_string(ip.join("README.md")).unwrap();
+        assert!(readme.contains(&format!("--config {config}")), "{readme}");
         for port in ["s_tdata", "s_tvalid", "s_tuser", "s_tlast", "s_tready", "m_valid", "m_last", "m_pos", "m_dt"] {
             assert!(v.contains(port), "{config}: {port}");
         }

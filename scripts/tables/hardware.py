@@ -4,7 +4,7 @@ Every table reads JSON under docs/data/; each function names the command that wr
 files. Run as a script, this file also writes the port list of a generated Verilog top:
 
     declivity verilog --top stereo --out DIR
-    python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+    python3 scripts/tables/hardware.py ports DIR/declivity_stereo.v > docs/data/ports-stereo.json
 """
 import json
 import pathlib
@@ -23,7 +23,7 @@ ECP5_85K_LUTS = 83_640
 # Ports
 
 
-def parse_ports(verilog_text, module="top"):
+def parse_ports(verilog_text, module="declivity_stereo"):
     """The ports of `module` in a rust-hdl Verilog file: [{name, direction, width}] in
     declaration order, and the module's localparams {name: value}."""
     m = re.search(rf"^module {re.escape(module)}\((.*?)\);(.*?)^endmodule", verilog_text, re.S | re.M)
@@ -101,7 +101,7 @@ PORT_GROUPS = [
 def _ports(name="ports-stereo.json"):
     # docs/data/ports-stereo.json:
     #   declivity verilog --top stereo --out DIR
-    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+    #   python3 scripts/tables/hardware.py ports DIR/declivity_stereo.v > docs/data/ports-stereo.json
     return load_jsonl(name)[0]
 
 
@@ -109,7 +109,7 @@ def _ports(name="ports-stereo.json"):
 def hw_ports():
     """The top's ports, grouped, with widths from the generated Verilog."""
     # docs/data/ports-stereo.json: declivity verilog --top stereo --out DIR;
-    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+    #   python3 scripts/tables/hardware.py ports DIR/declivity_stereo.v > docs/data/ports-stereo.json
     data = _ports()
     by_name = {p["name"]: p for p in data["ports"]}
     described = {n for _, g in PORT_GROUPS for n in g}
@@ -131,7 +131,7 @@ def hw_tdata():
     """The bit map of m_tdata, from the Verilog: the width of m_tdata, the top's shift of the
     depth (`sh_depth`) and the width of a disparity (`dispmax`'s, the position format)."""
     # docs/data/ports-stereo.json: declivity verilog --top stereo --out DIR;
-    #   python3 scripts/tables/hardware.py ports DIR/stereo.v > docs/data/ports-stereo.json
+    #   python3 scripts/tables/hardware.py ports DIR/declivity_stereo.v > docs/data/ports-stereo.json
     data = _ports()
     by_name = {p["name"]: p for p in data["ports"]}
     width = by_name["m_tdata"]["width"]
@@ -484,8 +484,8 @@ if __name__ == "__main__":
     if len(sys.argv) == 3 and sys.argv[1] == "ports":
         ports, params = parse_ports(pathlib.Path(sys.argv[2]).read_text())
         doc = {
-            "source": "declivity verilog --top stereo --out DIR; DIR/stereo.v, module top",
-            "module": "top",
+            "source": "declivity verilog --top stereo --out DIR; DIR/declivity_stereo.v, module declivity_stereo",
+            "module": "declivity_stereo",
             "ports": ports,
             "localparams": params,
         }

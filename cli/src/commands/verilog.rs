@@ -10,20 +10,33 @@ use crate::args::{cells_per_config, config_help, per_config, CliConfig, CliRule,
 
 /// Write the Verilog of a hardware block.
 #[derive(Args, Debug)]
-#[command(long_about = "Write the Verilog that rust-hdl generates for a hardware block into --out \
-(DIR/<top>.v, top module `top`, one clock input `clock`, no reset: registers start from their Verilog \
-initial values). The ECP5 primitives it instantiates (DP16KD, MULT18X18D, TRELLIS_DPR16X4) have \
-behavioural models for simulation in sim/src/hdl/models/. The same Verilog is linted by Verilator, \
-checked for latches by Yosys and co-simulated bit-exactly against the Rust model by the tests.")]
+#[command(long_about = long_about())]
 pub(crate) struct VerilogArgs {
     /// The block.
     #[arg(long, value_enum)]
     top: CliTop,
     #[command(flatten)]
     matcher: MatcherArgs,
-    /// Output folder (created if missing).
+    /// The IP folder to write (created if missing).
     #[arg(long, default_value = "declivity-out/verilog")]
     out: PathBuf,
+}
+
+fn long_about() -> String {
+    format!(
+        "Write a hardware block as a self-contained IP folder in --out: the Verilog that rust-hdl \
+         generates for it (DIR/declivity_<block>.v, module declivity_<block>, submodules \
+         declivity_<block>$..., one clock input `clock`, no reset: registers start from their \
+         Verilog initial values); the behavioural models of the ECP5 primitives it instantiates \
+         (DP16KD, MULT18X18D, TRELLIS_DPR16X4) in DIR/{}/, one module a file, for simulation \
+         only; a simulation file list DIR/declivity_<block>.f (paths under \
+         ${{DECLIVITY_<BLOCK>_DIR}}; iverilog -c, verilator -f); a FuseSoC CAPI2 core \
+         DIR/declivity_<block>.core (targets default, sim, lint); and DIR/README.md with the \
+         generation parameters and the ports. Any two blocks' folders compile together in one \
+         project. The same Verilog is linted by Verilator, checked for latches by Yosys and \
+         co-simulated bit-exactly against the Rust model by the tests.",
+        sim::hdl::ip::SIM_MODELS_DIR
+    )
 }
 
 /// The configuration and the matcher's generation parameters (`--top
@@ -61,10 +74,18 @@ pub(crate) fn block_verilog(top: CliTop, m: &MatcherArgs) -> Result<String, SimE
 }
 
 pub(crate) fn run(a: VerilogArgs) -> Result<(), SimError> {
-    std::fs::create_dir_all(&a.out).map_err(|source| SimError::Io { path: a.out.clone(), source })?;
-    let path = a.out.join(format!("{}.v", a.top.top().name()));
     let v = block_verilog(a.top, &a.matcher)?;
-    std::fs::write(&path, &v).map_err(|source| SimError::Io { path: path.clone(), source })?;
-    println!("{} ({} lines, top module `top`)", path.display(), v.lines().count());
+    let config = a.matcher.config.0;
+    let spec = sim::hdl::ip::IpSpec {
+        config,
+        top: a.top.top(),
+        cells: a.matcher.cells.unwrap_or(config.sizes().cells),
+        rule: a.matcher.rule.rule(),
+    };
+    let ip = sim::hdl::ip::write_ip_folder(&a.out, &spec, &v)?;
+    println!("{}: IP folder of module `{}` ({} lines of Verilog)", ip.dir.display(), ip.module, ip.verilog_lines);
+    for f in &ip.files {
+        println!("  {f}");
+    }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! The blocks as Verilog: generation ([`verilog`]), the simulation models
-//! of the ECP5 primitives it instantiates ([`primitives`]), co-simulation
+//! of the ECP5 primitives it instantiates ([`primitives`]), a block as a
+//! self-contained IP folder ([`ip`]), co-simulation
 //! of the Verilog against the Rust model under Icarus and Verilator and
 //! Verilator's lint ([`cosim`]), the traces each block's co-simulation
 //! replays ([`traces`]), whole frames through the line processor's Verilog
@@ -10,6 +11,7 @@
 pub(crate) mod workdir;
 pub(crate) mod primitives;
 pub mod verilog;
+pub mod ip;
 pub mod cosim;
 pub mod traces;
 pub mod frame;

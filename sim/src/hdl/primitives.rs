@@ -20,20 +20,19 @@ const DPR16X4_MODEL: &str = include_str!("models/ecp5_dpr16x4_sim.v");
 /// The file the models are written to beside `top.v`.
 pub(crate) const MODELS_FILE: &str = "models.v";
 
+/// The primitives with a model: the module name, the model's text.
+const MODELS: [(&str, &str); 3] = [("DP16KD", DP16KD_MODEL), ("MULT18X18D", MULT18X18D_MODEL), ("TRELLIS_DPR16X4", DPR16X4_MODEL)];
+
+/// The primitives `design` instantiates, each with its model's text (one
+/// module a model, named as the primitive).
+pub(crate) fn models_used(design: &str) -> Vec<(&'static str, &'static str)> {
+    MODELS.into_iter().filter(|(name, _)| design.contains(&format!("{name} #("))).collect()
+}
+
 /// The models of the primitives `design` instantiates, as one Verilog text
 /// (empty when it instantiates none).
 pub(crate) fn models_for(design: &str) -> String {
-    let mut text = String::new();
-    if design.contains("DP16KD #(") {
-        text.push_str(DP16KD_MODEL);
-    }
-    if design.contains("MULT18X18D #(") {
-        text.push_str(MULT18X18D_MODEL);
-    }
-    if design.contains("TRELLIS_DPR16X4 #(") {
-        text.push_str(DPR16X4_MODEL);
-    }
-    text
+    models_used(design).into_iter().map(|(_, text)| text).collect()
 }
 
 #[cfg(test)]

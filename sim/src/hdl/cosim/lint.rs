@@ -8,7 +8,8 @@ use crate::hdl::primitives::MODELS_FILE;
 use super::error::*;
 use super::run::*;
 
-fn parse_lint(log: &str) -> Vec<LintWarning> {
+/// The warnings in a Verilator log (`%Warning-CODE: file:line:col: message`).
+pub fn parse_lint(log: &str) -> Vec<LintWarning> {
     let mut out = Vec::new();
     for line in log.lines() {
         let Some(rest) = line.strip_prefix("%Warning-") else {
