@@ -254,8 +254,68 @@ impl CliTop {
     }
 }
 
+/// What `verilog` writes the block for.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum CliTarget {
+    /// The Lattice ECP5: DP16KD, MULT18X18D and TRELLIS_DPR16X4 instantiated by name (the
+    /// measured target; their simulation models beside the block).
+    Ecp5,
+    /// Any FPGA or ASIC flow: the primitives replaced by behavioural Verilog inside the block
+    /// (memories with registered reads, `*`), which Yosys, Vivado and Quartus infer.
+    Generic,
+}
+
+impl CliTarget {
+    pub(crate) fn target(self) -> sim::hdl::verilog::Target {
+        match self {
+            CliTarget::Ecp5 => sim::hdl::verilog::Target::Ecp5,
+            CliTarget::Generic => sim::hdl::verilog::Target::Generic,
+        }
+    }
+}
+
 impl std::fmt::Display for CliConfig {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         self.0.fmt(f)
+    }
+}
+
+/// The camera pair whose depths (eq. 1) the depth stage is generated for:
+/// `verilog` and `synth --top stereo`, `rtl depth`.
+#[derive(Args, Debug, Clone, Copy)]
+pub(crate) struct CameraArgs {
+    #[arg(long, requires = "baseline_m", value_parser = parse_positive, help = focal_help())]
+    pub focal_px: Option<f64>,
+    #[arg(long, requires = "focal_px", value_parser = parse_positive, help = baseline_help())]
+    pub baseline_m: Option<f64>,
+}
+
+fn focal_help() -> String {
+    let c = rtl::post::depth_stage::DepthCamera::default();
+    format!(
+        "Focal length of the camera pair in pixels (f/p, at the resolution of the images), whose \
+         depths the depth stage's table holds (eq. 1); with --baseline-m [default: {} px, the \
+         motorcycle pair's camera]",
+        c.focal_px
+    )
+}
+
+fn baseline_help() -> String {
+    let c = rtl::post::depth_stage::DepthCamera::default();
+    format!("Baseline of the camera pair in metres; with --focal-px [default: {} m]", c.baseline_mm / 1000.0)
+}
+
+impl CameraArgs {
+    /// Whether the command line set the camera.
+    pub(crate) fn given(&self) -> bool {
+        self.focal_px.is_some()
+    }
+
+    /// The camera asked for, or the default one.
+    pub(crate) fn camera(&self) -> rtl::post::depth_stage::DepthCamera {
+        match (self.focal_px, self.baseline_m) {
+            (Some(focal_px), Some(baseline_m)) => rtl::post::depth_stage::DepthCamera { focal_px, baseline_mm: baseline_m * 1000.0 },
+            _ => rtl::post::depth_stage::DepthCamera::default(),
+        }
     }
 }

@@ -31,6 +31,15 @@ fn shifted_pair(w: u32, h: u32, d: u32) -> (GrayImage, GrayImage) {
     (left, right)
 }
 
+/// A temporary folder holding `l.png` and `r.png`, the [`shifted_pair`] of these sizes.
+fn pair_dir(w: u32, h: u32, d: u32) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, r) = shifted_pair(w, h, d);
+    l.save(dir.path().join("l.png")).unwrap();
+    r.save(dir.path().join("r.png")).unwrap();
+    dir
+}
+
 #[test]
 fn main_job_without_arguments_writes_the_bundled_pair_pictures_and_cites_it() {
     let dir = tempfile::tempdir().unwrap();
@@ -93,11 +102,8 @@ fn colour_input_is_converted_with_a_note_not_refused() {
 
 #[test]
 fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = pair_dir(60, 10, 3);
     let p = dir.path();
-    let (l, r) = shifted_pair(60, 10, 3);
-    l.save(p.join("l.png")).unwrap();
-    r.save(p.join("r.png")).unwrap();
     GrayImage::new(50, 10).save(p.join("small.png")).unwrap();
     std::fs::write(p.join("junk.png"), b"not an image").unwrap();
     std::fs::create_dir(p.join("empty")).unwrap();
@@ -357,6 +363,67 @@ fn rtl_detect_rejects_rows_outside_the_image_and_unreadable_files() {
     assert!(text(&o).1.contains("empty"), "{}", text(&o).1);
 }
 
+/// The depth stage is generated for the camera asked for: `rtl depth` reports it, its depths
+/// equal golden's for that camera, and each is eq. 1's `f·b/d` of its own disparity within the
+/// datasheet's bound (½ + Z·2⁻¹⁵ mm).
+#[test]
+fn rtl_depth_runs_the_depth_stage_generated_for_the_camera_asked_and_reports_it() {
+    let dir = pair_dir(40, 3, 4);
+    let p = dir.path();
+    let (focal_px, baseline_m) = (500.0, 0.1);
+    let o = declivity(
+        &["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--engine", "rust-hdl", "--focal-px", "500", "--baseline-m", "0.1", "--json", "--out", "o"],
+        p,
+    );
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    assert_eq!((v["camera"]["focal_px"].as_f64(), v["camera"]["baseline_mm"].as_f64()), (Some(focal_px), Some(baseline_m * 1000.0)), "{out}");
+    assert_eq!(v["exact_depth_px"].as_f64(), Some(1.0), "{out}");
+    let word = image::open(p.join("o/disparity16_rtl.png")).unwrap().into_luma16();
+    let depth = image::open(p.join("o/depth_mm_rtl.png")).unwrap().into_luma16();
+    let mut checked = 0;
+    for (w, z) in word.pixels().zip(depth.pixels()) {
+        if w[0] == 0 {
+            assert_eq!(z[0], 0, "no disparity, no depth");
+            continue;
+        }
+        let eq1 = focal_px * baseline_m * 1000.0 / (w[0] as f64 / 16.0);
+        assert!((z[0] as f64 - eq1).abs() <= 0.5 + eq1 / 32768.0, "d = {} px: depth {} mm, eq. 1 gives {eq1:.1}", w[0] as f64 / 16.0, z[0]);
+        checked += 1;
+    }
+    assert!(checked > 40, "only {checked} pixels with a disparity");
+    // The text report names the camera.
+    let o = declivity(&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--engine", "rust-hdl", "--rows", "0..1", "--focal-px", "500", "--baseline-m", "0.1", "--out", "o"], p);
+    let (out, err) = text(&o);
+    assert!(o.status.success() && out.contains("focal length 500 px, baseline 100 mm"), "stdout {out}\nstderr {err}");
+}
+
+/// `verilog --top stereo` generates the depth stage for the camera asked for and records it;
+/// other blocks, and a camera whose depths 16 bits cannot hold, are refused before generation.
+#[test]
+fn verilog_generates_the_stereo_top_for_the_camera_asked_and_refuses_what_does_not_apply() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let o = declivity(&["verilog", "--top", "stereo", "--cells", "2", "--focal-px", "500", "--baseline-m", "0.1", "--out", "st"], p);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(out.contains("focal length 500 px, baseline 100 mm"), "{out}");
+    let readme = std::fs::read_to_string(p.join("st/README.md")).unwrap();
+    assert!(readme.contains("--focal-px 500 --baseline-m 0.1") && readme.contains("focal length 500 px, baseline 100 mm"), "{readme}");
+    for (args, needle) in [
+        (&["verilog", "--top", "detector", "--focal-px", "500", "--baseline-m", "0.1"][..], "apply to --top stereo only"),
+        (&["verilog", "--top", "stereo", "--focal-px", "500"], "--baseline-m"),
+        // f·b = 1 px·mm: the farthest depths would round under 1 mm.
+        (&["verilog", "--top", "stereo", "--focal-px", "1", "--baseline-m", "0.001"], "depth stage's camera"),
+        (&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--focal-px", "1", "--baseline-m", "0.001"], "depth stage's camera"),
+    ] {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success() && err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    }
+}
+
 #[test]
 fn verilog_command_writes_the_detectors_ip_folder_with_its_ports_and_models() {
     let dir = tempfile::tempdir().unwrap();
@@ -508,11 +575,8 @@ fn rtl_match_rejects_bad_inputs_with_a_clear_message() {
 
 #[test]
 fn rtl_depth_writes_a_waveform_from_the_first_pixel_in_to_the_traced_row_out() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = pair_dir(40, 3, 4);
     let p = dir.path();
-    let (l, r) = shifted_pair(40, 3, 4);
-    l.save(p.join("l.png")).unwrap();
-    r.save(p.join("r.png")).unwrap();
     let o = declivity(&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--vcd", "w.vcd", "--lines", "0..1", "--json", "--out", "o"], p);
     let (out, err) = text(&o);
     assert!(o.status.success(), "stdout {out}\nstderr {err}");

@@ -385,6 +385,33 @@ def hw_synth_blocks():
                     rows, ["---", "---", "--:", "--:", "--:", "--:", "--:", "--:", "---", "---"])
 
 
+# The Artix-7 XC7A100T's resources, for the shares of the estimate (DS180: 63 400 LUTs,
+# 126 800 flip-flops, 135 RAMB36 = 270 RAMB18, 240 DSP48E1).
+XC7A100T = {"luts": 63_400, "ffs": 126_800, "ramb36": 135, "dsps": 240}
+
+
+@table("hw-synth-artix7")
+def hw_synth_artix7():
+    """Each block and the top of the generic target, Yosys synth_xilinx (xc7) beside the ECP5's
+    place-and-route figures of the ecp5 target (seed 1)."""
+    # docs/data/synth-artix7-<top>.json: declivity synth --family artix7 --top <top> --json
+    #   (top: detector, matcher, interpolator, stereo)
+    rows = []
+    for top, title in SYNTH_BLOCKS:
+        x = load_jsonl(f"synth-artix7-{top}.json")[0]
+        e = _synth(top, 1)
+        bram36 = x["ramb36"] + x["ramb18"] / 2
+        rows.append([
+            title, f"`{top}`",
+            f"{_n(x['luts'])} ({100 * x['luts'] / XC7A100T['luts']:.1f} %)", _n(x["lut_memory"]), _n(x["ffs"]),
+            f"{x['ramb18']} + {x['ramb36']} ({100 * bram36 / XC7A100T['ramb36']:.1f} %)", x["dsps"],
+            _n(e["luts"]), e["brams"], e["dsps"],
+        ])
+    return markdown(["block", "--top", "Artix-7 LUT6 (of XC7A100T's 63 400)", "LUT as memory", "FF",
+                     "RAMB18 + RAMB36", "DSP48E1", "ECP5 LUT4", "ECP5 DP16KD", "ECP5 MULT18X18D"],
+                    rows, ["---", "---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"])
+
+
 @table("hw-synth-stereo")
 def hw_synth_stereo():
     """The top on placer seeds 1, 2, 3 (the same netlist), with each run's critical path."""

@@ -2,7 +2,8 @@
 //! two blocks' folders compile together in one Icarus run and in one
 //! Verilator lint through their file lists, which the raw rust-hdl Verilog
 //! (every block's module called `top`) cannot; the renaming changes names
-//! only; the FuseSoC core runs its lint target.
+//! only; the FuseSoC core runs its lint target; the camera set at
+//! generation reaches the depth stage and nothing else.
 
 use std::path::Path;
 use std::process::Command;
@@ -13,7 +14,7 @@ use sim::hdl::verilog::{self, Top};
 use sim::Config;
 
 fn spec(top: Top) -> IpSpec {
-    IpSpec { config: Config::Sd, top, cells: Config::Sd.sizes().cells, rule: Default::default() }
+    IpSpec { config: Config::Sd, top, generation: verilog::Generation::of(Config::Sd), target: verilog::Target::Ecp5 }
 }
 
 /// Writes the IP folder of `top` into `dir/<block>` and returns the path of its file list.
@@ -69,6 +70,27 @@ fn two_blocks_ip_folders_compile_together_in_one_icarus_run_and_one_verilator_li
     assert!(!ok && log.contains("top"), "the raw blocks were expected to collide on `module top`:\n{log}");
 }
 
+/// The generic target's folders hold no models beside the block (each block holds its own,
+/// renamed into it), and two of them compile together too.
+#[test]
+fn two_blocks_generic_ip_folders_compile_together_without_a_model_library() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut lists = Vec::new();
+    let mut env = Vec::new();
+    for top in [Top::Detector, Top::Interpolator] {
+        let d = dir.path().join(top.name());
+        let spec = IpSpec { target: verilog::Target::Generic, ..spec(top) };
+        let f = ip::write_ip_folder(&d, &spec, &verilog::Target::Generic.retarget(verilog::generate(Config::Sd, top))).expect("IP folder written");
+        assert!(!d.join(ip::SIM_MODELS_DIR).exists(), "{}: no model library", f.module);
+        let v = std::fs::read_to_string(d.join(format!("{}.v", f.module))).unwrap();
+        assert!(v.contains(&format!("module {}$DP16KD(", f.module)), "{}: its own block RAM", f.module);
+        lists.push(d.join(format!("{}.f", f.module)));
+        env.push((ip::dir_variable(top), d.to_str().unwrap().to_string()));
+    }
+    let (ok, log) = run(Command::new("iverilog").args(["-g2012", "-o", "both.vvp", "-c"]).arg(&lists[0]).arg("-c").arg(&lists[1]).envs(env).current_dir(dir.path()));
+    assert!(ok, "Icarus on both generic folders:\n{log}");
+}
+
 #[test]
 fn renaming_a_block_changes_its_module_names_and_nothing_else() {
     for top in [Top::Detector, Top::Interpolator, Top::Stereo] {
@@ -101,4 +123,43 @@ fn the_fusesoc_core_runs_its_lint_target_under_verilator() {
         .args(["--cores-root", &det_dir, "run", "--target", "lint", "declivity:ip:declivity_detector"])
         .current_dir(&broken));
     assert!(!ok, "the lint target passed a broken block:\n{log}");
+}
+
+/// The modules of a generated Verilog text, by name.
+fn modules(v: &str) -> std::collections::BTreeMap<String, String> {
+    let mut out = std::collections::BTreeMap::new();
+    let mut current: Option<(String, String)> = None;
+    for line in v.lines() {
+        if let Some(rest) = line.strip_prefix("module ") {
+            let name = rest.split('(').next().unwrap_or(rest).to_string();
+            current = Some((name, String::new()));
+        }
+        if let Some((_, text)) = current.as_mut() {
+            text.push_str(line);
+            text.push('\n');
+        }
+        if line.starts_with("endmodule") {
+            let (name, text) = current.take().expect("endmodule after module");
+            out.insert(name, text);
+        }
+    }
+    out
+}
+
+#[test]
+fn the_camera_set_at_generation_changes_the_depth_stage_and_nothing_else() {
+    let with = |camera| {
+        let g = verilog::Generation { cells: 2, camera, ..verilog::Generation::of(Config::Sd) };
+        verilog::generate_block(Config::Sd, Top::Stereo, &g).expect("a camera the depth stage holds")
+    };
+    let default = modules(&with(rtl::post::depth_stage::DepthCamera::default()));
+    let other = modules(&with(rtl::post::depth_stage::DepthCamera { focal_px: 500.0, baseline_mm: 100.0 }));
+    assert_eq!(default.keys().collect::<Vec<_>>(), other.keys().collect::<Vec<_>>(), "the same modules");
+    let changed: Vec<&String> = default.keys().filter(|m| default[*m] != other[*m]).collect();
+    assert!(!changed.is_empty(), "the camera changed nothing");
+    assert!(changed.iter().all(|m| m.starts_with("top$depth")), "modules outside the depth stage changed: {changed:?}");
+    // A camera whose farthest depth would round under 1 mm is refused, with the reason.
+    let g = verilog::Generation { camera: rtl::post::depth_stage::DepthCamera { focal_px: 1.0, baseline_mm: 1.0 }, ..verilog::Generation::of(Config::Sd) };
+    let e = verilog::generate_block(Config::Sd, Top::Stereo, &g).expect_err("f·b = 1 px·mm is refused").to_string();
+    assert!(e.contains("depth stage's camera") && e.contains("1 mm"), "{e}");
 }

@@ -12,7 +12,7 @@ use sim::jobs::rtl_detect::{rtl_detect, Waveform};
 use sim::jobs::rtl_match::{check_rows, rtl_match, MatchJob};
 use sim::{Config, SimError};
 
-use crate::args::{config_help, engine, parse_range, CliConfig, CliEngine, CliRule};
+use crate::args::{config_help, engine, parse_range, CameraArgs, CliConfig, CliEngine, CliRule};
 use crate::progress::Progress;
 
 #[derive(Subcommand, Debug)]
@@ -31,7 +31,7 @@ fn detect_about() -> String {
         "Stream every row of an 8-bit grey image (colour is converted with ITU-R 601 luma) through the \
 cycle-accurate declivity detector (rtl::detector::declivity_detector; W_MAX, N_MAX of --config: {w}; {n}), \
 back to back at one pixel per clock, and compare each line's records with golden's detector in \
-hardware-parity mode, which computes the detector's fixed-point values exactly. Prints lines, pixels, \
+hardware-parity mode, which computes the detector's fixed-point values exactly. Prints config, lines, pixels, \
 cycles, px_per_clk, declivities_rtl, declivities_golden, mismatches (every difference in a record or a \
 line's d_t, flags or count; 0 when they agree), borderline (of the mismatches, declivities one side \
 only keeps whose |a| is floor(d_t) or floor(d_t) + 1), max_pos_err_lsb (position error in 1/{} px), \
@@ -58,7 +58,7 @@ grey level). On those values golden's f64 arithmetic is exact and the tolerance 
 is expected to come out identical, node for node. The rows are cut into runs simulated on parallel \
 matchers, one per core, with a progress bar; --rows runs a few.
 
-Prints, or with --json as one JSON object: image, rule, dispmax (px), lines, declivities_ref / \
+Prints, or with --json as one JSON object: config, cells, image, rule, dispmin and dispmax (px), lines, declivities_ref / \
 declivities_other, matches_rtl / matches_golden, identical_lines, equal_gain_lines (other pairs with \
 golden's optimal gain: a tie broken otherwise), mismatch_lines (neither: a bug), malformed_lines \
 (outputs inconsistent with the inputs or with golden), off_schedule_lines (a marker on another clock \
@@ -80,7 +80,8 @@ fn depth_about() -> String {
 cycle-accurate line processor (rtl::stereo_line_processor: two declivity detectors, a record queue per \
 side, the matcher of N_CELLS cells ({cells} by --config) in the default gain rule, the row check, the \
 interpolator with the default mode's edge jump, the vertical median of {rows} rows, and the depth \
-stage for the camera it is generated for: focal length {f} px, baseline {b} mm), the two cameras \
+stage generated for the camera of --focal-px and --baseline-m, by default focal length {f} px, baseline \
+{b} mm, the motorcycle pair's), the two cameras \
 streaming one pixel per clock with --hblank idle clocks after each line, and compare the disparity map \
 with golden's default mode in hardware parity.
 
@@ -89,7 +90,8 @@ with golden's default mode in hardware parity.
 runs), rust-hdl the model itself (the default with --vcd or without Verilator; slow, thousands of \
 clocks per second), icarus the Verilog under Icarus Verilog (slowest). --rows runs a band (as a frame of its own).
 
-Prints, or with --json as one JSON object: image, width, height, dispmax, hblank, pixels, cycles, \
+Prints, or with --json as one JSON object: image, config, hardware (w_max, n_max, cells), width, height, \
+dispmin, dispmax, hblank, camera (focal_px, baseline_mm), pixels, cycles, \
 px_per_clk, stall_cycles, latency_cycles (first pixel in to first disparity out), exact_px (share \
 of pixels whose disparity equals golden's hardware parity exactly), exact_depth_px (the same for \
 the depth), agree_quarter_px (share of pixels within 1/4 px of golden), sim_cycles_per_s, seconds, engine, build_seconds, \
@@ -207,6 +209,8 @@ pub(crate) struct DepthArgs {
     lines: Option<Range<usize>>,
     #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("the run (hd: on verilator or icarus)"))]
     config: CliConfig,
+    #[command(flatten)]
+    camera: CameraArgs,
 }
 
 pub(crate) fn run(c: RtlCommand) -> Result<(), SimError> {
@@ -333,6 +337,8 @@ fn match_pair(a: MatchArgs) -> Result<(), SimError> {
 }
 
 fn depth(a: DepthArgs) -> Result<(), SimError> {
+    let camera = a.camera.camera();
+    sim::hdl::verilog::check_camera(a.config.0, &camera)?;
     let (left, right, notes) = load_pair_images(&a.pair.left, &a.pair.right)?;
     super::print_notes(&notes);
     // A waveform comes from the rust-hdl engine only, so asking for one picks it
@@ -347,6 +353,7 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
         dispmin: a.pair.dispmin,
         dispmax: a.pair.dispmax,
         hblank: a.hblank as usize,
+        camera,
         rows: rows.clone(),
         engine,
         vcd: a.vcd.clone().zip(a.lines.clone()).map(|(path, rows)| Waveform { path, rows }),
@@ -364,6 +371,7 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
     }
     let r = &report;
     println!("{}: {}x{} (rows {}..{}), {} < d < {} px, hblank {}", r.image, r.width, r.height, rows.start, rows.end, r.dispmin, r.dispmax, r.hblank);
+    println!("  camera              {} (the depth stage's, eq. 1)", r.camera);
     println!("  pixels              {} in {} clocks, {:.4} px/clk, {} stall clocks", r.pixels, r.cycles, r.px_per_clk, r.stall_cycles);
     match r.latency_cycles {
         Some(c) => println!("  latency             {c} clocks (first pixel in to first disparity out)"),

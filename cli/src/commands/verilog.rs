@@ -6,7 +6,9 @@ use clap::Args;
 use rtl::params::ROWS_PER_CELL;
 use sim::{Config, SimError};
 
-use crate::args::{cells_per_config, config_help, per_config, CliConfig, CliRule, CliTop};
+use sim::hdl::verilog::{generate_block, CameraReport, Generation};
+
+use crate::args::{cells_per_config, config_help, per_config, CameraArgs, CliConfig, CliRule, CliTarget, CliTop};
 
 /// Write the Verilog of a hardware block.
 #[derive(Args, Debug)]
@@ -16,7 +18,10 @@ pub(crate) struct VerilogArgs {
     #[arg(long, value_enum)]
     top: CliTop,
     #[command(flatten)]
-    matcher: MatcherArgs,
+    gen: GenerationArgs,
+    /// What the Verilog is written for.
+    #[arg(long, value_enum, default_value_t = CliTarget::Ecp5)]
+    target: CliTarget,
     /// The IP folder to write (created if missing).
     #[arg(long, default_value = "declivity-out/verilog")]
     out: PathBuf,
@@ -27,9 +32,10 @@ fn long_about() -> String {
         "Write a hardware block as a self-contained IP folder in --out: the Verilog that rust-hdl \
          generates for it (DIR/declivity_<block>.v, module declivity_<block>, submodules \
          declivity_<block>$..., one clock input `clock`, no reset: registers start from their \
-         Verilog initial values); the behavioural models of the ECP5 primitives it instantiates \
-         (DP16KD, MULT18X18D, TRELLIS_DPR16X4) in DIR/{}/, one module a file, for simulation \
-         only; a simulation file list DIR/declivity_<block>.f (paths under \
+         Verilog initial values); for --target ecp5, the behavioural models of the ECP5 \
+         primitives it instantiates (DP16KD, MULT18X18D, TRELLIS_DPR16X4) in DIR/{}/, one module \
+         a file, for simulation only (--target generic puts those models, renamed, inside the \
+         block instead, as behavioural Verilog any synthesis tool infers); a simulation file list DIR/declivity_<block>.f (paths under \
          ${{DECLIVITY_<BLOCK>_DIR}}; iverilog -c, verilator -f); a FuseSoC CAPI2 core \
          DIR/declivity_<block>.core (targets default, sim, lint); and DIR/README.md with the \
          generation parameters and the ports. Any two blocks' folders compile together in one \
@@ -39,10 +45,10 @@ fn long_about() -> String {
     )
 }
 
-/// The configuration and the matcher's generation parameters (`--top
-/// matcher` and `stereo`).
+/// The configuration and the generation parameters: the matcher's (`--top
+/// matcher` and `stereo`), the depth stage's camera (`--top stereo`).
 #[derive(Args, Debug)]
-pub(crate) struct MatcherArgs {
+pub(crate) struct GenerationArgs {
     #[arg(long, value_enum, default_value_t = CliConfig(Config::Sd), help = config_help("the block"))]
     pub config: CliConfig,
     #[arg(long, help = cells_help())]
@@ -50,6 +56,8 @@ pub(crate) struct MatcherArgs {
     /// Gain rule the matcher is generated for (--top matcher and stereo only).
     #[arg(long, value_enum, default_value_t = CliRule::Robust)]
     pub rule: CliRule,
+    #[command(flatten)]
+    pub camera: CameraArgs,
 }
 
 fn cells_help() -> String {
@@ -61,29 +69,36 @@ fn cells_help() -> String {
     )
 }
 
-/// The Verilog of a block as the command line asks for it.
-pub(crate) fn block_verilog(top: CliTop, m: &MatcherArgs) -> Result<String, SimError> {
-    let has_matcher = matches!(top, CliTop::Matcher | CliTop::Stereo);
-    if !has_matcher && (m.cells.is_some() || m.rule != CliRule::Robust) {
-        return Err(SimError::Argument("--cells and --rule apply to --top matcher and --top stereo only".into()));
+impl GenerationArgs {
+    /// The generation parameters of `top`, refusing those that do not apply to it.
+    pub(crate) fn generation(&self, top: CliTop) -> Result<Generation, SimError> {
+        let has_matcher = matches!(top, CliTop::Matcher | CliTop::Stereo);
+        if !has_matcher && (self.cells.is_some() || self.rule != CliRule::Robust) {
+            return Err(SimError::Argument("--cells and --rule apply to --top matcher and --top stereo only".into()));
+        }
+        if top != CliTop::Stereo && self.camera.given() {
+            return Err(SimError::Argument("--focal-px and --baseline-m apply to --top stereo only (the depth stage)".into()));
+        }
+        let config = self.config.0;
+        Ok(Generation { cells: self.cells.unwrap_or(config.sizes().cells), rule: self.rule.rule(), camera: self.camera.camera() })
     }
-    let config = m.config.0;
-    let cells = m.cells.unwrap_or(config.sizes().cells);
-    sim::hdl::verilog::generate_with(config, top.top(), cells, m.rule.rule())
-        .ok_or_else(|| SimError::Argument(format!("--cells {cells}: the {config} matcher is generated with {:?} cells", config.matcher_cells())))
+}
+
+/// The Verilog of a block as the command line asks for it, and its generation parameters.
+pub(crate) fn block_verilog(top: CliTop, m: &GenerationArgs) -> Result<(String, Generation), SimError> {
+    let g = m.generation(top)?;
+    Ok((generate_block(m.config.0, top.top(), &g)?, g))
 }
 
 pub(crate) fn run(a: VerilogArgs) -> Result<(), SimError> {
-    let v = block_verilog(a.top, &a.matcher)?;
-    let config = a.matcher.config.0;
-    let spec = sim::hdl::ip::IpSpec {
-        config,
-        top: a.top.top(),
-        cells: a.matcher.cells.unwrap_or(config.sizes().cells),
-        rule: a.matcher.rule.rule(),
-    };
-    let ip = sim::hdl::ip::write_ip_folder(&a.out, &spec, &v)?;
+    let (v, generation) = block_verilog(a.top, &a.gen)?;
+    let target = a.target.target();
+    let spec = sim::hdl::ip::IpSpec { config: a.gen.config.0, top: a.top.top(), generation, target };
+    let ip = sim::hdl::ip::write_ip_folder(&a.out, &spec, &target.retarget(v))?;
     println!("{}: IP folder of module `{}` ({} lines of Verilog)", ip.dir.display(), ip.module, ip.verilog_lines);
+    if a.top == CliTop::Stereo {
+        println!("  depth stage generated for a camera of {}", CameraReport::from(generation.camera));
+    }
     for f in &ip.files {
         println!("  {f}");
     }

@@ -6,7 +6,7 @@
 //! | file | what it is |
 //! |---|---|
 //! | `declivity_<block>.v` | the block; its module and every submodule renamed from rust-hdl's `top`, `top$…` to `declivity_<block>`, `declivity_<block>$…`, so that two blocks compile together in one project |
-//! | `sim_models/<PRIMITIVE>.v` | the behavioural model of each ECP5 primitive the block instantiates, one module a file, for a simulator's library search (`-y`); synthesis for the ECP5 takes the primitive itself |
+//! | `sim_models/<PRIMITIVE>.v` | the behavioural model of each ECP5 primitive the block instantiates, one module a file, for a simulator's library search (`-y`); synthesis for the ECP5 takes the primitive itself (the `generic` target has none: its block holds the models, renamed) |
 //! | `declivity_<block>.f` | the simulation file list, paths under `${DECLIVITY_<BLOCK>_DIR}` (Icarus `-c`, Verilator `-f`) |
 //! | `declivity_<block>.core` | a FuseSoC CAPI2 core: `default` (the block alone), `sim` (Icarus, with the models) and `lint` (Verilator) targets |
 //! | `README.md` | the generation parameters, the files and the ports (direction, width) |
@@ -23,7 +23,7 @@ use rtl::matcher::declivity_matcher::GainRule;
 use crate::config::Config;
 use crate::hdl::cosim::{top_ports, TOP_MODULE};
 use crate::hdl::primitives::models_used;
-use crate::hdl::verilog::Top;
+use crate::hdl::verilog::{CameraReport, Generation, Target, Top};
 use crate::SimError;
 
 /// The folder of the primitives' simulation models inside an IP folder.
@@ -31,14 +31,16 @@ pub const SIM_MODELS_DIR: &str = "sim_models";
 
 /// What a block was generated from: the parameters its README and core
 /// record.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct IpSpec {
     pub config: Config,
     pub top: Top,
-    /// Gain cells of the matcher (`--top matcher` and `stereo`).
-    pub cells: usize,
-    /// The matcher's gain rule (`--top matcher` and `stereo`).
-    pub rule: GainRule,
+    /// The matcher's cells and rule (`--top matcher` and `stereo`), the
+    /// depth stage's camera (`stereo`).
+    pub generation: Generation,
+    /// What the Verilog is written for (the design passed is already
+    /// written for it: [`Target::retarget`]).
+    pub target: Target,
 }
 
 impl IpSpec {
@@ -137,7 +139,7 @@ pub fn write_ip_folder(dir: &Path, spec: &IpSpec, design: &str) -> Result<IpFold
     let renamed = rename_top(design, &module);
     let models = models_used(design);
     let io = |path: PathBuf| move |source| SimError::Io { path, source };
-    let models_dir = dir.join(SIM_MODELS_DIR);
+    let models_dir = if models.is_empty() { dir.to_path_buf() } else { dir.join(SIM_MODELS_DIR) };
     std::fs::create_dir_all(&models_dir).map_err(io(models_dir.clone()))?;
 
     let mut files = Vec::new();
@@ -153,7 +155,7 @@ pub fn write_ip_folder(dir: &Path, spec: &IpSpec, design: &str) -> Result<IpFold
     for ((_, text), file) in models.iter().zip(&model_files) {
         write(file.clone(), text)?;
     }
-    write(format!("{module}.f"), &file_list(spec, &verilog))?;
+    write(format!("{module}.f"), &file_list(spec, &verilog, !models.is_empty()))?;
     write(format!("{module}.core"), &fusesoc_core(spec, &verilog, &model_files))?;
     let ports: Vec<(&str, &str, u32)> = ins
         .iter()
@@ -175,20 +177,26 @@ fn rule_name(rule: GainRule) -> &'static str {
 /// One line of generation parameters, as the README and the core give them.
 fn parameters(spec: &IpSpec) -> String {
     let s = spec.config.sizes();
-    let mut p = format!("configuration `{}` (lines up to W_MAX = {} px, N_MAX = {} declivities a line)", s.config, s.w_max, s.n_max);
+    let mut p = format!("target `{}`, configuration `{}` (lines up to W_MAX = {} px, N_MAX = {} declivities a line)", spec.target.name(), s.config, s.w_max, s.n_max);
+    let g = &spec.generation;
     if spec.has_matcher() {
-        let rule = rule_name(spec.rule);
-        let _ = write!(p, ", {} gain cells of {} rows, gain rule `{rule}`", spec.cells, s.rows_per_cell);
+        let _ = write!(p, ", {} gain cells of {} rows, gain rule `{}`", g.cells, s.rows_per_cell, rule_name(g.rule));
+    }
+    if spec.top == Top::Stereo {
+        let _ = write!(p, ", depth for a camera of {}", CameraReport::from(g.camera));
     }
     p
 }
 
 /// The command that generated the block.
 fn command(spec: &IpSpec) -> String {
-    let mut c = format!("declivity verilog --top {} --config {}", spec.top.name(), spec.config.name());
+    let mut c = format!("declivity verilog --top {} --config {} --target {}", spec.top.name(), spec.config.name(), spec.target.name());
+    let g = &spec.generation;
     if spec.has_matcher() {
-        let rule = rule_name(spec.rule);
-        let _ = write!(c, " --cells {} --rule {rule}", spec.cells);
+        let _ = write!(c, " --cells {} --rule {}", g.cells, rule_name(g.rule));
+    }
+    if spec.top == Top::Stereo {
+        let _ = write!(c, " --focal-px {} --baseline-m {}", g.camera.focal_px, g.camera.baseline_mm / 1000.0);
     }
     c
 }
@@ -196,18 +204,26 @@ fn command(spec: &IpSpec) -> String {
 /// The simulation file list: the block and the models' library, under the
 /// folder's variable (Icarus `-c` and Verilator `-f` both expand
 /// `${NAME}` from the environment).
-fn file_list(spec: &IpSpec, verilog: &str) -> String {
+fn file_list(spec: &IpSpec, verilog: &str, models: bool) -> String {
     let var = dir_variable(spec.top);
-    format!(
+    let mut f = format!(
         "// {module}: simulation file list (Icarus: iverilog -c FILE; Verilator: verilator -f FILE).\n\
-         // Set {var} to this folder. The ECP5 primitives' behavioural models are a library\n\
-         // (-y): each is read only if the design instantiates it, and only once when several\n\
-         // blocks' lists are given. Synthesis for the ECP5 reads {verilog} alone.\n\
-         ${{{var}}}/{verilog}\n\
-         -y ${{{var}}}/{SIM_MODELS_DIR}\n\
-         +libext+.v\n",
+         // Set {var} to this folder.\n",
         module = spec.module()
-    )
+    );
+    if models {
+        let _ = write!(
+            f,
+            "// The ECP5 primitives' behavioural models are a library (-y): each is read only if\n\
+             // the design instantiates it, and only once when several blocks' lists are given.\n\
+             // Synthesis for the ECP5 reads {verilog} alone.\n"
+        );
+    }
+    let _ = writeln!(f, "${{{var}}}/{verilog}");
+    if models {
+        let _ = write!(f, "-y ${{{var}}}/{SIM_MODELS_DIR}\n+libext+.v\n");
+    }
+    f
 }
 
 /// The FuseSoC CAPI2 core.
@@ -254,7 +270,10 @@ fn readme(spec: &IpSpec, verilog: &str, model_files: &[String], ports: &[(&str, 
     let _ = writeln!(r, "| `{module}.f` | simulation file list, paths under `${{{var}}}` |");
     let _ = writeln!(r, "| `{module}.core` | FuseSoC CAPI2 core: targets `default`, `sim` (Icarus), `lint` (Verilator) |\n");
     let _ = writeln!(r, "## Use\n\n```sh\nexport {var}=$PWD        # this folder\niverilog -g2012 -c ${var}/{module}.f your_tb.v\nverilator --lint-only -Wall -f ${var}/{module}.f --top-module {module}\nfusesoc --cores-root . run --target lint declivity:ip:{module}\n```\n");
-    let _ = writeln!(r, "Synthesis for the ECP5 reads `{verilog}` alone: Yosys's `synth_ecp5` and the vendor's tools map the primitives it instantiates.\n");
+    let _ = match spec.target {
+        Target::Ecp5 => writeln!(r, "Synthesis for the ECP5 reads `{verilog}` alone: Yosys's `synth_ecp5` and the vendor's tools map the primitives it instantiates.\n"),
+        Target::Generic => writeln!(r, "`{verilog}` is the whole block, for simulation and for any synthesis flow: its memories and products are behavioural Verilog (registered reads, `*`), inferred by the tools.\n"),
+    };
     let _ = writeln!(r, "## Ports\n\n| port | direction | width |\n|---|---|--:|");
     for (name, dir, width) in ports {
         let _ = writeln!(r, "| `{name}` | {dir} | {width} |");

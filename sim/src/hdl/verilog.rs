@@ -1,8 +1,10 @@
 //! Verilog of the rtl blocks, as rust-hdl generates it.
 
 use rtl::matcher::declivity_matcher::GainRule;
+use rtl::post::depth_stage::DepthCamera;
 
 use crate::config::Config;
+use crate::SimError;
 
 /// A block that `declivity verilog` and `declivity synth` can generate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -19,8 +21,8 @@ pub enum Top {
     Interpolator,
     /// The whole line processor (`rtl::stereo_line_processor`): two
     /// detectors, the record queues, the matcher (--cells), the row check,
-    /// the interpolator, the vertical median and the depth stage (the
-    /// default camera).
+    /// the interpolator, the vertical median and the depth stage (its
+    /// camera: --focal-px, --baseline-m).
     Stereo,
 }
 
@@ -36,21 +38,129 @@ impl Top {
     }
 }
 
+/// What the Verilog is written for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Target {
+    /// The Lattice ECP5: `DP16KD`, `MULT18X18D` and `TRELLIS_DPR16X4`
+    /// instantiated by name (the measured and timed target).
+    #[default]
+    Ecp5,
+    /// Any FPGA or ASIC flow: each primitive replaced by its behavioural
+    /// model (memories with registered reads, `*`), renamed into the block
+    /// (`top$DP16KD`, …), which Yosys, Vivado and Quartus infer.
+    Generic,
+}
+
+impl Target {
+    /// Its name on the command line (`ecp5`, `generic`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Ecp5 => "ecp5",
+            Target::Generic => "generic",
+        }
+    }
+
+    /// `design` as [`generate_block`] writes it (for the ECP5), written
+    /// for this target.
+    pub fn retarget(self, design: String) -> String {
+        match self {
+            Target::Ecp5 => design,
+            Target::Generic => crate::hdl::primitives::to_generic(&design),
+        }
+    }
+}
+
+/// What a block is generated with besides its configuration: the
+/// matcher's cells and gain rule (`matcher`, `stereo`), the depth stage's
+/// camera (`stereo`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Generation {
+    /// Gain cells of the matcher (one of [`Config::matcher_cells`]).
+    pub cells: usize,
+    pub rule: GainRule,
+    /// The camera pair whose eq. 1 the depth stage's table holds.
+    pub camera: DepthCamera,
+}
+
+impl Generation {
+    /// The sensor of `config`: its `N_CELLS` cells, the default gain rule,
+    /// the default camera ([`DepthCamera::default`]).
+    pub fn of(config: Config) -> Self {
+        Generation { cells: config.sizes().cells, rule: GainRule::default(), camera: DepthCamera::default() }
+    }
+}
+
+/// A camera as reports give it (`declivity synth`, `rtl depth`, the IP
+/// folder's README).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct CameraReport {
+    /// Focal length in pixels (`f / p`).
+    pub focal_px: f64,
+    /// Baseline in millimetres.
+    pub baseline_mm: f64,
+}
+
+impl From<DepthCamera> for CameraReport {
+    fn from(c: DepthCamera) -> Self {
+        CameraReport { focal_px: c.focal_px, baseline_mm: c.baseline_mm }
+    }
+}
+
+impl std::fmt::Display for CameraReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "focal length {} px, baseline {} mm", self.focal_px, self.baseline_mm)
+    }
+}
+
 /// The Verilog of `top` in `config` (the matcher with the configuration's
 /// `N_CELLS` cells, `N_MAX` rows, and the default gain rule); its top
 /// module is named `top`.
 pub fn generate(config: Config, top: Top) -> String {
-    generate_with(config, top, config.sizes().cells, GainRule::default()).expect("N_CELLS is a supported size")
+    generate_block(config, top, &Generation::of(config)).expect("the sensor's generation parameters are supported")
 }
 
 /// The Verilog of `top` in `config`, the matcher with `cells` cells (one
-/// of [`Config::matcher_cells`]) and the gain rule `rule`; `None` for
-/// another size.
+/// of [`Config::matcher_cells`]) and the gain rule `rule`, the default
+/// camera; `None` for another size.
 pub fn generate_with(config: Config, top: Top, cells: usize, rule: GainRule) -> Option<String> {
-    match config {
-        Config::Sd => sd::generate_with(top, cells, rule),
-        Config::Hd => hd::generate_with(top, cells, rule),
-    }
+    generate_block(config, top, &Generation { cells, rule, ..Generation::of(config) }).ok()
+}
+
+/// The Verilog of `top` in `config` with the parameters `g`; an error
+/// names a matcher size the configuration does not generate, or a camera
+/// whose depths the depth stage cannot hold (`DepthScale::of`).
+pub fn generate_block(config: Config, top: Top, g: &Generation) -> Result<String, SimError> {
+    let v = match config {
+        Config::Sd => sd::generate_with(top, g),
+        Config::Hd => hd::generate_with(top, g),
+    };
+    v.map_err(|e| {
+        SimError::Argument(match e {
+            GenerateError::Cells => format!("--cells {}: the {config} matcher is generated with {:?} cells", g.cells, config.matcher_cells()),
+            GenerateError::Camera(why) => format!("the depth stage's camera: {why}"),
+        })
+    })
+}
+
+/// Checks that `config`'s depth stage can hold `camera`'s depths
+/// (`DepthScale::of` of its crate): an error names why not.
+pub fn check_camera(config: Config, camera: &DepthCamera) -> Result<(), SimError> {
+    let why = match config {
+        Config::Sd => rtl::post::depth_stage::DepthScale::of(camera).err().map(|e| e.to_string()),
+        Config::Hd => {
+            let c = rtl_hd::post::depth_stage::DepthCamera { focal_px: camera.focal_px, baseline_mm: camera.baseline_mm };
+            rtl_hd::post::depth_stage::DepthScale::of(&c).err().map(|e| e.to_string())
+        }
+    };
+    why.map_or(Ok(()), |why| Err(SimError::Argument(format!("the depth stage's camera: {why}"))))
+}
+
+/// Why a configuration's generator refused its parameters.
+enum GenerateError {
+    /// A matcher size it does not generate.
+    Cells,
+    /// A camera its depth stage cannot hold (the reason).
+    Camera(String),
 }
 
 /// The generators of one configuration's crate `$k`, for the matcher sizes
@@ -61,7 +171,7 @@ macro_rules! generators {
         use $k::stereo_line_processor::StereoLineProcessor;
         use rust_hdl::prelude::*;
 
-        use super::{mark_memories_no_rw_check, Top};
+        use super::{mark_memories_no_rw_check, GenerateError, Generation, Top};
         use crate::blocks::{build_block, on_big_stack};
 
         /// The rule in this configuration's type.
@@ -72,26 +182,30 @@ macro_rules! generators {
             }
         }
 
-        pub(super) fn generate_with(top: Top, cells: usize, rule: rtl::matcher::declivity_matcher::GainRule) -> Option<String> {
-            let rule = rule_of(rule);
+        pub(super) fn generate_with(top: Top, g: &Generation) -> Result<String, GenerateError> {
+            let rule = rule_of(g.rule);
             match top {
                 Top::Detector => {
                     let mut uut = $k::detector::declivity_detector::DeclivityDetector::default();
                     uut.connect_all();
-                    Some(generate_verilog(&uut))
+                    Ok(generate_verilog(&uut))
                 }
                 Top::Interpolator => {
                     let mut uut = $k::post::interpolator::Interpolator::default();
                     uut.connect_all();
-                    Some(mark_memories_no_rw_check(&generate_verilog(&uut)))
+                    Ok(mark_memories_no_rw_check(&generate_verilog(&uut)))
                 }
-                Top::Stereo => match cells {
-                    $($n => Some(stereo_verilog::<$n>(rule)),)*
-                    _ => None,
-                },
-                Top::Matcher => match cells {
-                    $($n => Some(matcher_verilog::<$n>(rule)),)*
-                    _ => None,
+                Top::Stereo => {
+                    let camera = $k::post::depth_stage::DepthCamera { focal_px: g.camera.focal_px, baseline_mm: g.camera.baseline_mm };
+                    $k::post::depth_stage::DepthScale::of(&camera).map_err(|e| GenerateError::Camera(e.to_string()))?;
+                    match g.cells {
+                        $($n => Ok(stereo_verilog::<$n>(rule, camera)),)*
+                        _ => Err(GenerateError::Cells),
+                    }
+                }
+                Top::Matcher => match g.cells {
+                    $($n => Ok(matcher_verilog::<$n>(rule)),)*
+                    _ => Err(GenerateError::Cells),
                 },
             }
         }
@@ -117,12 +231,11 @@ macro_rules! generators {
         }
 
         /// The line processor's Verilog (the matcher's rule, the default
-        /// mode's edge jump, the default camera), built as
-        /// [`matcher_verilog`] builds the matcher's.
-        fn stereo_verilog<const N: usize>(rule: Rule) -> String {
-            let camera = $k::post::depth_stage::DepthCamera::default();
+        /// mode's edge jump, `camera`, which the caller has checked), built
+        /// as [`matcher_verilog`] builds the matcher's.
+        fn stereo_verilog<const N: usize>(rule: Rule, camera: $k::post::depth_stage::DepthCamera) -> String {
             let uut = build_block("building the line processor", move || {
-                StereoLineProcessor::<N>::new(rule, Some($k::params::EDGE_JUMP_LSB), camera).expect("the default camera fits")
+                StereoLineProcessor::<N>::new(rule, Some($k::params::EDGE_JUMP_LSB), camera).expect("the camera was checked")
             });
             let v = on_big_stack("generating the line processor's Verilog", move || generate_verilog(&*uut));
             mark_memories_no_rw_check(&v)

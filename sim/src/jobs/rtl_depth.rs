@@ -13,7 +13,8 @@ use crate::eval::scores::{agree_quarter_px, dense_scores, exact_share};
 use crate::formats::SearchArea;
 use crate::hdl::cosim::{Options, Simulator};
 use crate::hdl::frame::run_frame;
-use crate::hdl::verilog::{generate, Top};
+use crate::hdl::verilog::{check_camera, generate_block, CameraReport, Generation, Top};
+use rtl::post::depth_stage::DepthCamera;
 
 /// What `declivity rtl depth` reports on a pair (one JSON object).
 #[derive(Debug, Clone, serde::Serialize)]
@@ -30,6 +31,8 @@ pub struct StereoReport {
     pub dispmax: f64,
     /// Idle clocks after each line of the cameras.
     pub hblank: usize,
+    /// The camera the depth stage was generated for (eq. 1's `f/p` and `b`).
+    pub camera: CameraReport,
     /// Pixels taken from the left camera.
     pub pixels: u64,
     /// Clocks simulated (until the last line left).
@@ -109,7 +112,8 @@ impl Engine {
 }
 
 /// Runs a pair through `config`'s line processor (default mode:
-/// `GainRule::Robust`, the edge jump, the default camera) on `engine` (the
+/// `GainRule::Robust`, the edge jump; the depth stage generated for
+/// `camera`) on `engine` (the
 /// rust-hdl model is `sd`'s only) and compares with golden's hardware
 /// parity in `config`
 /// (with `vcd`, the rust-hdl engine writes a waveform of the frame's rows
@@ -124,11 +128,13 @@ fn run_pair(
     right: &GreyImage,
     (dispmin, dispmax): (f64, f64),
     hblank: usize,
+    camera: DepthCamera,
     engine: Engine,
     vcd: Option<(&std::path::Path, &std::ops::Range<usize>)>,
     progress: impl FnMut(usize),
 ) -> Result<(StereoReport, Vec<f64>, Vec<f64>, Vec<u16>), SimError> {
     let area = SearchArea::from_px(dispmin, dispmax, config)?;
+    check_camera(config, &camera)?;
     let w_max = config.sizes().w_max;
     if left.width() > w_max {
         let hint = Config::fitting_hint(left.width());
@@ -147,7 +153,8 @@ fn run_pair(
     }
     let (run, seconds, build_seconds) = match engine {
         Engine::RustHdl => {
-            let mut sim = StereoSim::<{ N_CELLS }>::robust(area.dispmax);
+            let mut sim = StereoSim::<{ N_CELLS }>::new(rtl::matcher::declivity_matcher::GainRule::Robust, Some(rtl::params::EDGE_JUMP_LSB), camera, area.dispmax)
+                .map_err(|e| SimError::Argument(format!("the depth stage's camera: {e}")))?;
             sim.dispmin = area.dispmin;
             if let Some((path, lines)) = vcd {
                 sim.trace_lines_to(path, lines.clone()).map_err(|source| SimError::Io { path: path.to_path_buf(), source })?;
@@ -158,7 +165,7 @@ fn run_pair(
         }
         Engine::Verilator | Engine::Icarus => {
             let simulator = if engine == Engine::Verilator { Simulator::Verilator } else { Simulator::Icarus };
-            let design = generate(config, Top::Stereo);
+            let design = generate_block(config, Top::Stereo, &Generation { camera, ..Generation::of(config) })?;
             let frame = run_frame(simulator, config, &design, left, right, hblank, area, &Options::default())?;
             (frame.run, frame.sim.as_secs_f64(), frame.compile.as_secs_f64())
         }
@@ -166,7 +173,7 @@ fn run_pair(
     let rtl = run.disparity_px(left.height());
     let gold = golden_map(left, right, dispmin, dispmax, config)?;
     let depth = run.depth_mm(left.height());
-    let gold_depth = golden_depth_map(&gold, &rtl::post::depth_stage::DepthCamera::default(), config);
+    let gold_depth = golden_depth_map(&gold, &camera, config);
     let report = StereoReport {
         image: name.to_string(),
         config,
@@ -176,6 +183,7 @@ fn run_pair(
         dispmin,
         dispmax,
         hblank,
+        camera: camera.into(),
         pixels: run.pixels_in,
         cycles: run.cycles,
         px_per_clk: run.px_per_clk(),
@@ -224,7 +232,7 @@ pub struct RtlEvalReport {
 /// area `dispmin < d < dispmax + 1` (the upper bound as `eval`'s) and scores
 /// the map against the left ground truth.
 pub fn evaluate_pair_rtl(config: Config, pair: &PairData, dispmin: f64, hblank: usize, engine: Engine, progress: impl FnMut(usize)) -> Result<RtlEvalReport, SimError> {
-    let (run, rtl, gold, _) = run_pair(config, &pair.name, &pair.left, &pair.right, (dispmin, pair.dispmax + 1.0), hblank, engine, None, progress)?;
+    let (run, rtl, gold, _) = run_pair(config, &pair.name, &pair.left, &pair.right, (dispmin, pair.dispmax + 1.0), hblank, DepthCamera::default(), engine, None, progress)?;
     let gt = &pair.gt_left;
     let all = dense_scores(&rtl, gt, None);
     Ok(RtlEvalReport {
@@ -274,6 +282,8 @@ pub struct RtlDepthJob {
     pub dispmax: f64,
     /// Idle clocks after each line of the cameras.
     pub hblank: usize,
+    /// The camera the depth stage is generated for.
+    pub camera: DepthCamera,
     /// The band of rows run, as a frame of its own.
     pub rows: std::ops::Range<usize>,
     pub engine: Engine,
@@ -313,7 +323,7 @@ pub fn rtl_depth(
     }
     std::fs::create_dir_all(&job.out).map_err(|source| SimError::Io { path: job.out.clone(), source })?;
     let vcd = job.vcd.as_ref().map(|v| (v.path.as_path(), &v.rows));
-    let (report, rtl, gold, depth) = run_pair(job.config, name, &l, &r, (job.dispmin, job.dispmax), job.hblank, job.engine, vcd, progress)?;
+    let (report, rtl, gold, depth) = run_pair(job.config, name, &l, &r, (job.dispmin, job.dispmax), job.hblank, job.camera, job.engine, vcd, progress)?;
 
     let (w, h) = (l.width(), l.height());
     let files = vec![

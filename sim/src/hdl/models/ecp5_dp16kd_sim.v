@@ -1,8 +1,10 @@
 // Behavioural model of the Lattice ECP5 `DP16KD` block RAM, for simulation
 // and lint of the Verilog that `rtl::block_ram::BlockRam` generates
 // (co-simulation under Icarus and Verilator, Verilator lint, Yosys latch
-// check). Synthesis never reads it: Yosys's `synth_ecp5` maps the primitive
-// itself.
+// check). Synthesis for the ECP5 never reads it: Yosys's `synth_ecp5` maps
+// the primitive itself. The `generic` target puts it, renamed `top$DP16KD`,
+// inside the block as the behavioural Verilog the tools infer a memory from
+// (`sim::hdl::primitives::to_generic`).
 //
 // It models what `BlockRam` uses: one data width on both ports, 18 bits of
 // 1024 words (AD[13:4] the word address, AD[1:0] the byte enables of a

@@ -1,8 +1,10 @@
 // Behavioural model of the Lattice ECP5 `TRELLIS_DPR16X4` LUT RAM, for
 // simulation and lint of the Verilog that `rtl::lut_ram` generates
 // (co-simulation under Icarus and Verilator, Verilator lint, Yosys latch
-// check). Synthesis never reads it: Yosys's `synth_ecp5` and nextpnr take
-// the primitive itself.
+// check). Synthesis for the ECP5 never reads it: Yosys's `synth_ecp5` and
+// nextpnr take the primitive itself. The `generic` target puts it, renamed
+// `top$NAME`, inside the block as behavioural Verilog for any synthesis
+// tool (`sim::hdl::primitives::to_generic`).
 //
 // 16 words of 4 bits: a write of `DI` at `WAD` on the rising edge of `WCK`
 // while `WRE` is high (`WCKMUX` = "WCK", `WREMUX` = "WRE", the only use

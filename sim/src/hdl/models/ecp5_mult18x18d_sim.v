@@ -1,8 +1,10 @@
 // Behavioural model of the Lattice ECP5 `MULT18X18D` multiplier, for
 // simulation and lint of the Verilog that `rtl::dsp_multiplier` generates
 // (co-simulation under Icarus and Verilator, Verilator lint, Yosys latch
-// check). Synthesis never reads it: Yosys's `synth_ecp5` and nextpnr take
-// the primitive itself.
+// check). Synthesis for the ECP5 never reads it: Yosys's `synth_ecp5` and
+// nextpnr take the primitive itself. The `generic` target puts it, renamed
+// `top$NAME`, inside the block as behavioural Verilog for any synthesis
+// tool (`sim::hdl::primitives::to_generic`).
 //
 // It models what `DspMultiplier` uses: unsigned operands (`SIGNEDA`,
 // `SIGNEDB` low), A and B from the ports (`SOURCEA`, `SOURCEB` low), the
