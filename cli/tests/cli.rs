@@ -146,6 +146,7 @@ fn bad_inputs_fail_with_a_clear_message_and_a_nonzero_exit() {
         (&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--hblank", "4000000000"], "--hblank"),
         // An output folder that cannot be made, refused before the simulation.
         (&["rtl", "depth", "l.png", "r.png", "--dispmax", "8", "--engine", "rust-hdl", "--out", "/proc/x"], "/proc/x"),
+        (&["verilog", "--top", "stereo", "--out", "/proc/x"], "/proc/x"),
     ];
     for &(args, needle) in cases {
         let o = declivity(args, p);

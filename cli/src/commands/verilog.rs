@@ -91,6 +91,8 @@ pub(crate) fn block_verilog(top: CliTop, m: &GenerationArgs) -> Result<(String, 
 }
 
 pub(crate) fn run(a: VerilogArgs) -> Result<(), SimError> {
+    // The folder first: a path that cannot be written fails before the generation.
+    std::fs::create_dir_all(&a.out).map_err(|source| SimError::Io { path: a.out.clone(), source })?;
     let (v, generation) = block_verilog(a.top, &a.gen)?;
     let target = a.target.target();
     let spec = sim::hdl::ip::IpSpec { config: a.gen.config.0, top: a.top.top(), generation, target };
