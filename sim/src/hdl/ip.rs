@@ -18,11 +18,11 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use rtl::matcher::declivity_matcher::GainRule;
 
 use crate::config::Config;
 use crate::hdl::cosim::{top_ports, TOP_MODULE};
 use crate::hdl::primitives::models_used;
+use crate::drive::matcher::golden_mode;
 use crate::hdl::verilog::{CameraReport, Generation, Target, Top};
 use crate::SimError;
 
@@ -166,21 +166,13 @@ pub fn write_ip_folder(dir: &Path, spec: &IpSpec, design: &str) -> Result<IpFold
     Ok(IpFolder { dir: dir.to_path_buf(), module, files, verilog_lines: renamed.lines().count() })
 }
 
-/// The gain rule as `--rule` names it.
-fn rule_name(rule: GainRule) -> &'static str {
-    match rule {
-        GainRule::Paper => "paper",
-        GainRule::Robust => "robust",
-    }
-}
-
 /// One line of generation parameters, as the README and the core give them.
 fn parameters(spec: &IpSpec) -> String {
     let s = spec.config.sizes();
     let mut p = format!("target `{}`, configuration `{}` (lines up to W_MAX = {} px, N_MAX = {} declivities a line)", spec.target.name(), s.config, s.w_max, s.n_max);
     let g = &spec.generation;
     if spec.has_matcher() {
-        let _ = write!(p, ", {} gain cells of {} rows, gain rule `{}`", g.cells, s.rows_per_cell, rule_name(g.rule));
+        let _ = write!(p, ", {} gain cells of {} rows, gain rule `{}`", g.cells, s.rows_per_cell, golden_mode(g.rule).name());
     }
     if spec.top == Top::Stereo {
         let _ = write!(p, ", depth for a camera of {}", CameraReport::from(g.camera));
@@ -193,7 +185,7 @@ fn command(spec: &IpSpec) -> String {
     let mut c = format!("declivity verilog --top {} --config {} --target {}", spec.top.name(), spec.config.name(), spec.target.name());
     let g = &spec.generation;
     if spec.has_matcher() {
-        let _ = write!(c, " --cells {} --rule {}", g.cells, rule_name(g.rule));
+        let _ = write!(c, " --cells {} --rule {}", g.cells, golden_mode(g.rule).name());
     }
     if spec.top == Top::Stereo {
         let _ = write!(c, " --focal-px {} --baseline-m {}", g.camera.focal_px, g.camera.baseline_mm / 1000.0);

@@ -130,16 +130,14 @@ pub fn generate_with(config: Config, top: Top, cells: usize, rule: GainRule) -> 
 /// names a matcher size the configuration does not generate, or a camera
 /// whose depths the depth stage cannot hold (`DepthScale::of`).
 pub fn generate_block(config: Config, top: Top, g: &Generation) -> Result<String, SimError> {
+    if top == Top::Stereo {
+        check_camera(config, &g.camera)?;
+    }
     let v = match config {
         Config::Sd => sd::generate_with(top, g),
         Config::Hd => hd::generate_with(top, g),
     };
-    v.map_err(|e| {
-        SimError::Argument(match e {
-            GenerateError::Cells => format!("--cells {}: the {config} matcher is generated with {:?} cells", g.cells, config.matcher_cells()),
-            GenerateError::Camera(why) => format!("the depth stage's camera: {why}"),
-        })
-    })
+    v.ok_or_else(|| SimError::Argument(format!("--cells {}: the {config} matcher is generated with {:?} cells", g.cells, config.matcher_cells())))
 }
 
 /// Checks that `config`'s depth stage can hold `camera`'s depths
@@ -155,14 +153,6 @@ pub fn check_camera(config: Config, camera: &DepthCamera) -> Result<(), SimError
     why.map_or(Ok(()), |why| Err(SimError::Argument(format!("the depth stage's camera: {why}"))))
 }
 
-/// Why a configuration's generator refused its parameters.
-enum GenerateError {
-    /// A matcher size it does not generate.
-    Cells,
-    /// A camera its depth stage cannot hold (the reason).
-    Camera(String),
-}
-
 /// The generators of one configuration's crate `$k`, for the matcher sizes
 /// `$n` (the same code for every configuration: only the crate differs).
 macro_rules! generators {
@@ -171,7 +161,7 @@ macro_rules! generators {
         use $k::stereo_line_processor::StereoLineProcessor;
         use rust_hdl::prelude::*;
 
-        use super::{mark_memories_no_rw_check, GenerateError, Generation, Top};
+        use super::{mark_memories_no_rw_check, Generation, Top};
         use crate::blocks::{build_block, on_big_stack};
 
         /// The rule in this configuration's type.
@@ -182,30 +172,31 @@ macro_rules! generators {
             }
         }
 
-        pub(super) fn generate_with(top: Top, g: &Generation) -> Result<String, GenerateError> {
+        /// The Verilog of `top` with `g` (its camera checked by the
+        /// caller); `None` for a matcher size not generated.
+        pub(super) fn generate_with(top: Top, g: &Generation) -> Option<String> {
             let rule = rule_of(g.rule);
             match top {
                 Top::Detector => {
                     let mut uut = $k::detector::declivity_detector::DeclivityDetector::default();
                     uut.connect_all();
-                    Ok(generate_verilog(&uut))
+                    Some(generate_verilog(&uut))
                 }
                 Top::Interpolator => {
                     let mut uut = $k::post::interpolator::Interpolator::default();
                     uut.connect_all();
-                    Ok(mark_memories_no_rw_check(&generate_verilog(&uut)))
+                    Some(mark_memories_no_rw_check(&generate_verilog(&uut)))
                 }
                 Top::Stereo => {
                     let camera = $k::post::depth_stage::DepthCamera { focal_px: g.camera.focal_px, baseline_mm: g.camera.baseline_mm };
-                    $k::post::depth_stage::DepthScale::of(&camera).map_err(|e| GenerateError::Camera(e.to_string()))?;
                     match g.cells {
-                        $($n => Ok(stereo_verilog::<$n>(rule, camera)),)*
-                        _ => Err(GenerateError::Cells),
+                        $($n => Some(stereo_verilog::<$n>(rule, camera)),)*
+                        _ => None,
                     }
                 }
                 Top::Matcher => match g.cells {
-                    $($n => Ok(matcher_verilog::<$n>(rule)),)*
-                    _ => Err(GenerateError::Cells),
+                    $($n => Some(matcher_verilog::<$n>(rule)),)*
+                    _ => None,
                 },
             }
         }
