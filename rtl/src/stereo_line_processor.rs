@@ -156,6 +156,7 @@ use crate::stream::record_fifo::RecordFifo;
 use crate::post::row_check::RowCheck;
 use crate::stream::skid_buffer::SkidBuffer;
 use crate::post::vertical_median::VerticalMedian;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Bits of the status counters.
@@ -222,6 +223,8 @@ const _: () = assert!(FULL_BIT < DP16KD_WIDTH && MARKER_BIT < DP16KD_WIDTH && DT
 #[derive(LogicBlock)]
 pub struct StereoLineProcessor<const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub l_tdata: Signal<In, Bits<PIXEL_BITS>>,
     pub l_tvalid: Signal<In, Bit>,
     pub l_tuser: Signal<In, Bit>,
@@ -258,43 +261,43 @@ pub struct StereoLineProcessor<const N: usize> {
     pub depth: DepthStage,
     // The row of the matcher's line and of the interpolator's (so that the
     // frame's last can be marked).
-    m_row: DFF<Bits<HEIGHT_BITS>>,
-    p_row: DFF<Bits<HEIGHT_BITS>>,
+    m_row: ResetDff<Bits<HEIGHT_BITS>>,
+    p_row: ResetDff<Bits<HEIGHT_BITS>>,
     m_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
     p_row_now: Signal<Local, Bits<HEIGHT_BITS>>,
     // The frame's last row: `height - 1` and `height == 1` registered (the
     // frame's size is an input that holds during a frame), and whether the
     // matcher's row count is at the last row (from registers, two clocks
     // after the count moved).
-    h_m1: DFF<Bits<HEIGHT_BITS>>,
-    h_one: DFF<Bit>,
-    m_row_last: DFF<Bit>,
+    h_m1: ResetDff<Bits<HEIGHT_BITS>>,
+    h_one: ResetDff<Bit>,
+    m_row_last: ResetDff<Bit>,
     // The interpolator's pixels registered on their way to the median
     // (INTERP_REGISTER_LAG), with their row's end-of-frame flag.
-    i_valid: DFF<Bit>,
-    i_last: DFF<Bit>,
-    i_d: DFF<Bits<POS_BITS>>,
-    i_sof: DFF<Bit>,
-    i_eof: DFF<Bit>,
+    i_valid: ResetDff<Bit>,
+    i_last: ResetDff<Bit>,
+    i_d: ResetDff<Bits<POS_BITS>>,
+    i_sof: ResetDff<Bit>,
+    i_eof: ResetDff<Bit>,
     // The row check's output registered on its way to the interpolator
     // (CHECK_REGISTER_LAG).
-    k_valid: DFF<Bit>,
-    k_last: DFF<Bit>,
-    k_x: DFF<Bits<POS_BITS>>,
-    k_d: DFF<Bits<POS_BITS>>,
-    k_sof: DFF<Bit>,
+    k_valid: ResetDff<Bit>,
+    k_last: ResetDff<Bit>,
+    k_x: ResetDff<Bits<POS_BITS>>,
+    k_d: ResetDff<Bits<POS_BITS>>,
+    k_sof: ResetDff<Bit>,
     // The median's output registered on its way to the depth stage
     // (MEDIAN_REGISTER_LAG).
-    v_valid: DFF<Bit>,
-    v_last: DFF<Bit>,
-    v_d: DFF<Bits<POS_BITS>>,
-    v_sof: DFF<Bit>,
+    v_valid: ResetDff<Bit>,
+    v_last: ResetDff<Bit>,
+    v_d: ResetDff<Bits<POS_BITS>>,
+    v_sof: ResetDff<Bit>,
     // The depth stage's output registered on its way to the port
     // (OUTPUT_REGISTER_LAG).
-    out_valid: DFF<Bit>,
-    out_data: DFF<Bits<OUT_BITS>>,
-    out_user: DFF<Bit>,
-    out_last: DFF<Bit>,
+    out_valid: ResetDff<Bit>,
+    out_data: ResetDff<Bits<OUT_BITS>>,
+    out_user: ResetDff<Bit>,
+    out_last: ResetDff<Bit>,
     // The queues' lanes 0-2, built here and then given to each queue in
     // one assignment: a port assigned twice in one evaluation changes twice,
     // and under Icarus the queue's logic and this block then wake each
@@ -309,45 +312,45 @@ pub struct StereoLineProcessor<const N: usize> {
     // The reference line's width: pixels counted up to W_MAX, kept at its
     // last pixel (`l_width`, beside the camera's input), and copied a clock
     // later into `width`, which the interpolator reads at the line's marker.
-    l_count: DFF<Bits<WIDTH_BITS>>,
-    l_width: DFFWithInit<Bits<WIDTH_BITS>>,
+    l_count: ResetDff<Bits<WIDTH_BITS>>,
+    l_width: ResetDff<Bits<WIDTH_BITS>>,
     // The camera's accepted beat and its `tlast`, registered once beside the
     // register slice: the count and the width load from these, so the
     // handshake drives two flip-flops, not the 22 of the count and width.
-    l_acc: DFF<Bit>,
-    l_acc_last: DFF<Bit>,
-    width: DFFWithInit<Bits<WIDTH_BITS>>,
-    n_records_dropped: DFF<Bits<STATUS_BITS>>,
-    n_lines_dropped: DFF<Bits<STATUS_BITS>>,
-    n_pixels_dropped: DFF<Bits<STATUS_BITS>>,
-    n_lines_full: DFF<Bits<STATUS_BITS>>,
-    n_lines_wide: DFF<Bits<STATUS_BITS>>,
+    l_acc: ResetDff<Bit>,
+    l_acc_last: ResetDff<Bit>,
+    width: ResetDff<Bits<WIDTH_BITS>>,
+    n_records_dropped: ResetDff<Bits<STATUS_BITS>>,
+    n_lines_dropped: ResetDff<Bits<STATUS_BITS>>,
+    n_pixels_dropped: ResetDff<Bits<STATUS_BITS>>,
+    n_lines_full: ResetDff<Bits<STATUS_BITS>>,
+    n_lines_wide: ResetDff<Bits<STATUS_BITS>>,
     // The events the status counters count, registered beside their
     // sources (the counters then count a clock later: the route from a
     // block's output to its counter gets a clock of its own).
-    ev_records: DFF<Bit>,
-    ev_lines: DFF<Bit>,
-    ev_pixels: DFF<Bit>,
-    ev_full: DFF<Bit>,
-    ev_wide: DFF<Bit>,
+    ev_records: ResetDff<Bit>,
+    ev_lines: ResetDff<Bit>,
+    ev_pixels: ResetDff<Bit>,
+    ev_full: ResetDff<Bit>,
+    ev_wide: ResetDff<Bit>,
     // Lines in flight: reference markers the matcher took, less the lines
     // the interpolator sent (or the row check or the interpolator dropped);
     // the reference queue held (public for the drivers' diagnostics).
-    pub in_flight: DFF<Bits<FLIGHT_BITS>>,
+    pub in_flight: ResetDff<Bits<FLIGHT_BITS>>,
     flight_now: Signal<Local, Bits<FLIGHT_BITS>>,
     // The lines that left on the clock before (0–3: one out of the
     // interpolator, one dropped by it, one by the row check), registered
     // beside their sources, and the count less them: a taken marker then
     // only picks `flight_base` or `flight_base + 1`, and the marker's
     // handshake, the hold and three ± 1 are not in series in one clock.
-    flight_left: DFF<Bits<2>>,
+    flight_left: ResetDff<Bits<2>>,
     flight_base: Signal<Local, Bits<FLIGHT_BITS>>,
     flight_left_now: Signal<Local, Bits<2>>,
     pub hold: Signal<Local, Bit>,
     // `in_flight >= LINES_IN_FLIGHT` as a register, its next value picked
     // from comparisons of `flight_base` by the taken marker, so that the
     // count's comparison is not behind the marker's handshake.
-    hold_q: DFF<Bit>,
+    hold_q: ResetDff<Bit>,
     took_last: Signal<Local, Bit>,
     flight_max: Constant<Bits<FLIGHT_BITS>>,
     flight_max_m1: Constant<Bits<FLIGHT_BITS>>,
@@ -367,6 +370,7 @@ impl<const N: usize> StereoLineProcessor<N> {
     pub fn new(rule: GainRule, jump: Option<u64>, camera: DepthCamera) -> Result<Self, DepthError> {
         Ok(StereoLineProcessor {
             clock: Default::default(),
+            reset: Default::default(),
             l_tdata: Default::default(),
             l_tvalid: Default::default(),
             l_tuser: Default::default(),
@@ -421,8 +425,8 @@ impl<const N: usize> StereoLineProcessor<N> {
             i_eof: Default::default(),
             l_acc: Default::default(),
             l_acc_last: Default::default(),
-            l_width: DFFWithInit::new((W_MAX as u64).into()),
-            width: DFFWithInit::new((W_MAX as u64).into()),
+            l_width: ResetDff::new((W_MAX as u64).into()),
+            width: ResetDff::new((W_MAX as u64).into()),
             n_records_dropped: Default::default(),
             n_lines_dropped: Default::default(),
             n_pixels_dropped: Default::default(),
@@ -471,17 +475,69 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, in_flight, flight_left, hold_q, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
+        self.m_row.reset.next = self.reset.val();
+        self.p_row.reset.next = self.reset.val();
+        self.h_m1.reset.next = self.reset.val();
+        self.h_one.reset.next = self.reset.val();
+        self.m_row_last.reset.next = self.reset.val();
+        self.i_valid.reset.next = self.reset.val();
+        self.i_last.reset.next = self.reset.val();
+        self.i_d.reset.next = self.reset.val();
+        self.i_sof.reset.next = self.reset.val();
+        self.i_eof.reset.next = self.reset.val();
+        self.l_count.reset.next = self.reset.val();
+        self.l_width.reset.next = self.reset.val();
+        self.l_acc.reset.next = self.reset.val();
+        self.l_acc_last.reset.next = self.reset.val();
+        self.width.reset.next = self.reset.val();
+        self.n_records_dropped.reset.next = self.reset.val();
+        self.n_lines_dropped.reset.next = self.reset.val();
+        self.n_pixels_dropped.reset.next = self.reset.val();
+        self.n_lines_full.reset.next = self.reset.val();
+        self.n_lines_wide.reset.next = self.reset.val();
+        self.ev_records.reset.next = self.reset.val();
+        self.ev_lines.reset.next = self.reset.val();
+        self.ev_pixels.reset.next = self.reset.val();
+        self.ev_full.reset.next = self.reset.val();
+        self.ev_wide.reset.next = self.reset.val();
+        self.in_flight.reset.next = self.reset.val();
+        self.flight_left.reset.next = self.reset.val();
+        self.hold_q.reset.next = self.reset.val();
+        self.k_valid.reset.next = self.reset.val();
+        self.k_last.reset.next = self.reset.val();
+        self.k_x.reset.next = self.reset.val();
+        self.k_d.reset.next = self.reset.val();
+        self.k_sof.reset.next = self.reset.val();
+        self.v_valid.reset.next = self.reset.val();
+        self.v_last.reset.next = self.reset.val();
+        self.v_d.reset.next = self.reset.val();
+        self.v_sof.reset.next = self.reset.val();
+        self.out_valid.reset.next = self.reset.val();
+        self.out_data.reset.next = self.reset.val();
+        self.out_user.reset.next = self.reset.val();
+        self.out_last.reset.next = self.reset.val();
         self.l_skid.clock.next = self.clock.val();
+        self.l_skid.reset.next = self.reset.val();
         self.r_skid.clock.next = self.clock.val();
+        self.r_skid.reset.next = self.reset.val();
         self.left.clock.next = self.clock.val();
+        self.left.reset.next = self.reset.val();
         self.right.clock.next = self.clock.val();
+        self.right.reset.next = self.reset.val();
         self.l_queue.clock.next = self.clock.val();
+        self.l_queue.reset.next = self.reset.val();
         self.r_queue.clock.next = self.clock.val();
+        self.r_queue.reset.next = self.reset.val();
         self.matcher.clock.next = self.clock.val();
+        self.matcher.reset.next = self.reset.val();
         self.row_check.clock.next = self.clock.val();
+        self.row_check.reset.next = self.reset.val();
         self.interpolator.clock.next = self.clock.val();
+        self.interpolator.reset.next = self.reset.val();
         self.median.clock.next = self.clock.val();
+        self.median.reset.next = self.reset.val();
         self.depth.clock.next = self.clock.val();
+        self.depth.reset.next = self.reset.val();
 
         // ---- The cameras through their register slices into their
         // detectors.

@@ -44,6 +44,7 @@
 use crate::primitives::block_ram::BlockRam;
 use crate::primitives::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS, MUL_PRODUCT_BITS};
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Clocks from `scan_start` to `done`: three to start (the last count of
@@ -86,6 +87,8 @@ enum ThresholdState {
 #[derive(LogicBlock)]
 pub(crate) struct AdaptiveThreshold {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub inc_valid: Signal<In, Bit>,
     pub inc_bank: Signal<In, Bit>,
     pub inc_bin: Signal<In, Bits<HIST_ADDR_BITS>>,
@@ -104,48 +107,48 @@ pub(crate) struct AdaptiveThreshold {
     // forwarded to a repeated bin. The increment is registered in f1 and
     // written on the next clock, so that the RAM's output, the forwarding,
     // the increment and the route back into the RAM are not in one clock.
-    p1_valid: DFF<Bit>,
-    p1_bank: DFF<Bit>,
-    p1_bin: DFF<Bits<HIST_ADDR_BITS>>,
-    p2_valid: DFF<Bit>,
-    p2_bank: DFF<Bit>,
-    p2_bin: DFF<Bits<HIST_ADDR_BITS>>,
-    f1_valid: DFF<Bit>,
-    f1_bank: DFF<Bit>,
-    f1_bin: DFF<Bits<HIST_ADDR_BITS>>,
-    f1_count: DFF<Bits<HIST_COUNT_BITS>>,
-    hit1: DFF<Bit>,
-    hit2: DFF<Bit>,
-    hit3: DFF<Bit>,
-    f2_valid: DFF<Bit>,
-    f2_bank: DFF<Bit>,
-    f2_bin: DFF<Bits<HIST_ADDR_BITS>>,
-    f2_count: DFF<Bits<HIST_COUNT_BITS>>,
-    f3_valid: DFF<Bit>,
-    f3_bank: DFF<Bit>,
-    f3_bin: DFF<Bits<HIST_ADDR_BITS>>,
-    f3_count: DFF<Bits<HIST_COUNT_BITS>>,
+    p1_valid: ResetDff<Bit>,
+    p1_bank: ResetDff<Bit>,
+    p1_bin: ResetDff<Bits<HIST_ADDR_BITS>>,
+    p2_valid: ResetDff<Bit>,
+    p2_bank: ResetDff<Bit>,
+    p2_bin: ResetDff<Bits<HIST_ADDR_BITS>>,
+    f1_valid: ResetDff<Bit>,
+    f1_bank: ResetDff<Bit>,
+    f1_bin: ResetDff<Bits<HIST_ADDR_BITS>>,
+    f1_count: ResetDff<Bits<HIST_COUNT_BITS>>,
+    hit1: ResetDff<Bit>,
+    hit2: ResetDff<Bit>,
+    hit3: ResetDff<Bit>,
+    f2_valid: ResetDff<Bit>,
+    f2_bank: ResetDff<Bit>,
+    f2_bin: ResetDff<Bits<HIST_ADDR_BITS>>,
+    f2_count: ResetDff<Bits<HIST_COUNT_BITS>>,
+    f3_valid: ResetDff<Bit>,
+    f3_bank: ResetDff<Bit>,
+    f3_bin: ResetDff<Bits<HIST_ADDR_BITS>>,
+    f3_count: ResetDff<Bits<HIST_COUNT_BITS>>,
     new_count: Signal<Local, Bits<HIST_COUNT_BITS>>,
     // Scan.
-    state: DFF<ThresholdState>,
-    bank: DFF<Bit>,
-    n: DFF<Bits<HIST_COUNT_BITS>>,
-    cnt: DFF<Bits<SCAN_BITS>>,
-    cum: DFF<Bits<HIST_COUNT_BITS>>,
-    hv: DFF<Bits<HIST_COUNT_BITS>>,
-    hv_nz: DFF<Bit>,
-    counting: DFF<Bit>,
-    testing: DFF<Bit>,
-    first_test: DFF<Bit>,
-    last_test: DFF<Bit>,
-    found: DFF<Bit>,
-    zero_bin: DFF<Bit>,
-    term1: DFF<Bits<DT_ACC_BITS>>,
-    ramp: DFF<Bits<DT_ACC_BITS>>,
-    den: DFF<Bits<HIST_COUNT_BITS>>,
-    rem: DFF<Bits<REM_BITS>>,
-    quotient: DFF<Bits<MEDIAN_Q_BITS>>,
-    step: DFF<Bits<STEP_BITS>>,
+    state: ResetDff<ThresholdState>,
+    bank: ResetDff<Bit>,
+    n: ResetDff<Bits<HIST_COUNT_BITS>>,
+    cnt: ResetDff<Bits<SCAN_BITS>>,
+    cum: ResetDff<Bits<HIST_COUNT_BITS>>,
+    hv: ResetDff<Bits<HIST_COUNT_BITS>>,
+    hv_nz: ResetDff<Bit>,
+    counting: ResetDff<Bit>,
+    testing: ResetDff<Bit>,
+    first_test: ResetDff<Bit>,
+    last_test: ResetDff<Bit>,
+    found: ResetDff<Bit>,
+    zero_bin: ResetDff<Bit>,
+    term1: ResetDff<Bits<DT_ACC_BITS>>,
+    ramp: ResetDff<Bits<DT_ACC_BITS>>,
+    den: ResetDff<Bits<HIST_COUNT_BITS>>,
+    rem: ResetDff<Bits<REM_BITS>>,
+    quotient: ResetDff<Bits<MEDIAN_Q_BITS>>,
+    step: ResetDff<Bits<STEP_BITS>>,
     // `q·K` in a DSP block, as `(q >> 1 << 1)·K + q[0]·K`: the block's
     // input registers are loaded on the last Divide clock with the quotient
     // register shifted (its last bit still being decided), so the product
@@ -156,14 +159,14 @@ pub(crate) struct AdaptiveThreshold {
     // the same value as `term1 + ((product + q[0]·K) >> FRAC_SHIFT)`
     // without its two adders in series.
     scale: DspMultiplier,
-    product: DFF<Bits<MUL_PRODUCT_BITS>>,
-    addend: DFF<Bits<WIDE_BITS>>,
+    product: ResetDff<Bits<MUL_PRODUCT_BITS>>,
+    addend: ResetDff<Bits<WIDE_BITS>>,
     lsb_k: Signal<Local, Bits<WIDE_BITS>>,
     q_shifted: Signal<Local, Bits<MEDIAN_Q_BITS>>,
     wide_sum: Signal<Local, Bits<WIDE_BITS>>,
-    sum: DFF<Bits<DT_ACC_BITS>>,
-    dt_reg: DFF<Bits<DT_BITS>>,
-    done_reg: DFF<Bit>,
+    sum: ResetDff<Bits<DT_ACC_BITS>>,
+    dt_reg: ResetDff<Bits<DT_BITS>>,
+    done_reg: ResetDff<Bit>,
     h: Signal<Local, Bits<HIST_COUNT_BITS>>,
     // Whether the counts reach n/2 at a bin, `2·(cum + h) ≥ n`, decided on
     // the clock that adds the bin: `need` = `n - 1 - 2·cum` is kept as a
@@ -171,15 +174,15 @@ pub(crate) struct AdaptiveThreshold {
     // that bit registered for the bin's test on the next clock, so that
     // the comparison and the test's fan-out into the division's registers
     // are not in one clock.
-    need: DFF<Bits<NEED_BITS>>,
+    need: ResetDff<Bits<NEED_BITS>>,
     need_next: Signal<Local, Bits<NEED_BITS>>,
-    reach: DFF<Bit>,
+    reach: ResetDff<Bit>,
     // `n − 2·below`, `below` the count under the bin tested next: made on
     // the clock that adds that bin to `cum` (from `cum` before the add), so
     // the test loads it into the division from a register instead of
     // forming `cum − hv` and its doubled subtraction (three carry chains in
     // series) on the test's clock.
-    num: DFF<Bits<HIST_COUNT_BITS>>,
+    num: ResetDff<Bits<HIST_COUNT_BITS>>,
     bin: Signal<Local, Bits<HIST_ADDR_BITS>>,
     acc: Signal<Local, Bits<DT_ACC_BITS>>,
     rounded: Signal<Local, Bits<DT_ACC_BITS>>,
@@ -201,6 +204,7 @@ impl Default for AdaptiveThreshold {
     fn default() -> Self {
         Self {
             clock: Default::default(),
+            reset: Default::default(),
             inc_valid: Default::default(),
             inc_bank: Default::default(),
             inc_bin: Default::default(),
@@ -295,6 +299,54 @@ impl Logic for AdaptiveThreshold {
             f1_count, hit1, hit2, hit3, f2_valid, f2_bank, f2_bin, f2_count, f3_valid, f3_bank, f3_bin, f3_count, state, bank, n, cnt, cum, num, need, reach, hv, hv_nz, counting, testing, first_test, last_test, found,
             zero_bin, term1, ramp, den, rem, quotient, step, product, addend, sum, dt_reg, done_reg
         );
+        self.p1_valid.reset.next = self.reset.val();
+        self.p1_bank.reset.next = self.reset.val();
+        self.p1_bin.reset.next = self.reset.val();
+        self.p2_valid.reset.next = self.reset.val();
+        self.p2_bank.reset.next = self.reset.val();
+        self.p2_bin.reset.next = self.reset.val();
+        self.f1_valid.reset.next = self.reset.val();
+        self.f1_bank.reset.next = self.reset.val();
+        self.f1_bin.reset.next = self.reset.val();
+        self.f1_count.reset.next = self.reset.val();
+        self.hit1.reset.next = self.reset.val();
+        self.hit2.reset.next = self.reset.val();
+        self.hit3.reset.next = self.reset.val();
+        self.f2_valid.reset.next = self.reset.val();
+        self.f2_bank.reset.next = self.reset.val();
+        self.f2_bin.reset.next = self.reset.val();
+        self.f2_count.reset.next = self.reset.val();
+        self.f3_valid.reset.next = self.reset.val();
+        self.f3_bank.reset.next = self.reset.val();
+        self.f3_bin.reset.next = self.reset.val();
+        self.f3_count.reset.next = self.reset.val();
+        self.state.reset.next = self.reset.val();
+        self.bank.reset.next = self.reset.val();
+        self.n.reset.next = self.reset.val();
+        self.cnt.reset.next = self.reset.val();
+        self.cum.reset.next = self.reset.val();
+        self.num.reset.next = self.reset.val();
+        self.need.reset.next = self.reset.val();
+        self.reach.reset.next = self.reset.val();
+        self.hv.reset.next = self.reset.val();
+        self.hv_nz.reset.next = self.reset.val();
+        self.counting.reset.next = self.reset.val();
+        self.testing.reset.next = self.reset.val();
+        self.first_test.reset.next = self.reset.val();
+        self.last_test.reset.next = self.reset.val();
+        self.found.reset.next = self.reset.val();
+        self.zero_bin.reset.next = self.reset.val();
+        self.term1.reset.next = self.reset.val();
+        self.ramp.reset.next = self.reset.val();
+        self.den.reset.next = self.reset.val();
+        self.rem.reset.next = self.reset.val();
+        self.quotient.reset.next = self.reset.val();
+        self.step.reset.next = self.reset.val();
+        self.product.reset.next = self.reset.val();
+        self.addend.reset.next = self.reset.val();
+        self.sum.reset.next = self.reset.val();
+        self.dt_reg.reset.next = self.reset.val();
+        self.done_reg.reset.next = self.reset.val();
         // ---- Counting: read on the clock of the increment, the block RAM's
         // output register on the next, the increment into `f1_count` on the
         // third, written from it on the fourth, forwarding the three counts

@@ -59,6 +59,7 @@ use crate::detector::adaptive_threshold::{AdaptiveThreshold, THRESHOLD_LATENCY};
 use crate::detector::declivity_tracker::{DeclivityTracker, TRACKER_CENTER};
 use crate::params::*;
 use crate::detector::position_divider::{PositionDivider, DIVIDER_LATENCY};
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// The shortest width of back-to-back lines of one width that never stalls
@@ -126,6 +127,8 @@ const BANK_READY: u64 = 2;
 #[derive(LogicBlock)]
 pub struct DeclivityDetector {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub s_tdata: Signal<In, Bits<PIXEL_BITS>>,
     pub s_tvalid: Signal<In, Bit>,
     pub s_tuser: Signal<In, Bit>,
@@ -156,49 +159,49 @@ pub struct DeclivityDetector {
     tracker: DeclivityTracker,
     divider: PositionDivider,
     // Per bank: state, stored width, flags, d_t.
-    state0: DFF<Bits<2>>,
-    state1: DFF<Bits<2>>,
-    width0: DFF<Bits<LINE_BUF_ADDR_BITS>>,
-    width1: DFF<Bits<LINE_BUF_ADDR_BITS>>,
-    wide0: DFF<Bit>,
-    wide1: DFF<Bit>,
-    sof0: DFF<Bit>,
-    sof1: DFF<Bit>,
-    dt0: DFF<Bits<DT_BITS>>,
-    dt1: DFF<Bits<DT_BITS>>,
+    state0: ResetDff<Bits<2>>,
+    state1: ResetDff<Bits<2>>,
+    width0: ResetDff<Bits<LINE_BUF_ADDR_BITS>>,
+    width1: ResetDff<Bits<LINE_BUF_ADDR_BITS>>,
+    wide0: ResetDff<Bit>,
+    wide1: ResetDff<Bit>,
+    sof0: ResetDff<Bit>,
+    sof1: ResetDff<Bit>,
+    dt0: ResetDff<Bits<DT_BITS>>,
+    dt1: ResetDff<Bits<DT_BITS>>,
     // A: input.
-    wb: DFF<Bit>,
-    wx: DFF<Bits<LINE_BUF_ADDR_BITS>>,
-    in_line: DFF<Bit>,
-    prev_pix: DFF<Bits<PIXEL_BITS>>,
-    line_sof: DFF<Bit>,
-    line_wide: DFF<Bit>,
+    wb: ResetDff<Bit>,
+    wx: ResetDff<Bits<LINE_BUF_ADDR_BITS>>,
+    in_line: ResetDff<Bit>,
+    prev_pix: ResetDff<Bits<PIXEL_BITS>>,
+    line_sof: ResetDff<Bit>,
+    line_wide: ResetDff<Bit>,
     // B: threshold.
-    mb: DFF<Bit>,
+    mb: ResetDff<Bit>,
     // C: reader.
-    rb: DFF<Bit>,
-    reading: DFF<Bit>,
-    r_bank: DFF<Bit>,
-    rx: DFF<Bits<X_BITS>>,
-    r_last_x: DFF<Bits<X_BITS>>,
-    r_dt: DFF<Bits<DT_BITS>>,
-    r_thr: DFF<Bits<DT_INT_BITS>>,
-    r_wide: DFF<Bit>,
-    r_sof: DFF<Bit>,
-    free_pending: DFF<Bit>,
-    free_bank: DFF<Bit>,
+    rb: ResetDff<Bit>,
+    reading: ResetDff<Bit>,
+    r_bank: ResetDff<Bit>,
+    rx: ResetDff<Bits<X_BITS>>,
+    r_last_x: ResetDff<Bits<X_BITS>>,
+    r_dt: ResetDff<Bits<DT_BITS>>,
+    r_thr: ResetDff<Bits<DT_INT_BITS>>,
+    r_wide: ResetDff<Bit>,
+    r_sof: ResetDff<Bit>,
+    free_pending: ResetDff<Bit>,
+    free_bank: ResetDff<Bit>,
     // `rx == r_last_x` while reading, computed a clock ahead: the reader's
     // decision starts at registers.
-    r_at_end: DFF<Bit>,
-    d_valid: DFF<Bit>,
-    d_bank: DFF<Bit>,
-    d_first: DFF<Bit>,
-    d_last: DFF<Bit>,
-    d_x: DFF<Bits<X_BITS>>,
-    d_dt: DFF<Bits<DT_BITS>>,
-    d_thr: DFF<Bits<DT_INT_BITS>>,
-    d_wide: DFF<Bit>,
-    d_sof: DFF<Bit>,
+    r_at_end: ResetDff<Bit>,
+    d_valid: ResetDff<Bit>,
+    d_bank: ResetDff<Bit>,
+    d_first: ResetDff<Bit>,
+    d_last: ResetDff<Bit>,
+    d_x: ResetDff<Bits<X_BITS>>,
+    d_dt: ResetDff<Bits<DT_BITS>>,
+    d_thr: ResetDff<Bits<DT_INT_BITS>>,
+    d_wide: ResetDff<Bit>,
+    d_sof: ResetDff<Bit>,
     // Combinational.
     write_state: Signal<Local, Bits<2>>,
     accept: Signal<Local, Bit>,
@@ -227,6 +230,7 @@ impl Default for DeclivityDetector {
         let c8 = |v: usize| Constant::new((v as u64).into());
         Self {
             clock: Default::default(),
+            reset: Default::default(),
             s_tdata: Default::default(),
             s_tvalid: Default::default(),
             s_tuser: Default::default(),
@@ -321,13 +325,54 @@ impl Logic for DeclivityDetector {
         self.line_buf0.clock.next = self.clock.val();
         self.line_buf1.clock.next = self.clock.val();
         self.threshold.clock.next = self.clock.val();
+        self.threshold.reset.next = self.reset.val();
         self.tracker.clock.next = self.clock.val();
+        self.tracker.reset.next = self.reset.val();
         self.divider.clock.next = self.clock.val();
+        self.divider.reset.next = self.reset.val();
         dff_setup!(
             self, clock, state0, state1, width0, width1, wide0, wide1, sof0, sof1, dt0, dt1, wb, wx, in_line,
             prev_pix, line_sof, line_wide, mb, rb, reading, r_bank, rx, r_last_x, r_dt, r_thr, r_wide, r_sof,
             free_pending, free_bank, r_at_end, d_valid, d_bank, d_first, d_last, d_x, d_dt, d_thr, d_wide, d_sof
         );
+        self.state0.reset.next = self.reset.val();
+        self.state1.reset.next = self.reset.val();
+        self.width0.reset.next = self.reset.val();
+        self.width1.reset.next = self.reset.val();
+        self.wide0.reset.next = self.reset.val();
+        self.wide1.reset.next = self.reset.val();
+        self.sof0.reset.next = self.reset.val();
+        self.sof1.reset.next = self.reset.val();
+        self.dt0.reset.next = self.reset.val();
+        self.dt1.reset.next = self.reset.val();
+        self.wb.reset.next = self.reset.val();
+        self.wx.reset.next = self.reset.val();
+        self.in_line.reset.next = self.reset.val();
+        self.prev_pix.reset.next = self.reset.val();
+        self.line_sof.reset.next = self.reset.val();
+        self.line_wide.reset.next = self.reset.val();
+        self.mb.reset.next = self.reset.val();
+        self.rb.reset.next = self.reset.val();
+        self.reading.reset.next = self.reset.val();
+        self.r_bank.reset.next = self.reset.val();
+        self.rx.reset.next = self.reset.val();
+        self.r_last_x.reset.next = self.reset.val();
+        self.r_dt.reset.next = self.reset.val();
+        self.r_thr.reset.next = self.reset.val();
+        self.r_wide.reset.next = self.reset.val();
+        self.r_sof.reset.next = self.reset.val();
+        self.free_pending.reset.next = self.reset.val();
+        self.free_bank.reset.next = self.reset.val();
+        self.r_at_end.reset.next = self.reset.val();
+        self.d_valid.reset.next = self.reset.val();
+        self.d_bank.reset.next = self.reset.val();
+        self.d_first.reset.next = self.reset.val();
+        self.d_last.reset.next = self.reset.val();
+        self.d_x.reset.next = self.reset.val();
+        self.d_dt.reset.next = self.reset.val();
+        self.d_thr.reset.next = self.reset.val();
+        self.d_wide.reset.next = self.reset.val();
+        self.d_sof.reset.next = self.reset.val();
 
         // ---- A: input into bank wb, accepted while that bank is free.
         self.write_state.next = self.state0.q.val();

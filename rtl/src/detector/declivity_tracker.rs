@@ -44,6 +44,7 @@
 use crate::params::*;
 use crate::primitives::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS, MUL_PRODUCT_BITS};
 use crate::detector::pixel_window::PixelWindow;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// The window tap where a pixel's gradient is examined.
@@ -71,6 +72,8 @@ impl TagLayout {
 #[derive(LogicBlock)]
 pub(crate) struct DeclivityTracker {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub in_valid: Signal<In, Bit>,
     pub in_first: Signal<In, Bit>,
     pub in_last: Signal<In, Bit>,
@@ -95,55 +98,55 @@ pub(crate) struct DeclivityTracker {
     square: DspMultiplier,
     weight: DspMultiplier,
     // Gradient pipeline: g at taps 2–4, g² at taps 3–4, g²(2x+1) at tap 4.
-    g2: DFF<Bits<AMP_BITS>>,
-    g3: DFF<Bits<AMP_BITS>>,
-    g4: DFF<Bits<AMP_BITS>>,
-    gsq3: DFF<Bits<S0_BITS>>,
-    gsq4: DFF<Bits<S0_BITS>>,
-    w4: DFF<Bits<S1_BITS>>,
+    g2: ResetDff<Bits<AMP_BITS>>,
+    g3: ResetDff<Bits<AMP_BITS>>,
+    g4: ResetDff<Bits<AMP_BITS>>,
+    gsq3: ResetDff<Bits<S0_BITS>>,
+    gsq4: ResetDff<Bits<S0_BITS>>,
+    w4: ResetDff<Bits<S1_BITS>>,
     // Registered one clock ahead of the centre: the sign tests of g(x) and
     // the amplitude test |I(x) - I(x_i)| > ⌊d_t⌋ of a declivity closing at x.
-    nz4: DFF<Bit>,
-    up4: DFF<Bit>,
-    char4: DFF<Bit>,
+    nz4: ResetDff<Bit>,
+    up4: ResetDff<Bit>,
+    char4: ResetDff<Bit>,
     /// `I + ⌊d_t⌋` of the pixels at taps 3 and 4, and of the declivity's
     /// start level.
-    at_thr3: DFF<Bits<CMP_BITS>>,
-    at_thr4: DFF<Bits<CMP_BITS>>,
-    run_thr: DFF<Bits<CMP_BITS>>,
+    at_thr3: ResetDff<Bits<CMP_BITS>>,
+    at_thr4: ResetDff<Bits<CMP_BITS>>,
+    run_thr: ResetDff<Bits<CMP_BITS>>,
     // The declivity under way.
-    seen: DFF<Bit>,
-    rising: DFF<Bit>,
-    start: DFF<Bits<X_BITS>>,
-    start_level: DFF<Bits<PIXEL_BITS>>,
-    left0: DFF<Bits<PIXEL_BITS>>,
-    left1: DFF<Bits<PIXEL_BITS>>,
-    left2: DFF<Bits<PIXEL_BITS>>,
-    s0: DFF<Bits<S0_BITS>>,
-    s1: DFF<Bits<S1_BITS>>,
+    seen: ResetDff<Bit>,
+    rising: ResetDff<Bit>,
+    start: ResetDff<Bits<X_BITS>>,
+    start_level: ResetDff<Bits<PIXEL_BITS>>,
+    left0: ResetDff<Bits<PIXEL_BITS>>,
+    left1: ResetDff<Bits<PIXEL_BITS>>,
+    left2: ResetDff<Bits<PIXEL_BITS>>,
+    s0: ResetDff<Bits<S0_BITS>>,
+    s1: ResetDff<Bits<S1_BITS>>,
     /// `x_{i+1}`: one past the last non-zero gradient so far.
-    end_reg: DFF<Bits<X_BITS>>,
+    end_reg: ResetDff<Bits<X_BITS>>,
     /// The gradients at x - 1 and x - 2 updated `end_reg` (so `x_{i+1}` is
     /// x or x - 1).
-    upd1: DFF<Bit>,
-    upd2: DFF<Bit>,
+    upd1: ResetDff<Bit>,
+    upd2: ResetDff<Bit>,
     // The line.
-    count: DFF<Bits<COUNT_BITS>>,
-    full: DFF<Bit>,
-    mk_pending: DFF<Bit>,
-    mk_count: DFF<Bits<COUNT_BITS>>,
-    mk_full: DFF<Bit>,
-    mk_wide: DFF<Bit>,
-    mk_sof: DFF<Bit>,
-    mk_dt: DFF<Bits<DT_BITS>>,
+    count: ResetDff<Bits<COUNT_BITS>>,
+    full: ResetDff<Bit>,
+    mk_pending: ResetDff<Bit>,
+    mk_count: ResetDff<Bits<COUNT_BITS>>,
+    mk_full: ResetDff<Bit>,
+    mk_wide: ResetDff<Bit>,
+    mk_sof: ResetDff<Bit>,
+    mk_dt: ResetDff<Bits<DT_BITS>>,
     // The item register.
-    o_valid: DFF<Bit>,
-    o_dividend: DFF<Bits<DIVIDEND_BITS>>,
-    o_divisor: DFF<Bits<S0_BITS>>,
-    o_tag0: DFF<Bits<32>>,
-    o_tag1: DFF<Bits<32>>,
-    o_tag2: DFF<Bits<32>>,
-    o_tag3: DFF<Bits<32>>,
+    o_valid: ResetDff<Bit>,
+    o_dividend: ResetDff<Bits<DIVIDEND_BITS>>,
+    o_divisor: ResetDff<Bits<S0_BITS>>,
+    o_tag0: ResetDff<Bits<32>>,
+    o_tag1: ResetDff<Bits<32>>,
+    o_tag2: ResetDff<Bits<32>>,
+    o_tag3: ResetDff<Bits<32>>,
     // Combinational values of the centre.
     gabs: Signal<Local, Bits<MUL_OPERAND_BITS>>,
     odd_x: Signal<Local, Bits<MUL_OPERAND_BITS>>,
@@ -185,6 +188,7 @@ impl Default for DeclivityTracker {
         let c8 = |v: usize| Constant::new((v as u64).into());
         Self {
             clock: Default::default(),
+            reset: Default::default(),
             in_valid: Default::default(),
             in_first: Default::default(),
             in_last: Default::default(),
@@ -283,11 +287,51 @@ impl Logic for DeclivityTracker {
     #[hdl_gen]
     fn update(&mut self) {
         self.window.clock.next = self.clock.val();
+        self.window.reset.next = self.reset.val();
         dff_setup!(
             self, clock, g2, g3, g4, gsq3, gsq4, w4, nz4, up4, char4, at_thr3, at_thr4, run_thr, seen, rising, start, start_level, left0, left1, left2, s0, s1,
             end_reg, upd1, upd2, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
             o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
         );
+        self.g2.reset.next = self.reset.val();
+        self.g3.reset.next = self.reset.val();
+        self.g4.reset.next = self.reset.val();
+        self.gsq3.reset.next = self.reset.val();
+        self.gsq4.reset.next = self.reset.val();
+        self.w4.reset.next = self.reset.val();
+        self.nz4.reset.next = self.reset.val();
+        self.up4.reset.next = self.reset.val();
+        self.char4.reset.next = self.reset.val();
+        self.at_thr3.reset.next = self.reset.val();
+        self.at_thr4.reset.next = self.reset.val();
+        self.run_thr.reset.next = self.reset.val();
+        self.seen.reset.next = self.reset.val();
+        self.rising.reset.next = self.reset.val();
+        self.start.reset.next = self.reset.val();
+        self.start_level.reset.next = self.reset.val();
+        self.left0.reset.next = self.reset.val();
+        self.left1.reset.next = self.reset.val();
+        self.left2.reset.next = self.reset.val();
+        self.s0.reset.next = self.reset.val();
+        self.s1.reset.next = self.reset.val();
+        self.end_reg.reset.next = self.reset.val();
+        self.upd1.reset.next = self.reset.val();
+        self.upd2.reset.next = self.reset.val();
+        self.count.reset.next = self.reset.val();
+        self.full.reset.next = self.reset.val();
+        self.mk_pending.reset.next = self.reset.val();
+        self.mk_count.reset.next = self.reset.val();
+        self.mk_full.reset.next = self.reset.val();
+        self.mk_wide.reset.next = self.reset.val();
+        self.mk_sof.reset.next = self.reset.val();
+        self.mk_dt.reset.next = self.reset.val();
+        self.o_valid.reset.next = self.reset.val();
+        self.o_dividend.reset.next = self.reset.val();
+        self.o_divisor.reset.next = self.reset.val();
+        self.o_tag0.reset.next = self.reset.val();
+        self.o_tag1.reset.next = self.reset.val();
+        self.o_tag2.reset.next = self.reset.val();
+        self.o_tag3.reset.next = self.reset.val();
         // ---- The window shifts every clock; bubbles travel as bubbles.
         self.window.in_valid.next = self.in_valid.val();
         self.window.in_first.next = self.in_first.val();

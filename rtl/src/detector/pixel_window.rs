@@ -52,6 +52,8 @@ struct Tap {
 #[derive(LogicBlock)]
 pub(crate) struct PixelWindow {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset: every tap to zero.
+    pub reset: Signal<In, Bit>,
     pub in_valid: Signal<In, Bit>,
     pub in_first: Signal<In, Bit>,
     pub in_last: Signal<In, Bit>,
@@ -88,6 +90,7 @@ impl Default for PixelWindow {
     fn default() -> Self {
         Self {
             clock: Default::default(),
+            reset: Default::default(),
             in_valid: Default::default(),
             in_first: Default::default(),
             in_last: Default::default(),
@@ -128,7 +131,7 @@ impl Logic for PixelWindow {
             return;
         }
         self._taps.copy_within(0..WINDOW_TAPS - 1, 1);
-        self._taps[0] = Tap {
+        self._taps[0] = if self.reset.val() { Tap::default() } else { Tap {
             valid: self.in_valid.val(),
             first: self.in_first.val(),
             last: self.in_last.val(),
@@ -138,7 +141,10 @@ impl Logic for PixelWindow {
             thr: self.in_thr.val().to_u64(),
             wide: self.in_wide.val(),
             sof: self.in_sof.val(),
-        };
+        } };
+        if self.reset.val() {
+            self._taps = [Tap::default(); WINDOW_TAPS];
+        }
         let t = &self._taps;
         self.pix0.next = t[0].pix.into();
         self.pix1.next = t[1].pix.into();
@@ -223,6 +229,7 @@ fn window_verilog() -> String {
         }
     }
     v += &format!("initial begin\n{init}end\n");
-    v += &format!("always @(posedge clock) begin\n{shift}end\n");
+    let clear = init.replace(" = ", " <= ");
+    v += &format!("always @(posedge clock) begin\n  if (reset) begin\n{clear}  end else begin\n{shift}  end\nend\n");
     v
 }

@@ -35,7 +35,8 @@
 //! (`in_valid` low) travels through as a bubble. The tags wait in four small
 //! memories written every clock and read [`POS_BITS`] clocks later
 //! (distributed RAM instead of `4 × 32 × POS_BITS` flip-flops). Every
-//! register starts at zero. The quotient must fit in
+//! register starts at zero; `reset` (synchronous, active high) empties the
+//! stages (the tag memories are a delay line and need none). The quotient must fit in
 //! [`POS_BITS`] bits, which holds for any position `X_i < W_MAX`: then
 //! `dividend >> POS_BITS < divisor`. A zero divisor gives an all-ones
 //! quotient (it never happens on a declivity, which has a non-zero gradient).
@@ -81,6 +82,8 @@ fn step(valid: bool, rem: u64, lq: u64, den: u64) -> Stage {
 #[derive(LogicBlock)]
 pub(crate) struct PositionDivider {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset: the stages emptied.
+    pub reset: Signal<In, Bit>,
     pub in_valid: Signal<In, Bit>,
     pub in_dividend: Signal<In, Bits<DIVIDEND_BITS>>,
     pub in_divisor: Signal<In, Bits<S0_BITS>>,
@@ -114,6 +117,7 @@ impl Default for PositionDivider {
     fn default() -> Self {
         Self {
             clock: Default::default(),
+            reset: Default::default(),
             in_valid: Default::default(),
             in_dividend: Default::default(),
             in_divisor: Default::default(),
@@ -165,9 +169,13 @@ impl Logic for PositionDivider {
         self._tags[self._wptr] =
             [self.in_tag0.val(), self.in_tag1.val(), self.in_tag2.val(), self.in_tag3.val()].map(|t| t.to_u64() as u32);
         self._wptr = (self._wptr + 1) % TAG_DEPTH;
+        if self.reset.val() {
+            self._stages = [Stage::default(); POS_BITS];
+        }
         let last = self._stages[POS_BITS - 1];
         self.out_valid.next = last.valid;
         self.out_quotient.next = last.lq.into();
+
         // The record's fields, out of the tag lanes (TagLayout).
         let field = |lane: u32, shift: usize, bits: usize| ((lane as u64) >> shift) & ((1u64 << bits) - 1);
         self.out_marker.next = field(read[0], TagLayout::MARKER_SHIFT, 1) == 1;
@@ -261,7 +269,11 @@ fn divider_verilog() -> String {
         v += &format!("    {name} = {bits}'d0;\n");
     }
     v += &format!("    out_valid = 1'b0; out_quotient = {q}'d0;\nend\n");
-    v += "always @(posedge clock) begin\n";
+    v += "always @(posedge clock) begin\n  if (reset) begin\n";
+    for k in 0..n - 1 {
+        v += &format!("    valid_{k} <= 1'b0; rem_{k} <= {s0}'d0; lq_{k} <= {q}'d0; den_{k} <= {s0}'d0;\n");
+    }
+    v += &format!("    out_valid <= 1'b0; out_quotient <= {q}'d0;\n  end else begin\n");
     for k in 0..n {
         let (valid, den) = if k == 0 { ("in_valid".to_string(), "in_divisor".to_string()) } else { (format!("valid_{}", k - 1), format!("den_{}", k - 1)) };
         let lq = if k == 0 { "lq_in".to_string() } else { format!("lq_{}", k - 1) };
@@ -273,6 +285,7 @@ fn divider_verilog() -> String {
             v += &format!("    out_valid <= {valid};\n    out_quotient <= {{{lq}[{}:0], fits_{k}}};\n", q - 2);
         }
     }
+    v += "  end\n";
     for (name, lane, shift, bits) in &fields {
         v += &format!("    {name} <= tags{lane}[rptr][{}:{shift}];\n", shift + bits - 1);
     }

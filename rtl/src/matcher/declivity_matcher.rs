@@ -65,6 +65,7 @@ use crate::matcher::record_input::RecordInput;
 use crate::matcher::record_memory::{RecordMemory, COPY_ADDR_BITS, WRITE_LAG};
 use crate::matcher::systolic_matcher::{SystolicMatcher, CHOICE_LAG};
 use crate::matcher::traceback::{traceback_cycles, Traceback};
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// The local-gain rule the matcher is generated for (golden's modes that
@@ -229,6 +230,8 @@ const ENG_SWEEP: u64 = 1;
 #[derive(LogicBlock)]
 pub struct DeclivityMatcher<const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub r_valid: Signal<In, Bit>,
     pub r_last: Signal<In, Bit>,
     pub r_pos: Signal<In, Bits<POS_BITS>>,
@@ -277,158 +280,158 @@ pub struct DeclivityMatcher<const N: usize> {
     // The input registers of the two streams.
     r_in: RecordInput,
     o_in: RecordInput,
-    r_sof_in: DFF<Bit>,
+    r_sof_in: ResetDff<Bit>,
     // Record memories, two banks each (bank bit on top of the index).
     r_mem: RecordMemory,
     o_mem: RecordMemory,
     // Loader: the line's bank, in the records (`lbank`) and in the
     // position copies (`lpbank` above it).
-    lbank: DFF<Bit>,
-    lpbank: DFF<Bit>,
-    r_count: DFF<Bits<COUNT_BITS>>,
-    o_count: DFF<Bits<COUNT_BITS>>,
-    r_done: DFF<Bit>,
-    o_done: DFF<Bit>,
-    r_dt_reg: DFF<Bits<DT_BITS>>,
-    o_dt_reg: DFF<Bits<DT_BITS>>,
-    r_flags_wide: DFF<Bit>,
-    r_flags_full: DFF<Bit>,
-    o_flags_wide: DFF<Bit>,
-    o_flags_full: DFF<Bit>,
-    r_sof_reg: DFF<Bit>,
+    lbank: ResetDff<Bit>,
+    lpbank: ResetDff<Bit>,
+    r_count: ResetDff<Bits<COUNT_BITS>>,
+    o_count: ResetDff<Bits<COUNT_BITS>>,
+    r_done: ResetDff<Bit>,
+    o_done: ResetDff<Bit>,
+    r_dt_reg: ResetDff<Bits<DT_BITS>>,
+    o_dt_reg: ResetDff<Bits<DT_BITS>>,
+    r_flags_wide: ResetDff<Bit>,
+    r_flags_full: ResetDff<Bit>,
+    o_flags_wide: ResetDff<Bit>,
+    o_flags_full: ResetDff<Bit>,
+    r_sof_reg: ResetDff<Bit>,
     // The waiting pair.
-    pend: DFF<Bit>,
-    pend_bank: DFF<Bit>,
-    pend_pbank: DFF<Bit>,
-    pend_n: DFF<Bits<COUNT_BITS>>,
-    pend_m: DFF<Bits<COUNT_BITS>>,
-    pend_dt_sum: DFF<Bits<DT_SUM_BITS>>,
-    pend_wide: DFF<Bit>,
-    pend_full: DFF<Bit>,
-    pend_sof: DFF<Bit>,
+    pend: ResetDff<Bit>,
+    pend_bank: ResetDff<Bit>,
+    pend_pbank: ResetDff<Bit>,
+    pend_n: ResetDff<Bits<COUNT_BITS>>,
+    pend_m: ResetDff<Bits<COUNT_BITS>>,
+    pend_dt_sum: ResetDff<Bits<DT_SUM_BITS>>,
+    pend_wide: ResetDff<Bit>,
+    pend_full: ResetDff<Bit>,
+    pend_sof: ResetDff<Bit>,
     // Engine.
-    eng: DFF<Bits<2>>,
-    ebank: DFF<Bit>,
-    epbank: DFF<Bit>,
+    eng: ResetDff<Bits<2>>,
+    ebank: ResetDff<Bit>,
+    epbank: ResetDff<Bit>,
     // The traceback: busy from its start to its marker, with its line's
     // counts, banks and flags; a swept line waiting for it (`tq`).
     // (Busy is `tb_begun ^ tb_ended`: each flips on its own event, so that
     // no register's input depends on both the traceback's marker and the
     // logic that starts it; Verilator then sees no loop through the
     // traceback.)
-    tb_begun: DFF<Bit>,
-    tb_ended: DFF<Bit>,
-    t_n: DFF<Bits<COUNT_BITS>>,
-    t_m: DFF<Bits<COUNT_BITS>>,
-    t_bank: DFF<Bit>,
-    t_pbank: DFF<Bit>,
-    t_wide: DFF<Bit>,
-    t_full: DFF<Bit>,
-    t_sof: DFF<Bit>,
-    tq: DFF<Bit>,
-    tq_n: DFF<Bits<COUNT_BITS>>,
-    tq_m: DFF<Bits<COUNT_BITS>>,
+    tb_begun: ResetDff<Bit>,
+    tb_ended: ResetDff<Bit>,
+    t_n: ResetDff<Bits<COUNT_BITS>>,
+    t_m: ResetDff<Bits<COUNT_BITS>>,
+    t_bank: ResetDff<Bit>,
+    t_pbank: ResetDff<Bit>,
+    t_wide: ResetDff<Bit>,
+    t_full: ResetDff<Bit>,
+    t_sof: ResetDff<Bit>,
+    tq: ResetDff<Bit>,
+    tq_n: ResetDff<Bits<COUNT_BITS>>,
+    tq_m: ResetDff<Bits<COUNT_BITS>>,
     // The traceback's walk start (`n - 1`, `m - 1`, `n + m - 2`, `n` or
     // `m` zero) of the swept line and of the waiting one, in registers
     // (see `Traceback`'s ports).
-    e_wi0: DFF<Bits<INDEX_BITS>>,
-    e_wj0: DFF<Bits<INDEX_BITS>>,
-    e_diag0: DFF<Bits<DIAG_BITS>>,
-    e_empty: DFF<Bit>,
-    tq_wi0: DFF<Bits<INDEX_BITS>>,
-    tq_wj0: DFF<Bits<INDEX_BITS>>,
-    tq_diag0: DFF<Bits<DIAG_BITS>>,
-    tq_empty: DFF<Bit>,
-    tq_bank: DFF<Bit>,
-    tq_pbank: DFF<Bit>,
-    tq_wide: DFF<Bit>,
-    tq_full: DFF<Bit>,
-    tq_sof: DFF<Bit>,
+    e_wi0: ResetDff<Bits<INDEX_BITS>>,
+    e_wj0: ResetDff<Bits<INDEX_BITS>>,
+    e_diag0: ResetDff<Bits<DIAG_BITS>>,
+    e_empty: ResetDff<Bit>,
+    tq_wi0: ResetDff<Bits<INDEX_BITS>>,
+    tq_wj0: ResetDff<Bits<INDEX_BITS>>,
+    tq_diag0: ResetDff<Bits<DIAG_BITS>>,
+    tq_empty: ResetDff<Bit>,
+    tq_bank: ResetDff<Bit>,
+    tq_pbank: ResetDff<Bit>,
+    tq_wide: ResetDff<Bit>,
+    tq_full: ResetDff<Bit>,
+    tq_sof: ResetDff<Bit>,
     // The position copies' read addresses (the traceback's pairs).
-    p_addr_r: DFF<Bits<COPY_ADDR_BITS>>,
-    p_addr_o: DFF<Bits<COPY_ADDR_BITS>>,
-    en: DFF<Bits<COUNT_BITS>>,
-    em: DFF<Bits<COUNT_BITS>>,
-    sc: DFF<Bits<SWEEP_BITS>>,
-    sweep_end_m1: DFF<Bits<SWEEP_BITS>>,
-    sweep_done: DFF<Bit>,
+    p_addr_r: ResetDff<Bits<COPY_ADDR_BITS>>,
+    p_addr_o: ResetDff<Bits<COPY_ADDR_BITS>>,
+    en: ResetDff<Bits<COUNT_BITS>>,
+    em: ResetDff<Bits<COUNT_BITS>>,
+    sc: ResetDff<Bits<SWEEP_BITS>>,
+    sweep_end_m1: ResetDff<Bits<SWEEP_BITS>>,
+    sweep_done: ResetDff<Bit>,
     // `take`, registered: it loads the taken pair's d_t sum and flags a
     // clock later, near where they are used (the pair's `pend_*` registers
     // hold until the clock after), so that `take` stays near the engine.
-    take_q: DFF<Bit>,
+    take_q: ResetDff<Bit>,
     // The taken pair's d_t sum (loaded on `take_q`) and the line's
     // constants computed from it every clock.
-    e_dt_sum: DFF<Bits<DT_SUM_BITS>>,
-    below2_reg: DFF<Bits<DIST_BITS>>,
-    dm1_reg: DFF<Bits<{ POS_BITS + 1 }>>,
-    f1_reg: DFF<Bits<GAIN_BITS>>,
-    f3_reg: DFF<Bits<GAIN_BITS>>,
-    e_wide: DFF<Bit>,
-    e_full: DFF<Bit>,
-    e_sof: DFF<Bit>,
-    e_fold: DFF<Bit>,
+    e_dt_sum: ResetDff<Bits<DT_SUM_BITS>>,
+    below2_reg: ResetDff<Bits<DIST_BITS>>,
+    dm1_reg: ResetDff<Bits<{ POS_BITS + 1 }>>,
+    f1_reg: ResetDff<Bits<GAIN_BITS>>,
+    f3_reg: ResetDff<Bits<GAIN_BITS>>,
+    e_wide: ResetDff<Bit>,
+    e_full: ResetDff<Bit>,
+    e_sof: ResetDff<Bit>,
+    e_fold: ResetDff<Bit>,
     // The taken line's rows have four clocks per node (more than 2·N
     // reference declivities), and its last phase.
-    e_p4: DFF<Bit>,
-    e_klast: DFF<Bits<PHASE_BITS>>,
-    ld_valid_d: DFF<Bit>,
-    ld_valid_e: DFF<Bit>,
-    ld_index_e: DFF<Bits<INDEX_BITS>>,
-    c_valid_e2: DFF<Bit>,
-    c_phase_e2: DFF<Bits<PHASE_BITS>>,
-    r_addr_q: DFF<Bits<DIAG_BITS>>,
-    o_addr_q: DFF<Bits<DIAG_BITS>>,
-    q2_valid: DFF<Bit>,
-    q2_last: DFF<Bit>,
-    q2_i: DFF<Bits<INDEX_BITS>>,
-    q2_j: DFF<Bits<INDEX_BITS>>,
-    q2_count: DFF<Bits<COUNT_BITS>>,
-    ld_index_d: DFF<Bits<INDEX_BITS>>,
-    c_valid_d: DFF<Bit>,
-    c_phase_d: DFF<Bits<PHASE_BITS>>,
+    e_p4: ResetDff<Bit>,
+    e_klast: ResetDff<Bits<PHASE_BITS>>,
+    ld_valid_d: ResetDff<Bit>,
+    ld_valid_e: ResetDff<Bit>,
+    ld_index_e: ResetDff<Bits<INDEX_BITS>>,
+    c_valid_e2: ResetDff<Bit>,
+    c_phase_e2: ResetDff<Bits<PHASE_BITS>>,
+    r_addr_q: ResetDff<Bits<DIAG_BITS>>,
+    o_addr_q: ResetDff<Bits<DIAG_BITS>>,
+    q2_valid: ResetDff<Bit>,
+    q2_last: ResetDff<Bit>,
+    q2_i: ResetDff<Bits<INDEX_BITS>>,
+    q2_j: ResetDff<Bits<INDEX_BITS>>,
+    q2_count: ResetDff<Bits<COUNT_BITS>>,
+    ld_index_d: ResetDff<Bits<INDEX_BITS>>,
+    c_valid_d: ResetDff<Bit>,
+    c_phase_d: ResetDff<Bits<PHASE_BITS>>,
     // The record memories' outputs (already registered inside the block
     // RAMs) registered again into the registers that drive the broadcast
     // and the array; the control bits alongside.
-    c_valid_e: DFF<Bit>,
-    ld_first: DFF<Bit>,
-    ld_phase: DFF<Bits<PHASE_BITS>>,
-    c_phase_e: DFF<Bits<PHASE_BITS>>,
-    ld_pos_q: DFF<Bits<POS_BITS>>,
-    ld_levs_q: DFF<Bits<LEVELS_BITS>>,
-    ld_rising_q: DFF<Bit>,
-    c_valid_q: DFF<Bit>,
-    c_phase_q: DFF<Bits<PHASE_BITS>>,
-    c_pos_q: DFF<Bits<POS_BITS>>,
-    c_levs_q: DFF<Bits<LEVELS_BITS>>,
-    c_rising_q: DFF<Bit>,
+    c_valid_e: ResetDff<Bit>,
+    ld_first: ResetDff<Bit>,
+    ld_phase: ResetDff<Bits<PHASE_BITS>>,
+    c_phase_e: ResetDff<Bits<PHASE_BITS>>,
+    ld_pos_q: ResetDff<Bits<POS_BITS>>,
+    ld_levs_q: ResetDff<Bits<LEVELS_BITS>>,
+    ld_rising_q: ResetDff<Bit>,
+    c_valid_q: ResetDff<Bit>,
+    c_phase_q: ResetDff<Bits<PHASE_BITS>>,
+    c_pos_q: ResetDff<Bits<POS_BITS>>,
+    c_levs_q: ResetDff<Bits<LEVELS_BITS>>,
+    c_rising_q: ResetDff<Bit>,
     // Output pipeline: RAM read, then the output registers.
-    q_valid: DFF<Bit>,
-    q_last: DFF<Bit>,
-    q_i: DFF<Bits<INDEX_BITS>>,
-    q_j: DFF<Bits<INDEX_BITS>>,
-    q_count: DFF<Bits<COUNT_BITS>>,
-    w_valid: DFF<Bit>,
-    w_last: DFF<Bit>,
-    w_i: DFF<Bits<INDEX_BITS>>,
-    w_j: DFF<Bits<INDEX_BITS>>,
-    w_count: DFF<Bits<COUNT_BITS>>,
-    w_n: DFF<Bits<COUNT_BITS>>,
-    w_m: DFF<Bits<COUNT_BITS>>,
-    w_wide: DFF<Bit>,
-    w_full: DFF<Bit>,
-    w_sof: DFF<Bit>,
-    out_valid: DFF<Bit>,
-    out_last: DFF<Bit>,
-    out_ref: DFF<Bits<INDEX_BITS>>,
-    out_other: DFF<Bits<INDEX_BITS>>,
-    out_x_ref: DFF<Bits<POS_BITS>>,
-    out_disp: DFF<Bits<POS_BITS>>,
-    out_count: DFF<Bits<COUNT_BITS>>,
-    out_n: DFF<Bits<COUNT_BITS>>,
-    out_m: DFF<Bits<COUNT_BITS>>,
-    out_wide: DFF<Bit>,
-    out_full: DFF<Bit>,
-    out_sof: DFF<Bit>,
+    q_valid: ResetDff<Bit>,
+    q_last: ResetDff<Bit>,
+    q_i: ResetDff<Bits<INDEX_BITS>>,
+    q_j: ResetDff<Bits<INDEX_BITS>>,
+    q_count: ResetDff<Bits<COUNT_BITS>>,
+    w_valid: ResetDff<Bit>,
+    w_last: ResetDff<Bit>,
+    w_i: ResetDff<Bits<INDEX_BITS>>,
+    w_j: ResetDff<Bits<INDEX_BITS>>,
+    w_count: ResetDff<Bits<COUNT_BITS>>,
+    w_n: ResetDff<Bits<COUNT_BITS>>,
+    w_m: ResetDff<Bits<COUNT_BITS>>,
+    w_wide: ResetDff<Bit>,
+    w_full: ResetDff<Bit>,
+    w_sof: ResetDff<Bit>,
+    out_valid: ResetDff<Bit>,
+    out_last: ResetDff<Bit>,
+    out_ref: ResetDff<Bits<INDEX_BITS>>,
+    out_other: ResetDff<Bits<INDEX_BITS>>,
+    out_x_ref: ResetDff<Bits<POS_BITS>>,
+    out_disp: ResetDff<Bits<POS_BITS>>,
+    out_count: ResetDff<Bits<COUNT_BITS>>,
+    out_n: ResetDff<Bits<COUNT_BITS>>,
+    out_m: ResetDff<Bits<COUNT_BITS>>,
+    out_wide: ResetDff<Bit>,
+    out_full: ResetDff<Bit>,
+    out_sof: ResetDff<Bit>,
     // Combinational.
     r_take: Signal<Local, Bit>,
     o_take: Signal<Local, Bit>,
@@ -449,22 +452,22 @@ pub struct DeclivityMatcher<const N: usize> {
     // from the count of a clock ago (final by the handoff): four phases or
     // two, the last phase, and `sweep_end_m1` less the other side's part
     // (see `sweep_cycles`).
-    n_p4: DFF<Bit>,
-    n_klast: DFF<Bits<PHASE_BITS>>,
-    n_part: DFF<Bits<SWEEP_BITS>>,
+    n_p4: ResetDff<Bit>,
+    n_klast: ResetDff<Bits<PHASE_BITS>>,
+    n_part: ResetDff<Bits<SWEEP_BITS>>,
     // n - 1 (the count before the last record: the loader keeps it beside
     // the count, so that no subtraction is on the way to `n_part`).
-    r_count_m1: DFF<Bits<COUNT_BITS>>,
+    r_count_m1: ResetDff<Bits<COUNT_BITS>>,
     n_kl: Signal<Local, Bits<PHASE_BITS>>,
     n_c: Signal<Local, Bits<INDEX_BITS>>,
     n_own: Signal<Local, Bits<SWEEP_BITS>>,
     n_before: Signal<Local, Bits<SWEEP_BITS>>,
     m_part: Signal<Local, Bits<SWEEP_BITS>>,
     // The waiting pair's sweep: its last clock less one, its phases.
-    pend_end_m1: DFF<Bits<SWEEP_BITS>>,
-    pend_fold: DFF<Bit>,
-    pend_p4: DFF<Bit>,
-    pend_klast: DFF<Bits<PHASE_BITS>>,
+    pend_end_m1: ResetDff<Bits<SWEEP_BITS>>,
+    pend_fold: ResetDff<Bit>,
+    pend_p4: ResetDff<Bit>,
+    pend_klast: ResetDff<Bits<PHASE_BITS>>,
     sc_phase: Signal<Local, Bits<PHASE_BITS>>,
     sc_base: Signal<Local, Bits<SWEEP_BITS>>,
     sc_off: Signal<Local, Bits<SWEEP_BITS>>,
@@ -484,11 +487,11 @@ pub struct DeclivityMatcher<const N: usize> {
     in4_2: Signal<Local, Bit>,
     in4_3: Signal<Local, Bit>,
     in_window: Signal<Local, Bit>,
-    lim1: DFF<Bits<SWEEP_BITS>>,
-    lim2: DFF<Bits<SWEEP_BITS>>,
-    lim3: DFF<Bits<SWEEP_BITS>>,
-    cw_diag_q: DFF<Bits<DIAG_BITS>>,
-    cw_phase_q: DFF<Bits<PHASE_BITS>>,
+    lim1: ResetDff<Bits<SWEEP_BITS>>,
+    lim2: ResetDff<Bits<SWEEP_BITS>>,
+    lim3: ResetDff<Bits<SWEEP_BITS>>,
+    cw_diag_q: ResetDff<Bits<DIAG_BITS>>,
+    cw_phase_q: ResetDff<Bits<PHASE_BITS>>,
     tw_phase: Signal<Local, Bits<PHASE_BITS>>,
     tw_diag: Signal<Local, Bits<SWEEP_BITS>>,
     ld_levs: Signal<Local, Bits<LEVELS_BITS>>,
@@ -546,6 +549,7 @@ impl<const N: usize> DeclivityMatcher<N> {
     pub fn new(rule: GainRule) -> Self {
         DeclivityMatcher {
             clock: Default::default(),
+            reset: Default::default(),
             r_valid: Default::default(),
             r_last: Default::default(),
             r_pos: Default::default(),
@@ -834,9 +838,13 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
     #[hdl_gen]
     fn update(&mut self) {
         self.array.clock.next = self.clock.val();
+        self.array.reset.next = self.reset.val();
         self.traceback.clock.next = self.clock.val();
+        self.traceback.reset.next = self.reset.val();
         self.r_mem.clock.next = self.clock.val();
+        self.r_mem.reset.next = self.reset.val();
         self.o_mem.clock.next = self.clock.val();
+        self.o_mem.reset.next = self.reset.val();
         self.r_mem.relative.next = self.relative.val();
         self.o_mem.relative.next = self.relative.val();
         dff_setup!(
@@ -847,6 +855,143 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
             out_sof
         );
+        self.r_sof_in.reset.next = self.reset.val();
+        self.lbank.reset.next = self.reset.val();
+        self.lpbank.reset.next = self.reset.val();
+        self.r_count.reset.next = self.reset.val();
+        self.o_count.reset.next = self.reset.val();
+        self.r_done.reset.next = self.reset.val();
+        self.o_done.reset.next = self.reset.val();
+        self.r_dt_reg.reset.next = self.reset.val();
+        self.o_dt_reg.reset.next = self.reset.val();
+        self.r_flags_wide.reset.next = self.reset.val();
+        self.r_flags_full.reset.next = self.reset.val();
+        self.o_flags_wide.reset.next = self.reset.val();
+        self.o_flags_full.reset.next = self.reset.val();
+        self.r_sof_reg.reset.next = self.reset.val();
+        self.pend.reset.next = self.reset.val();
+        self.pend_bank.reset.next = self.reset.val();
+        self.pend_pbank.reset.next = self.reset.val();
+        self.pend_n.reset.next = self.reset.val();
+        self.pend_m.reset.next = self.reset.val();
+        self.pend_dt_sum.reset.next = self.reset.val();
+        self.pend_wide.reset.next = self.reset.val();
+        self.pend_full.reset.next = self.reset.val();
+        self.pend_sof.reset.next = self.reset.val();
+        self.eng.reset.next = self.reset.val();
+        self.ebank.reset.next = self.reset.val();
+        self.epbank.reset.next = self.reset.val();
+        self.tb_begun.reset.next = self.reset.val();
+        self.tb_ended.reset.next = self.reset.val();
+        self.t_n.reset.next = self.reset.val();
+        self.t_m.reset.next = self.reset.val();
+        self.t_bank.reset.next = self.reset.val();
+        self.t_pbank.reset.next = self.reset.val();
+        self.t_wide.reset.next = self.reset.val();
+        self.t_full.reset.next = self.reset.val();
+        self.t_sof.reset.next = self.reset.val();
+        self.tq.reset.next = self.reset.val();
+        self.tq_n.reset.next = self.reset.val();
+        self.tq_m.reset.next = self.reset.val();
+        self.e_wi0.reset.next = self.reset.val();
+        self.e_wj0.reset.next = self.reset.val();
+        self.e_diag0.reset.next = self.reset.val();
+        self.e_empty.reset.next = self.reset.val();
+        self.tq_wi0.reset.next = self.reset.val();
+        self.tq_wj0.reset.next = self.reset.val();
+        self.tq_diag0.reset.next = self.reset.val();
+        self.tq_empty.reset.next = self.reset.val();
+        self.tq_bank.reset.next = self.reset.val();
+        self.tq_pbank.reset.next = self.reset.val();
+        self.tq_wide.reset.next = self.reset.val();
+        self.tq_full.reset.next = self.reset.val();
+        self.tq_sof.reset.next = self.reset.val();
+        self.p_addr_r.reset.next = self.reset.val();
+        self.p_addr_o.reset.next = self.reset.val();
+        self.en.reset.next = self.reset.val();
+        self.em.reset.next = self.reset.val();
+        self.sc.reset.next = self.reset.val();
+        self.sweep_end_m1.reset.next = self.reset.val();
+        self.sweep_done.reset.next = self.reset.val();
+        self.lim1.reset.next = self.reset.val();
+        self.lim2.reset.next = self.reset.val();
+        self.lim3.reset.next = self.reset.val();
+        self.cw_diag_q.reset.next = self.reset.val();
+        self.cw_phase_q.reset.next = self.reset.val();
+        self.n_p4.reset.next = self.reset.val();
+        self.n_klast.reset.next = self.reset.val();
+        self.n_part.reset.next = self.reset.val();
+        self.r_count_m1.reset.next = self.reset.val();
+        self.pend_end_m1.reset.next = self.reset.val();
+        self.pend_fold.reset.next = self.reset.val();
+        self.pend_p4.reset.next = self.reset.val();
+        self.pend_klast.reset.next = self.reset.val();
+        self.take_q.reset.next = self.reset.val();
+        self.e_dt_sum.reset.next = self.reset.val();
+        self.below2_reg.reset.next = self.reset.val();
+        self.dm1_reg.reset.next = self.reset.val();
+        self.f1_reg.reset.next = self.reset.val();
+        self.f3_reg.reset.next = self.reset.val();
+        self.e_wide.reset.next = self.reset.val();
+        self.e_full.reset.next = self.reset.val();
+        self.e_sof.reset.next = self.reset.val();
+        self.e_fold.reset.next = self.reset.val();
+        self.e_p4.reset.next = self.reset.val();
+        self.e_klast.reset.next = self.reset.val();
+        self.ld_valid_d.reset.next = self.reset.val();
+        self.ld_index_d.reset.next = self.reset.val();
+        self.c_valid_d.reset.next = self.reset.val();
+        self.c_phase_d.reset.next = self.reset.val();
+        self.c_valid_e.reset.next = self.reset.val();
+        self.ld_valid_e.reset.next = self.reset.val();
+        self.ld_index_e.reset.next = self.reset.val();
+        self.c_valid_e2.reset.next = self.reset.val();
+        self.c_phase_e2.reset.next = self.reset.val();
+        self.r_addr_q.reset.next = self.reset.val();
+        self.o_addr_q.reset.next = self.reset.val();
+        self.q2_valid.reset.next = self.reset.val();
+        self.q2_last.reset.next = self.reset.val();
+        self.q2_i.reset.next = self.reset.val();
+        self.q2_j.reset.next = self.reset.val();
+        self.q2_count.reset.next = self.reset.val();
+        self.ld_first.reset.next = self.reset.val();
+        self.ld_phase.reset.next = self.reset.val();
+        self.c_phase_e.reset.next = self.reset.val();
+        self.ld_pos_q.reset.next = self.reset.val();
+        self.ld_levs_q.reset.next = self.reset.val();
+        self.ld_rising_q.reset.next = self.reset.val();
+        self.c_valid_q.reset.next = self.reset.val();
+        self.c_phase_q.reset.next = self.reset.val();
+        self.c_pos_q.reset.next = self.reset.val();
+        self.c_levs_q.reset.next = self.reset.val();
+        self.c_rising_q.reset.next = self.reset.val();
+        self.q_valid.reset.next = self.reset.val();
+        self.q_last.reset.next = self.reset.val();
+        self.q_i.reset.next = self.reset.val();
+        self.q_j.reset.next = self.reset.val();
+        self.q_count.reset.next = self.reset.val();
+        self.w_valid.reset.next = self.reset.val();
+        self.w_last.reset.next = self.reset.val();
+        self.w_i.reset.next = self.reset.val();
+        self.w_j.reset.next = self.reset.val();
+        self.w_count.reset.next = self.reset.val();
+        self.w_n.reset.next = self.reset.val();
+        self.w_m.reset.next = self.reset.val();
+        self.w_wide.reset.next = self.reset.val();
+        self.w_full.reset.next = self.reset.val();
+        self.w_sof.reset.next = self.reset.val();
+        self.out_valid.reset.next = self.reset.val();
+        self.out_last.reset.next = self.reset.val();
+        self.out_ref.reset.next = self.reset.val();
+        self.out_other.reset.next = self.reset.val();
+        self.out_x_ref.reset.next = self.reset.val();
+        self.out_disp.reset.next = self.reset.val();
+        self.out_count.reset.next = self.reset.val();
+        self.out_n.reset.next = self.reset.val();
+        self.out_m.reset.next = self.reset.val();
+        self.out_wide.reset.next = self.reset.val();
+        self.out_full.reset.next = self.reset.val();
+        self.out_sof.reset.next = self.reset.val();
 
         // ---- Loader: a side takes records until its marker, while no
         // complete pair waits, and not on the clock after its marker (which
@@ -856,6 +1001,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.r_ready.next = !self.r_done.q.val() & !self.pend.q.val() & !(self.r_in.q_valid.val() & self.r_in.q_last.val());
         self.o_ready.next = !self.o_done.q.val() & !self.pend.q.val() & !(self.o_in.q_valid.val() & self.o_in.q_last.val());
         self.r_in.clock.next = self.clock.val();
+        self.r_in.reset.next = self.reset.val();
         self.r_in.ready.next = self.r_ready.val();
         self.r_in.valid.next = self.r_valid.val();
         self.r_in.last.next = self.r_last.val();
@@ -873,6 +1019,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.r_sof_in.d.next = self.r_sof.val();
 
         self.o_in.clock.next = self.clock.val();
+        self.o_in.reset.next = self.reset.val();
         self.o_in.ready.next = self.o_ready.val();
         self.o_in.valid.next = self.o_valid.val();
         self.o_in.last.next = self.o_last.val();

@@ -81,6 +81,7 @@
 
 use crate::primitives::lut_ram::LutRam;
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 // `-g - P` (stage E's test of `G > 0`) lies between `-2^(GAIN_BITS-1) -
@@ -111,6 +112,8 @@ const fn skew(index: usize) -> usize {
 #[derive(LogicBlock)]
 pub struct GainCell {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub ld_en: Signal<In, Bit>,
     pub ld_phase: Signal<In, Bits<PHASE_BITS>>,
     pub ld_pos: Signal<In, Bits<POS_BITS>>,
@@ -165,80 +168,80 @@ pub struct GainCell {
     rows_levs: LutRam<LEVELS_BITS>,
     // The reference of the column arriving next clock (registered: the
     // read address, the column's phase, is a register of the array).
-    sel_pos: DFF<Bits<POS_BITS>>,
-    sel_levs: DFF<Bits<LEVELS_BITS>>,
-    sel_rising: DFF<Bit>,
+    sel_pos: ResetDff<Bits<POS_BITS>>,
+    sel_levs: ResetDff<Bits<LEVELS_BITS>>,
+    sel_rising: ResetDff<Bit>,
     // Stage A: search area, polarity, level differences.
-    a_valid: DFF<Bit>,
-    a_ph0: DFF<Bit>,
-    a_diff: DFF<Bits<{ POS_BITS + 1 }>>,
-    a_same: DFF<Bit>,
-    a_e0: DFF<Bits<LEVEL_BITS>>,
-    a_e1: DFF<Bits<LEVEL_BITS>>,
-    a_e2: DFF<Bits<LEVEL_BITS>>,
-    a_e3: DFF<Bits<LEVEL_BITS>>,
-    a_e4: DFF<Bits<LEVEL_BITS>>,
-    a_e5: DFF<Bits<LEVEL_BITS>>,
-    a_s0: DFF<Bits<1>>,
-    a_s1: DFF<Bits<1>>,
-    a_s3: DFF<Bits<1>>,
-    a_s4: DFF<Bits<1>>,
+    a_valid: ResetDff<Bit>,
+    a_ph0: ResetDff<Bit>,
+    a_diff: ResetDff<Bits<{ POS_BITS + 1 }>>,
+    a_same: ResetDff<Bit>,
+    a_e0: ResetDff<Bits<LEVEL_BITS>>,
+    a_e1: ResetDff<Bits<LEVEL_BITS>>,
+    a_e2: ResetDff<Bits<LEVEL_BITS>>,
+    a_e3: ResetDff<Bits<LEVEL_BITS>>,
+    a_e4: ResetDff<Bits<LEVEL_BITS>>,
+    a_e5: ResetDff<Bits<LEVEL_BITS>>,
+    a_s0: ResetDff<Bits<1>>,
+    a_s1: ResetDff<Bits<1>>,
+    a_s3: ResetDff<Bits<1>>,
+    a_s4: ResetDff<Bits<1>>,
     // Stage B: doubled distances.
-    b_valid: DFF<Bit>,
-    b_ph0: DFF<Bit>,
-    b_ok: DFF<Bit>,
-    b_l2: DFF<Bits<DIST_BITS>>,
-    b_r2: DFF<Bits<DIST_BITS>>,
+    b_valid: ResetDff<Bit>,
+    b_ph0: ResetDff<Bit>,
+    b_ok: ResetDff<Bit>,
+    b_l2: ResetDff<Bits<DIST_BITS>>,
+    b_r2: ResetDff<Bits<DIST_BITS>>,
     // Stage C: eq. 7's tests.
-    c2_valid: DFF<Bit>,
-    c2_ph0: DFF<Bit>,
-    c2_node: DFF<Bit>,
-    c2_both: DFF<Bit>,
-    c2_keep_l: DFF<Bit>,
-    c2_keep_r: DFF<Bit>,
-    c2_l: DFF<Bits<DIST_BITS>>,
-    c2_r: DFF<Bits<DIST_BITS>>,
+    c2_valid: ResetDff<Bit>,
+    c2_ph0: ResetDff<Bit>,
+    c2_node: ResetDff<Bit>,
+    c2_both: ResetDff<Bit>,
+    c2_keep_l: ResetDff<Bit>,
+    c2_keep_r: ResetDff<Bit>,
+    c2_l: ResetDff<Bits<DIST_BITS>>,
+    c2_r: ResetDff<Bits<DIST_BITS>>,
     // Stage S: the sum of the distances the gain subtracts.
-    s_valid: DFF<Bit>,
-    s_ph0: DFF<Bit>,
-    s_node: DFF<Bit>,
-    s_both: DFF<Bit>,
-    s_sum: DFF<Bits<DIST_SUM_BITS>>,
+    s_valid: ResetDff<Bit>,
+    s_ph0: ResetDff<Bit>,
+    s_node: ResetDff<Bit>,
+    s_both: ResetDff<Bit>,
+    s_sum: ResetDff<Bits<DIST_SUM_BITS>>,
     // Stage D: the local gain.
-    d_valid: DFF<Bit>,
-    d_ph0: DFF<Bit>,
-    d_node: DFF<Bit>,
-    d_g: DFF<Bits<GAIN_BITS>>,
+    d_valid: ResetDff<Bit>,
+    d_ph0: ResetDff<Bit>,
+    d_node: ResetDff<Bit>,
+    d_g: ResetDff<Bits<GAIN_BITS>>,
     // `-g`, one bit wider than a score (so that `-g - P` cannot overflow).
-    d_neg_g: DFF<Bits<{ SCORE_BITS + 1 }>>,
+    d_neg_g: ResetDff<Bits<{ SCORE_BITS + 1 }>>,
     // Stage E: G = g + P(i-1, j-1).
-    e_valid: DFF<Bit>,
-    e_ph0: DFF<Bit>,
-    e_node: DFF<Bit>,
-    e_score: DFF<Bits<SCORE_BITS>>,
+    e_valid: ResetDff<Bit>,
+    e_ph0: ResetDff<Bit>,
+    e_node: ResetDff<Bit>,
+    e_score: ResetDff<Bits<SCORE_BITS>>,
     // `G > 0`, decided beside the sum (the sign of `-g - P(i-1, j-1)`).
-    e_pos: DFF<Bit>,
+    e_pos: ResetDff<Bit>,
     // Stage F: start or node.
-    f_valid: DFF<Bit>,
-    f_ph0: DFF<Bit>,
-    f_node: DFF<Bit>,
-    f_best: DFF<Bits<PATH_BITS>>,
+    f_valid: ResetDff<Bit>,
+    f_ph0: ResetDff<Bit>,
+    f_node: ResetDff<Bit>,
+    f_best: ResetDff<Bits<PATH_BITS>>,
     // Stage G: the node above.
-    g_valid: DFF<Bit>,
-    g_best: DFF<Bits<PATH_BITS>>,
-    g_node: DFF<Bit>,
-    g_up: DFF<Bit>,
+    g_valid: ResetDff<Bit>,
+    g_best: ResetDff<Bits<PATH_BITS>>,
+    g_node: ResetDff<Bit>,
+    g_up: ResetDff<Bit>,
     // Stage H: the node to the left; P and the choice.
-    p_reg: DFF<Bits<PATH_BITS>>,
-    p_d1: DFF<Bits<PATH_BITS>>,
-    p_d2: DFF<Bits<PATH_BITS>>,
-    p_d3: DFF<Bits<PATH_BITS>>,
-    up_d1: DFF<Bits<PATH_BITS>>,
-    up_d2: DFF<Bits<PATH_BITS>>,
-    choice_reg: DFF<Bits<2>>,
+    p_reg: ResetDff<Bits<PATH_BITS>>,
+    p_d1: ResetDff<Bits<PATH_BITS>>,
+    p_d2: ResetDff<Bits<PATH_BITS>>,
+    p_d3: ResetDff<Bits<PATH_BITS>>,
+    up_d1: ResetDff<Bits<PATH_BITS>>,
+    up_d2: ResetDff<Bits<PATH_BITS>>,
+    choice_reg: ResetDff<Bits<2>>,
     // The four-phase skew: the choices of the last `2·index` clocks, the
     // newest in the low bits of word 0.
-    skew_q: [DFF<Bits<CHOICE_WORD_BITS>>; SKEW_WORDS],
+    skew_q: [ResetDff<Bits<CHOICE_WORD_BITS>>; SKEW_WORDS],
     // Combinational.
     diff_pos: Signal<Local, Bits<{ POS_BITS + 1 }>>,
     dr0: Signal<Local, Bits<{ LEVEL_BITS + 1 }>>,
@@ -306,6 +309,7 @@ impl GainCell {
         let entry = skew(index).max(1) - 1;
         GainCell {
             clock: Default::default(),
+            reset: Default::default(),
             ld_en: Default::default(),
             ld_phase: Default::default(),
             ld_pos: Default::default(),
@@ -481,8 +485,69 @@ impl Logic for GainCell {
         dff_setup!(
             self, clock, sel_pos, sel_levs, sel_rising, a_valid, a_ph0, a_diff, a_same, a_e0, a_e1, a_e2, a_e3, a_e4, a_e5, a_s0, a_s1, a_s3, a_s4, b_valid, b_ph0, b_ok, b_l2, b_r2, c2_valid, c2_ph0, c2_node, c2_both, c2_keep_l, c2_keep_r, c2_l, c2_r, s_valid, s_ph0, s_node, s_both, s_sum, d_valid, d_ph0, d_node, d_g, d_neg_g, e_valid, e_ph0, e_node, e_score, e_pos, f_valid, f_ph0, f_node, f_best, g_valid, g_best, g_node, g_up, p_reg, p_d1, p_d2, p_d3, up_d1, up_d2, choice_reg
         );
+        self.sel_pos.reset.next = self.reset.val();
+        self.sel_levs.reset.next = self.reset.val();
+        self.sel_rising.reset.next = self.reset.val();
+        self.a_valid.reset.next = self.reset.val();
+        self.a_ph0.reset.next = self.reset.val();
+        self.a_diff.reset.next = self.reset.val();
+        self.a_same.reset.next = self.reset.val();
+        self.a_e0.reset.next = self.reset.val();
+        self.a_e1.reset.next = self.reset.val();
+        self.a_e2.reset.next = self.reset.val();
+        self.a_e3.reset.next = self.reset.val();
+        self.a_e4.reset.next = self.reset.val();
+        self.a_e5.reset.next = self.reset.val();
+        self.a_s0.reset.next = self.reset.val();
+        self.a_s1.reset.next = self.reset.val();
+        self.a_s3.reset.next = self.reset.val();
+        self.a_s4.reset.next = self.reset.val();
+        self.b_valid.reset.next = self.reset.val();
+        self.b_ph0.reset.next = self.reset.val();
+        self.b_ok.reset.next = self.reset.val();
+        self.b_l2.reset.next = self.reset.val();
+        self.b_r2.reset.next = self.reset.val();
+        self.c2_valid.reset.next = self.reset.val();
+        self.c2_ph0.reset.next = self.reset.val();
+        self.c2_node.reset.next = self.reset.val();
+        self.c2_both.reset.next = self.reset.val();
+        self.c2_keep_l.reset.next = self.reset.val();
+        self.c2_keep_r.reset.next = self.reset.val();
+        self.c2_l.reset.next = self.reset.val();
+        self.c2_r.reset.next = self.reset.val();
+        self.s_valid.reset.next = self.reset.val();
+        self.s_ph0.reset.next = self.reset.val();
+        self.s_node.reset.next = self.reset.val();
+        self.s_both.reset.next = self.reset.val();
+        self.s_sum.reset.next = self.reset.val();
+        self.d_valid.reset.next = self.reset.val();
+        self.d_ph0.reset.next = self.reset.val();
+        self.d_node.reset.next = self.reset.val();
+        self.d_g.reset.next = self.reset.val();
+        self.d_neg_g.reset.next = self.reset.val();
+        self.e_valid.reset.next = self.reset.val();
+        self.e_ph0.reset.next = self.reset.val();
+        self.e_node.reset.next = self.reset.val();
+        self.e_score.reset.next = self.reset.val();
+        self.e_pos.reset.next = self.reset.val();
+        self.f_valid.reset.next = self.reset.val();
+        self.f_ph0.reset.next = self.reset.val();
+        self.f_node.reset.next = self.reset.val();
+        self.f_best.reset.next = self.reset.val();
+        self.g_valid.reset.next = self.reset.val();
+        self.g_best.reset.next = self.reset.val();
+        self.g_node.reset.next = self.reset.val();
+        self.g_up.reset.next = self.reset.val();
+        self.p_reg.reset.next = self.reset.val();
+        self.p_d1.reset.next = self.reset.val();
+        self.p_d2.reset.next = self.reset.val();
+        self.p_d3.reset.next = self.reset.val();
+        self.up_d1.reset.next = self.reset.val();
+        self.up_d2.reset.next = self.reset.val();
+        self.choice_reg.reset.next = self.reset.val();
         for w in 0..SKEW_WORDS {
             self.skew_q[w].clock.next = self.clock.val();
+            self.skew_q[w].reset.next = self.reset.val();
         }
 
         // ---- The reference declivities, from the broadcast: the row of the

@@ -24,11 +24,14 @@
 //! No paper equation: stream plumbing.
 
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock, Default)]
 pub(crate) struct RecordInput {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub ready: Signal<In, Bit>,
     pub valid: Signal<In, Bit>,
     pub last: Signal<In, Bit>,
@@ -56,19 +59,19 @@ pub(crate) struct RecordInput {
     pub q_dt: Signal<Out, Bits<DT_BITS>>,
     pub q_wide: Signal<Out, Bit>,
     pub q_full: Signal<Out, Bit>,
-    r_valid: DFF<Bit>,
-    r_last: DFF<Bit>,
-    r_pos: DFF<Bits<POS_BITS>>,
-    r_amp: DFF<Bits<AMP_BITS>>,
-    r_left0: DFF<Bits<PIXEL_BITS>>,
-    r_left1: DFF<Bits<PIXEL_BITS>>,
-    r_left2: DFF<Bits<PIXEL_BITS>>,
-    r_right0: DFF<Bits<PIXEL_BITS>>,
-    r_right1: DFF<Bits<PIXEL_BITS>>,
-    r_right2: DFF<Bits<PIXEL_BITS>>,
-    r_dt: DFF<Bits<DT_BITS>>,
-    r_wide: DFF<Bit>,
-    r_full: DFF<Bit>,
+    r_valid: ResetDff<Bit>,
+    r_last: ResetDff<Bit>,
+    r_pos: ResetDff<Bits<POS_BITS>>,
+    r_amp: ResetDff<Bits<AMP_BITS>>,
+    r_left0: ResetDff<Bits<PIXEL_BITS>>,
+    r_left1: ResetDff<Bits<PIXEL_BITS>>,
+    r_left2: ResetDff<Bits<PIXEL_BITS>>,
+    r_right0: ResetDff<Bits<PIXEL_BITS>>,
+    r_right1: ResetDff<Bits<PIXEL_BITS>>,
+    r_right2: ResetDff<Bits<PIXEL_BITS>>,
+    r_dt: ResetDff<Bits<DT_BITS>>,
+    r_wide: ResetDff<Bit>,
+    r_full: ResetDff<Bit>,
 }
 
 impl Logic for RecordInput {
@@ -78,6 +81,19 @@ impl Logic for RecordInput {
             self, clock, r_valid, r_last, r_pos, r_amp, r_left0, r_left1, r_left2, r_right0, r_right1, r_right2, r_dt,
             r_wide, r_full
         );
+        self.r_valid.reset.next = self.reset.val();
+        self.r_last.reset.next = self.reset.val();
+        self.r_pos.reset.next = self.reset.val();
+        self.r_amp.reset.next = self.reset.val();
+        self.r_left0.reset.next = self.reset.val();
+        self.r_left1.reset.next = self.reset.val();
+        self.r_left2.reset.next = self.reset.val();
+        self.r_right0.reset.next = self.reset.val();
+        self.r_right1.reset.next = self.reset.val();
+        self.r_right2.reset.next = self.reset.val();
+        self.r_dt.reset.next = self.reset.val();
+        self.r_wide.reset.next = self.reset.val();
+        self.r_full.reset.next = self.reset.val();
         self.r_valid.d.next = self.valid.val() & self.ready.val();
         // The fields load on every clock (no enable: the loader looks at
         // them only with `q_valid`).

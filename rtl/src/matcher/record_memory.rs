@@ -42,6 +42,7 @@
 
 use crate::primitives::block_ram::BlockRam;
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Clocks from a write on the ports (`w_enable` high) to the clock it is on
@@ -56,6 +57,8 @@ pub const COPY_ADDR_BITS: usize = INDEX_BITS + 2;
 #[derive(LogicBlock)]
 pub(crate) struct RecordMemory {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub relative: Signal<In, Bit>,
     pub w_enable: Signal<In, Bit>,
     pub w_addr: Signal<In, Bits<COPY_ADDR_BITS>>,
@@ -84,28 +87,28 @@ pub(crate) struct RecordMemory {
     lev_mem: [BlockRam<LEVEL_BITS, DIAG_BITS>; LEVELS],
     pos_copy: BlockRam<POS_BITS, COPY_ADDR_BITS>,
     // The write as it comes.
-    wi_enable: DFF<Bit>,
-    wi_addr: DFF<Bits<COPY_ADDR_BITS>>,
-    wi_pos: DFF<Bits<POS_BITS>>,
-    wi_falling: DFF<Bit>,
+    wi_enable: ResetDff<Bit>,
+    wi_addr: ResetDff<Bits<COPY_ADDR_BITS>>,
+    wi_pos: ResetDff<Bits<POS_BITS>>,
+    wi_falling: ResetDff<Bit>,
     // The grey levels in the order of `lev0..5`: left 0–2, then right 0–2.
-    wi_lev: [DFF<Bits<PIXEL_BITS>>; LEVELS],
+    wi_lev: [ResetDff<Bits<PIXEL_BITS>>; LEVELS],
     // The write with the end-level sum `e`.
-    wb_enable: DFF<Bit>,
-    wb_addr: DFF<Bits<COPY_ADDR_BITS>>,
-    wb_pos: DFF<Bits<{ POS_BITS + 1 }>>,
-    wb_ends: DFF<Bits<LEVEL_BITS>>,
-    wb_lev: [DFF<Bits<PIXEL_BITS>>; LEVELS],
+    wb_enable: ResetDff<Bit>,
+    wb_addr: ResetDff<Bits<COPY_ADDR_BITS>>,
+    wb_pos: ResetDff<Bits<{ POS_BITS + 1 }>>,
+    wb_ends: ResetDff<Bits<LEVEL_BITS>>,
+    wb_lev: [ResetDff<Bits<PIXEL_BITS>>; LEVELS],
     // The write in the RAMs' format.
-    wc_enable: DFF<Bit>,
-    wc_addr: DFF<Bits<COPY_ADDR_BITS>>,
-    wc_pos: DFF<Bits<{ POS_BITS + 1 }>>,
-    wc_lev: [DFF<Bits<LEVEL_BITS>>; LEVELS],
+    wc_enable: ResetDff<Bit>,
+    wc_addr: ResetDff<Bits<COPY_ADDR_BITS>>,
+    wc_pos: ResetDff<Bits<{ POS_BITS + 1 }>>,
+    wc_lev: [ResetDff<Bits<LEVEL_BITS>>; LEVELS],
     // The same, beside the RAMs.
-    wq_enable: DFF<Bit>,
-    wq_addr: DFF<Bits<COPY_ADDR_BITS>>,
-    wq_pos: DFF<Bits<{ POS_BITS + 1 }>>,
-    wq_lev: [DFF<Bits<LEVEL_BITS>>; LEVELS],
+    wq_enable: ResetDff<Bit>,
+    wq_addr: ResetDff<Bits<COPY_ADDR_BITS>>,
+    wq_pos: ResetDff<Bits<{ POS_BITS + 1 }>>,
+    wq_lev: [ResetDff<Bits<LEVEL_BITS>>; LEVELS],
     ends: Signal<Local, Bits<LEVEL_BITS>>,
     lev_off: [Signal<Local, Bits<LEVEL_BITS>>; LEVELS],
     level_offset: Constant<Bits<LEVEL_BITS>>,
@@ -119,6 +122,7 @@ impl Default for RecordMemory {
     fn default() -> Self {
         RecordMemory {
             clock: Default::default(),
+            reset: Default::default(),
             relative: Default::default(),
             w_enable: Default::default(),
             w_addr: Default::default(),
@@ -181,11 +185,29 @@ impl Logic for RecordMemory {
         for i in 0..LEVELS {
             self.lev_mem[i].clock.next = self.clock.val();
             self.wi_lev[i].clock.next = self.clock.val();
+            self.wi_lev[i].reset.next = self.reset.val();
             self.wb_lev[i].clock.next = self.clock.val();
+            self.wb_lev[i].reset.next = self.reset.val();
             self.wc_lev[i].clock.next = self.clock.val();
+            self.wc_lev[i].reset.next = self.reset.val();
             self.wq_lev[i].clock.next = self.clock.val();
+            self.wq_lev[i].reset.next = self.reset.val();
         }
         dff_setup!(self, clock, wi_enable, wi_addr, wi_pos, wi_falling, wb_enable, wb_addr, wb_pos, wb_ends, wc_enable, wc_addr, wc_pos, wq_enable, wq_addr, wq_pos);
+        self.wi_enable.reset.next = self.reset.val();
+        self.wi_addr.reset.next = self.reset.val();
+        self.wi_pos.reset.next = self.reset.val();
+        self.wi_falling.reset.next = self.reset.val();
+        self.wb_enable.reset.next = self.reset.val();
+        self.wb_addr.reset.next = self.reset.val();
+        self.wb_pos.reset.next = self.reset.val();
+        self.wb_ends.reset.next = self.reset.val();
+        self.wc_enable.reset.next = self.reset.val();
+        self.wc_addr.reset.next = self.reset.val();
+        self.wc_pos.reset.next = self.reset.val();
+        self.wq_enable.reset.next = self.reset.val();
+        self.wq_addr.reset.next = self.reset.val();
+        self.wq_pos.reset.next = self.reset.val();
 
         self.wi_enable.d.next = self.w_enable.val();
         self.wi_addr.d.next = self.w_addr.val();

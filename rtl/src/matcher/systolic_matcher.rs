@@ -74,6 +74,7 @@ use crate::primitives::block_ram::BlockRam;
 use crate::matcher::choice_word::ChoiceWord;
 use crate::matcher::gain_cell::{GainCell, CELL_DEPTH};
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Clocks from a column offered on `c_*` to its node's choice in the word
@@ -94,6 +95,8 @@ const _: () = assert!(PHASE_WORDS <= 1 << PHASE_WORD_BITS);
 #[derive(LogicBlock)]
 pub struct SystolicMatcher<const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub ld_first: Signal<In, Bit>,
     pub ld_phase: Signal<In, Bits<PHASE_BITS>>,
     pub ld_pos: Signal<In, Bits<POS_BITS>>,
@@ -123,27 +126,27 @@ pub struct SystolicMatcher<const N: usize> {
     pub cells: [GainCell; N],
     pub row_word: ChoiceWord,
     pub prev_word: ChoiceWord,
-    col_a_valid: [DFF<Bit>; N],
-    col_a_phase: [DFF<Bits<PHASE_BITS>>; N],
-    col_a_pos: [DFF<Bits<POS_BITS>>; N],
-    col_a_levs: [DFF<Bits<LEVELS_BITS>>; N],
-    col_a_rising: [DFF<Bit>; N],
-    col_b_valid: [DFF<Bit>; N],
-    col_b_phase: [DFF<Bits<PHASE_BITS>>; N],
-    col_b_pos: [DFF<Bits<POS_BITS>>; N],
-    col_b_levs: [DFF<Bits<LEVELS_BITS>>; N],
-    col_b_rising: [DFF<Bit>; N],
-    k_dispmax_m1: [DFF<Bits<{ POS_BITS + 1 }>>; N],
-    k_below2: [DFF<Bits<DIST_BITS>>; N],
-    k_f1: [DFF<Bits<GAIN_BITS>>; N],
-    k_f3: [DFF<Bits<GAIN_BITS>>; N],
-    k_p4: [DFF<Bit>; N],
-    tok: [DFF<Bit>; N],
-    tok_phase: [DFF<Bits<PHASE_BITS>>; N],
-    wrap: DFF<Bits<PATH_BITS>>,
-    word_q: [DFF<Bits<CHOICE_WORD_BITS>>; PHASE_WORDS],
+    col_a_valid: [ResetDff<Bit>; N],
+    col_a_phase: [ResetDff<Bits<PHASE_BITS>>; N],
+    col_a_pos: [ResetDff<Bits<POS_BITS>>; N],
+    col_a_levs: [ResetDff<Bits<LEVELS_BITS>>; N],
+    col_a_rising: [ResetDff<Bit>; N],
+    col_b_valid: [ResetDff<Bit>; N],
+    col_b_phase: [ResetDff<Bits<PHASE_BITS>>; N],
+    col_b_pos: [ResetDff<Bits<POS_BITS>>; N],
+    col_b_levs: [ResetDff<Bits<LEVELS_BITS>>; N],
+    col_b_rising: [ResetDff<Bit>; N],
+    k_dispmax_m1: [ResetDff<Bits<{ POS_BITS + 1 }>>; N],
+    k_below2: [ResetDff<Bits<DIST_BITS>>; N],
+    k_f1: [ResetDff<Bits<GAIN_BITS>>; N],
+    k_f3: [ResetDff<Bits<GAIN_BITS>>; N],
+    k_p4: [ResetDff<Bit>; N],
+    tok: [ResetDff<Bit>; N],
+    tok_phase: [ResetDff<Bits<PHASE_BITS>>; N],
+    wrap: ResetDff<Bits<PATH_BITS>>,
+    word_q: [ResetDff<Bits<CHOICE_WORD_BITS>>; PHASE_WORDS],
     ram: [BlockRam<CHOICE_WORD_BITS, CHOICE_ADDR_BITS>; CHOICE_WORDS],
-    rd2: [DFF<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
+    rd2: [ResetDff<Bits<CHOICE_WORD_BITS>>; CHOICE_WORDS],
     // RAM g holds phase `ram_phase[g]`'s word `ram_word[g]` (of
     // `PHASE_WORDS`); RAMs past the phases' (`4·max(1, N/16)`) are never
     // written.
@@ -167,6 +170,7 @@ impl<const N: usize> Default for SystolicMatcher<N> {
         let per_phase = (N / CELLS_PER_CHOICE_WORD).max(1);
         SystolicMatcher {
             clock: Default::default(),
+            reset: Default::default(),
             ld_first: Default::default(),
             ld_phase: Default::default(),
             ld_pos: Default::default(),
@@ -236,6 +240,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
     fn update(&mut self) {
         for i in 0..N {
             self.cells[i].clock.next = self.clock.val();
+            self.cells[i].reset.next = self.reset.val();
             self.cells[i].ld_pos.next = self.ld_pos.val();
             self.cells[i].ld_levs.next = self.ld_levs.val();
             self.cells[i].ld_rising.next = self.ld_rising.val();
@@ -248,7 +253,9 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         // references follow one another (one token in the array at a time).
         for i in 0..N {
             self.tok[i].clock.next = self.clock.val();
+            self.tok[i].reset.next = self.reset.val();
             self.tok_phase[i].clock.next = self.clock.val();
+            self.tok_phase[i].reset.next = self.reset.val();
             self.cells[i].ld_en.next = self.tok[i].q.val();
             self.cells[i].ld_phase.next = self.tok_phase[i].q.val();
         }
@@ -265,14 +272,19 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         // node of a line comes more than i clocks after the engine sets them).
         for i in 0..N {
             self.k_dispmax_m1[i].clock.next = self.clock.val();
+            self.k_dispmax_m1[i].reset.next = self.reset.val();
             self.cells[i].dispmax_m1.next = self.k_dispmax_m1[i].q.val();
             self.k_below2[i].clock.next = self.clock.val();
+            self.k_below2[i].reset.next = self.reset.val();
             self.cells[i].below2.next = self.k_below2[i].q.val();
             self.k_f1[i].clock.next = self.clock.val();
+            self.k_f1[i].reset.next = self.reset.val();
             self.cells[i].f1.next = self.k_f1[i].q.val();
             self.k_f3[i].clock.next = self.clock.val();
+            self.k_f3[i].reset.next = self.reset.val();
             self.cells[i].f3.next = self.k_f3[i].q.val();
             self.k_p4[i].clock.next = self.clock.val();
+            self.k_p4[i].reset.next = self.reset.val();
             self.cells[i].p4.next = self.k_p4[i].q.val();
         }
         for i in 0..1 {
@@ -295,15 +307,25 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         // its reference by the phase of the column in its slot b.
         for i in 0..N {
             self.col_a_valid[i].clock.next = self.clock.val();
+            self.col_a_valid[i].reset.next = self.reset.val();
             self.col_b_valid[i].clock.next = self.clock.val();
+            self.col_b_valid[i].reset.next = self.reset.val();
             self.col_a_phase[i].clock.next = self.clock.val();
+            self.col_a_phase[i].reset.next = self.reset.val();
             self.col_b_phase[i].clock.next = self.clock.val();
+            self.col_b_phase[i].reset.next = self.reset.val();
             self.col_a_pos[i].clock.next = self.clock.val();
+            self.col_a_pos[i].reset.next = self.reset.val();
             self.col_b_pos[i].clock.next = self.clock.val();
+            self.col_b_pos[i].reset.next = self.reset.val();
             self.col_a_levs[i].clock.next = self.clock.val();
+            self.col_a_levs[i].reset.next = self.reset.val();
             self.col_b_levs[i].clock.next = self.clock.val();
+            self.col_b_levs[i].reset.next = self.reset.val();
             self.col_a_rising[i].clock.next = self.clock.val();
+            self.col_a_rising[i].reset.next = self.reset.val();
             self.col_b_rising[i].clock.next = self.clock.val();
+            self.col_b_rising[i].reset.next = self.reset.val();
             self.col_a_phase[i].d.next = self.col_a_phase[i].q.val();
             self.col_b_phase[i].d.next = self.col_b_phase[i].q.val();
             self.col_a_pos[i].d.next = self.col_a_pos[i].q.val();
@@ -350,6 +372,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
             self.last_p.next = self.cells[i].p.val();
         }
         self.wrap.clock.next = self.clock.val();
+        self.wrap.reset.next = self.reset.val();
         self.wrap.d.next = self.last_p.val();
         for i in 0..1 {
             self.cells[i].up_p.next = self.wrap.q.val();
@@ -371,6 +394,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
         }
         for k in 0..PHASE_WORDS {
             self.word_q[k].clock.next = self.clock.val();
+            self.word_q[k].reset.next = self.reset.val();
             self.word_q[k].d.next = self.wacc[k].val();
         }
         // Two banks: a line's traceback reads one while the next line's
@@ -392,6 +416,7 @@ impl<const N: usize> Logic for SystolicMatcher<N> {
                 self.cw_en.val() & self.ram_used[g].val() & (self.cw_phase.val() == self.ram_phase[g].val());
             self.ram[g].read_address.next = self.tb_addr.val();
             self.rd2[g].clock.next = self.clock.val();
+            self.rd2[g].reset.next = self.reset.val();
             self.rd2[g].d.next = self.ram[g].read_data.val();
         }
 

@@ -51,6 +51,7 @@
 
 use crate::matcher::gain_cell::{CHOICE_LEFT, CHOICE_NODE, CHOICE_START, CHOICE_UP};
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 const TB_IDLE: u64 = 0;
@@ -81,6 +82,8 @@ pub const fn traceback_cycles(n: usize, m: usize, stop_diag: usize, k: usize) ->
 #[derive(LogicBlock)]
 pub struct Traceback {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub start: Signal<In, Bit>,
     pub wi0: Signal<In, Bits<INDEX_BITS>>,
     pub wj0: Signal<In, Bits<INDEX_BITS>>,
@@ -97,35 +100,35 @@ pub struct Traceback {
     pub out_count: Signal<Out, Bits<COUNT_BITS>>,
     stack_i: RAM<Bits<INDEX_BITS>, INDEX_BITS>,
     stack_j: RAM<Bits<INDEX_BITS>, INDEX_BITS>,
-    state: DFF<Bits<2>>,
-    diag: DFF<Bits<DIAG_BITS>>,
-    wi: DFF<Bits<INDEX_BITS>>,
-    wj: DFF<Bits<INDEX_BITS>>,
+    state: ResetDff<Bits<2>>,
+    diag: ResetDff<Bits<DIAG_BITS>>,
+    wi: ResetDff<Bits<INDEX_BITS>>,
+    wj: ResetDff<Bits<INDEX_BITS>>,
     // `wi == 0`, `wj == 0` as registers, set beside the coordinates, so
     // that the zero tests are not LUT levels in front of `stop`, and so of
     // `left` and `k`.
-    wi_zero: DFFWithInit<Bit>,
-    wj_zero: DFFWithInit<Bit>,
-    lead: DFF<Bits<LEAD_BITS>>,
+    wi_zero: ResetDff<Bit>,
+    wj_zero: ResetDff<Bit>,
+    lead: ResetDff<Bits<LEAD_BITS>>,
     // `lead != 0` as a register, so that the zero test is not a LUT level
     // in front of the walk's decisions into `left`.
-    leading: DFF<Bit>,
-    win_hi: DFF<Bits<CHOICE_WORD_BITS>>,
-    win_lo: DFF<Bits<CHOICE_WORD_BITS>>,
-    win_b: DFF<Bits<4>>,
-    near0: DFF<Bits<2>>,
-    near1: DFF<Bits<2>>,
-    near2: DFF<Bits<2>>,
-    near3: DFF<Bits<2>>,
-    moved: DFF<Bit>,
-    moved2: DFF<Bit>,
-    here: DFF<Bits<2>>,
-    above: DFF<Bits<2>>,
-    skip: DFF<Bit>,
-    count: DFF<Bits<COUNT_BITS>>,
-    left: DFF<Bits<COUNT_BITS>>,
-    k: DFF<Bits<INDEX_BITS>>,
-    pend: DFF<Bit>,
+    leading: ResetDff<Bit>,
+    win_hi: ResetDff<Bits<CHOICE_WORD_BITS>>,
+    win_lo: ResetDff<Bits<CHOICE_WORD_BITS>>,
+    win_b: ResetDff<Bits<4>>,
+    near0: ResetDff<Bits<2>>,
+    near1: ResetDff<Bits<2>>,
+    near2: ResetDff<Bits<2>>,
+    near3: ResetDff<Bits<2>>,
+    moved: ResetDff<Bit>,
+    moved2: ResetDff<Bit>,
+    here: ResetDff<Bits<2>>,
+    above: ResetDff<Bits<2>>,
+    skip: ResetDff<Bit>,
+    count: ResetDff<Bits<COUNT_BITS>>,
+    left: ResetDff<Bits<COUNT_BITS>>,
+    k: ResetDff<Bits<INDEX_BITS>>,
+    pend: ResetDff<Bit>,
     choice: Signal<Local, Bits<2>>,
     pair: Signal<Local, Bits<PAIR_BITS>>,
     slice1: Signal<Local, Bits<CHOICE_WORD_BITS>>,
@@ -160,6 +163,7 @@ impl Default for Traceback {
         let c8 = |v: u64| Constant::new(v.into());
         Traceback {
             clock: Default::default(),
+            reset: Default::default(),
             start: Default::default(),
             wi0: Default::default(),
             wj0: Default::default(),
@@ -180,8 +184,8 @@ impl Default for Traceback {
             diag: Default::default(),
             wi: Default::default(),
             wj: Default::default(),
-            wi_zero: DFFWithInit::new(true),
-            wj_zero: DFFWithInit::new(true),
+            wi_zero: ResetDff::new(true),
+            wj_zero: ResetDff::new(true),
             lead: Default::default(),
             leading: Default::default(),
             win_hi: Default::default(),
@@ -238,6 +242,30 @@ impl Logic for Traceback {
         self.stack_j.read_clock.next = self.clock.val();
         self.stack_j.write_clock.next = self.clock.val();
         dff_setup!(self, clock, state, diag, wi, wj, wi_zero, wj_zero, lead, leading, win_hi, win_lo, win_b, near0, near1, near2, near3, moved, moved2, here, above, skip, count, left, k, pend);
+        self.state.reset.next = self.reset.val();
+        self.diag.reset.next = self.reset.val();
+        self.wi.reset.next = self.reset.val();
+        self.wj.reset.next = self.reset.val();
+        self.wi_zero.reset.next = self.reset.val();
+        self.wj_zero.reset.next = self.reset.val();
+        self.lead.reset.next = self.reset.val();
+        self.leading.reset.next = self.reset.val();
+        self.win_hi.reset.next = self.reset.val();
+        self.win_lo.reset.next = self.reset.val();
+        self.win_b.reset.next = self.reset.val();
+        self.near0.reset.next = self.reset.val();
+        self.near1.reset.next = self.reset.val();
+        self.near2.reset.next = self.reset.val();
+        self.near3.reset.next = self.reset.val();
+        self.moved.reset.next = self.reset.val();
+        self.moved2.reset.next = self.reset.val();
+        self.here.reset.next = self.reset.val();
+        self.above.reset.next = self.reset.val();
+        self.skip.reset.next = self.reset.val();
+        self.count.reset.next = self.reset.val();
+        self.left.reset.next = self.reset.val();
+        self.k.reset.next = self.reset.val();
+        self.pend.reset.next = self.reset.val();
 
         self.tb_diag.next = self.diag.q.val();
         self.tb_group.next = self.wi.q.val().get_bits::<ROW_GROUP_BITS>(self.group_shift.val().index());

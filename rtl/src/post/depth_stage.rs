@@ -50,6 +50,7 @@
 
 use crate::primitives::dsp_multiplier::DspMultiplier;
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 use std::fmt;
 
@@ -206,6 +207,8 @@ const ROUND_BITS: usize = DEPTH_TABLE_BITS + 1;
 #[derive(LogicBlock)]
 pub struct DepthStage {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     // ---- In: the disparity stream.
     pub p_valid: Signal<In, Bit>,
     pub p_d: Signal<In, Bits<POS_BITS>>,
@@ -218,88 +221,88 @@ pub struct DepthStage {
     pub z_last: Signal<Out, Bit>,
     pub z_sof: Signal<Out, Bit>,
     // ---- The pixel's flags and disparity, alongside the pipeline.
-    s1_valid: DFF<Bit>,
-    s1_last: DFF<Bit>,
-    s1_sof: DFF<Bit>,
-    s1_zero: DFF<Bit>,
-    s1_d: DFF<Bits<POS_BITS>>,
-    s2_valid: DFF<Bit>,
-    s2_last: DFF<Bit>,
-    s2_sof: DFF<Bit>,
-    s2_zero: DFF<Bit>,
-    s2_d: DFF<Bits<POS_BITS>>,
-    s3_valid: DFF<Bit>,
-    s3_last: DFF<Bit>,
-    s3_sof: DFF<Bit>,
-    s3_zero: DFF<Bit>,
-    s3_d: DFF<Bits<POS_BITS>>,
-    t_valid: DFF<Bit>,
-    t_last: DFF<Bit>,
-    t_sof: DFF<Bit>,
-    t_zero: DFF<Bit>,
-    t_d: DFF<Bits<POS_BITS>>,
-    s4_valid: DFF<Bit>,
-    s4_last: DFF<Bit>,
-    s4_sof: DFF<Bit>,
-    s4_zero: DFF<Bit>,
-    s4_d: DFF<Bits<POS_BITS>>,
-    s5_valid: DFF<Bit>,
-    s5_last: DFF<Bit>,
-    s5_sof: DFF<Bit>,
-    s5_zero: DFF<Bit>,
-    s5_d: DFF<Bits<POS_BITS>>,
-    s6_valid: DFF<Bit>,
-    s6_last: DFF<Bit>,
-    s6_sof: DFF<Bit>,
-    s6_zero: DFF<Bit>,
-    s6_d: DFF<Bits<POS_BITS>>,
-    s7_valid: DFF<Bit>,
-    s7_last: DFF<Bit>,
-    s7_sof: DFF<Bit>,
-    s7_zero: DFF<Bit>,
-    s7_d: DFF<Bits<POS_BITS>>,
+    s1_valid: ResetDff<Bit>,
+    s1_last: ResetDff<Bit>,
+    s1_sof: ResetDff<Bit>,
+    s1_zero: ResetDff<Bit>,
+    s1_d: ResetDff<Bits<POS_BITS>>,
+    s2_valid: ResetDff<Bit>,
+    s2_last: ResetDff<Bit>,
+    s2_sof: ResetDff<Bit>,
+    s2_zero: ResetDff<Bit>,
+    s2_d: ResetDff<Bits<POS_BITS>>,
+    s3_valid: ResetDff<Bit>,
+    s3_last: ResetDff<Bit>,
+    s3_sof: ResetDff<Bit>,
+    s3_zero: ResetDff<Bit>,
+    s3_d: ResetDff<Bits<POS_BITS>>,
+    t_valid: ResetDff<Bit>,
+    t_last: ResetDff<Bit>,
+    t_sof: ResetDff<Bit>,
+    t_zero: ResetDff<Bit>,
+    t_d: ResetDff<Bits<POS_BITS>>,
+    s4_valid: ResetDff<Bit>,
+    s4_last: ResetDff<Bit>,
+    s4_sof: ResetDff<Bit>,
+    s4_zero: ResetDff<Bit>,
+    s4_d: ResetDff<Bits<POS_BITS>>,
+    s5_valid: ResetDff<Bit>,
+    s5_last: ResetDff<Bit>,
+    s5_sof: ResetDff<Bit>,
+    s5_zero: ResetDff<Bit>,
+    s5_d: ResetDff<Bits<POS_BITS>>,
+    s6_valid: ResetDff<Bit>,
+    s6_last: ResetDff<Bit>,
+    s6_sof: ResetDff<Bit>,
+    s6_zero: ResetDff<Bit>,
+    s6_d: ResetDff<Bits<POS_BITS>>,
+    s7_valid: ResetDff<Bit>,
+    s7_last: ResetDff<Bit>,
+    s7_sof: ResetDff<Bit>,
+    s7_zero: ResetDff<Bit>,
+    s7_d: ResetDff<Bits<POS_BITS>>,
     // ---- The arithmetic. S1: two shift levels; S2: two more (m, lz);
     // S3: the table's read, the weight, the shift and the saturation flag;
     // T: the table's output register; S4: the entry and the slope; S5: the
     // step's product; S6: the interpolated entry; S7: the entry shifted.
-    s1_n: DFF<Bits<POS_BITS>>,
-    s1_lz: DFF<Bits<LZ_BITS>>,
-    s2_m: DFF<Bits<POS_BITS>>,
-    s2_lz: DFF<Bits<LZ_BITS>>,
+    s1_n: ResetDff<Bits<POS_BITS>>,
+    s1_lz: ResetDff<Bits<LZ_BITS>>,
+    s2_m: ResetDff<Bits<POS_BITS>>,
+    s2_lz: ResetDff<Bits<LZ_BITS>>,
     depth_rom: SyncROM<Bits<DEPTH_WORD_BITS>, DEPTH_INDEX_BITS>,
-    s3_w: DFF<Bits<16>>,
-    s3_sat: DFF<Bit>,
-    s3_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
+    s3_w: ResetDff<Bits<16>>,
+    s3_sat: ResetDff<Bit>,
+    s3_shift: ResetDff<Bits<DEPTH_SHIFT_BITS>>,
     // T: the table's word in its output register, nothing between the
     // block RAM's data out and it (in a DP16KD, its own output register),
     // so that the RAM's clock-to-out and the route to the DSP column are
     // not in one clock.
-    t_word: DFF<Bits<DEPTH_WORD_BITS>>,
-    t_w: DFF<Bits<16>>,
-    t_sat: DFF<Bit>,
-    t_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
-    s4_t: DFF<Bits<DEPTH_TABLE_BITS>>,
+    t_word: ResetDff<Bits<DEPTH_WORD_BITS>>,
+    t_w: ResetDff<Bits<16>>,
+    t_sat: ResetDff<Bit>,
+    t_shift: ResetDff<Bits<DEPTH_SHIFT_BITS>>,
+    s4_t: ResetDff<Bits<DEPTH_TABLE_BITS>>,
     // S4's slope and weight in the DSP block's own input registers, so
     // that the route into the DSP column, the product and the route out
     // are not in one clock (as a `*` of fabric registers would have them).
     slope_w: DspMultiplier,
-    s4_sat: DFF<Bit>,
-    s4_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
-    s5_t: DFF<Bits<DEPTH_TABLE_BITS>>,
-    s5_prod: DFF<Bits<32>>,
-    s5_sat: DFF<Bit>,
-    s5_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
-    s6_t: DFF<Bits<DEPTH_TABLE_BITS>>,
-    s6_sat: DFF<Bit>,
-    s6_shift: DFF<Bits<DEPTH_SHIFT_BITS>>,
-    s7_half: DFF<Bits<DEPTH_TABLE_BITS>>,
-    s7_sat: DFF<Bit>,
+    s4_sat: ResetDff<Bit>,
+    s4_shift: ResetDff<Bits<DEPTH_SHIFT_BITS>>,
+    s5_t: ResetDff<Bits<DEPTH_TABLE_BITS>>,
+    s5_prod: ResetDff<Bits<32>>,
+    s5_sat: ResetDff<Bit>,
+    s5_shift: ResetDff<Bits<DEPTH_SHIFT_BITS>>,
+    s6_t: ResetDff<Bits<DEPTH_TABLE_BITS>>,
+    s6_sat: ResetDff<Bit>,
+    s6_shift: ResetDff<Bits<DEPTH_SHIFT_BITS>>,
+    s7_half: ResetDff<Bits<DEPTH_TABLE_BITS>>,
+    s7_sat: ResetDff<Bit>,
     // ---- The outputs' registers.
-    o_valid: DFF<Bit>,
-    o_last: DFF<Bit>,
-    o_sof: DFF<Bit>,
-    o_z: DFF<Bits<DEPTH_BITS>>,
-    o_d: DFF<Bits<POS_BITS>>,
+    o_valid: ResetDff<Bit>,
+    o_last: ResetDff<Bit>,
+    o_sof: ResetDff<Bit>,
+    o_z: ResetDff<Bits<DEPTH_BITS>>,
+    o_d: ResetDff<Bits<POS_BITS>>,
     // ---- Locals.
     n1: Signal<Local, Bits<POS_BITS>>,
     l1: Signal<Local, Bits<LZ_BITS>>,
@@ -353,6 +356,7 @@ impl DepthStage {
         let cl = |v: u64| Constant::<Bits<LZ_BITS>>::new(v.into());
         Ok(DepthStage {
             clock: Default::default(),
+            reset: Default::default(),
             p_valid: Default::default(),
             p_d: Default::default(),
             p_last: Default::default(),
@@ -483,6 +487,74 @@ impl Logic for DepthStage {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, s1_valid, s1_last, s1_sof, s1_zero, s1_d, s2_valid, s2_last, s2_sof, s2_zero, s2_d, s3_valid, s3_last, s3_sof, s3_zero, s3_d, t_valid, t_last, t_sof, t_zero, t_d, s4_valid, s4_last, s4_sof, s4_zero, s4_d, s5_valid, s5_last, s5_sof, s5_zero, s5_d, s6_valid, s6_last, s6_sof, s6_zero, s6_d, s7_valid, s7_last, s7_sof, s7_zero, s7_d, s1_n, s1_lz, s2_m, s2_lz, s3_w, s3_sat, s3_shift, t_word, t_w, t_sat, t_shift, s4_t, s4_sat, s4_shift, s5_t, s5_prod, s5_sat, s5_shift, s6_t, s6_sat, s6_shift, s7_half, s7_sat, o_valid, o_last, o_sof, o_z, o_d);
+        self.s1_valid.reset.next = self.reset.val();
+        self.s1_last.reset.next = self.reset.val();
+        self.s1_sof.reset.next = self.reset.val();
+        self.s1_zero.reset.next = self.reset.val();
+        self.s1_d.reset.next = self.reset.val();
+        self.s2_valid.reset.next = self.reset.val();
+        self.s2_last.reset.next = self.reset.val();
+        self.s2_sof.reset.next = self.reset.val();
+        self.s2_zero.reset.next = self.reset.val();
+        self.s2_d.reset.next = self.reset.val();
+        self.s3_valid.reset.next = self.reset.val();
+        self.s3_last.reset.next = self.reset.val();
+        self.s3_sof.reset.next = self.reset.val();
+        self.s3_zero.reset.next = self.reset.val();
+        self.s3_d.reset.next = self.reset.val();
+        self.t_valid.reset.next = self.reset.val();
+        self.t_last.reset.next = self.reset.val();
+        self.t_sof.reset.next = self.reset.val();
+        self.t_zero.reset.next = self.reset.val();
+        self.t_d.reset.next = self.reset.val();
+        self.s4_valid.reset.next = self.reset.val();
+        self.s4_last.reset.next = self.reset.val();
+        self.s4_sof.reset.next = self.reset.val();
+        self.s4_zero.reset.next = self.reset.val();
+        self.s4_d.reset.next = self.reset.val();
+        self.s5_valid.reset.next = self.reset.val();
+        self.s5_last.reset.next = self.reset.val();
+        self.s5_sof.reset.next = self.reset.val();
+        self.s5_zero.reset.next = self.reset.val();
+        self.s5_d.reset.next = self.reset.val();
+        self.s6_valid.reset.next = self.reset.val();
+        self.s6_last.reset.next = self.reset.val();
+        self.s6_sof.reset.next = self.reset.val();
+        self.s6_zero.reset.next = self.reset.val();
+        self.s6_d.reset.next = self.reset.val();
+        self.s7_valid.reset.next = self.reset.val();
+        self.s7_last.reset.next = self.reset.val();
+        self.s7_sof.reset.next = self.reset.val();
+        self.s7_zero.reset.next = self.reset.val();
+        self.s7_d.reset.next = self.reset.val();
+        self.s1_n.reset.next = self.reset.val();
+        self.s1_lz.reset.next = self.reset.val();
+        self.s2_m.reset.next = self.reset.val();
+        self.s2_lz.reset.next = self.reset.val();
+        self.s3_w.reset.next = self.reset.val();
+        self.s3_sat.reset.next = self.reset.val();
+        self.s3_shift.reset.next = self.reset.val();
+        self.t_word.reset.next = self.reset.val();
+        self.t_w.reset.next = self.reset.val();
+        self.t_sat.reset.next = self.reset.val();
+        self.t_shift.reset.next = self.reset.val();
+        self.s4_t.reset.next = self.reset.val();
+        self.s4_sat.reset.next = self.reset.val();
+        self.s4_shift.reset.next = self.reset.val();
+        self.s5_t.reset.next = self.reset.val();
+        self.s5_prod.reset.next = self.reset.val();
+        self.s5_sat.reset.next = self.reset.val();
+        self.s5_shift.reset.next = self.reset.val();
+        self.s6_t.reset.next = self.reset.val();
+        self.s6_sat.reset.next = self.reset.val();
+        self.s6_shift.reset.next = self.reset.val();
+        self.s7_half.reset.next = self.reset.val();
+        self.s7_sat.reset.next = self.reset.val();
+        self.o_valid.reset.next = self.reset.val();
+        self.o_last.reset.next = self.reset.val();
+        self.o_sof.reset.next = self.reset.val();
+        self.o_z.reset.next = self.reset.val();
+        self.o_d.reset.next = self.reset.val();
         self.depth_rom.clock.next = self.clock.val();
         // The pixel's flags and disparity travel beside the arithmetic.
         self.s1_valid.d.next = self.p_valid.val();

@@ -98,6 +98,7 @@ use crate::primitives::block_ram::BlockRam;
 use crate::primitives::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS};
 use crate::primitives::logic_rom::LogicRom;
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Clocks from a line's marker on `a_*` to its description in the line
@@ -184,6 +185,8 @@ const QUEUE_PTR_BITS: usize = LINE_QUEUE_BITS + 1;
 #[derive(LogicBlock)]
 pub struct Interpolator {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub a_valid: Signal<In, Bit>,
     pub a_last: Signal<In, Bit>,
     pub a_x: Signal<In, Bits<POS_BITS>>,
@@ -197,47 +200,47 @@ pub struct Interpolator {
     pub p_empty: Signal<Out, Bit>,
     pub overflow: Signal<Out, Bit>,
     // ---- Segments: the line being received (admission, the previous match).
-    in_line: DFF<Bit>,
-    dropping: DFF<Bit>,
-    has_prev: DFF<Bit>,
-    prev_x: DFF<Bits<POS_BITS>>,
-    prev_d: DFF<Bits<POS_BITS>>,
-    prev_c: DFF<Bits<WIDTH_BITS>>,
-    first_d: DFF<Bits<POS_BITS>>,
-    first_c: DFF<Bits<WIDTH_BITS>>,
+    in_line: ResetDff<Bit>,
+    dropping: ResetDff<Bit>,
+    has_prev: ResetDff<Bit>,
+    prev_x: ResetDff<Bits<POS_BITS>>,
+    prev_d: ResetDff<Bits<POS_BITS>>,
+    prev_c: ResetDff<Bits<WIDTH_BITS>>,
+    first_d: ResetDff<Bits<POS_BITS>>,
+    first_c: ResetDff<Bits<WIDTH_BITS>>,
     // Stage 1: a segment; stage 2: its distance half normalised (`s2_m`);
     // stage 3: the table's address register (in `recip`), the shape with
     // the whole shift, the table's word out beside it; stage 4: that word
     // registered (`s4_recip`) beside the segment, into the memory.
-    s1_seg: DFF<Bit>,
-    s1_last: DFF<Bits<WIDTH_BITS>>,
-    s1_ax: DFF<Bits<POS_BITS>>,
-    s1_ad: DFF<Bits<POS_BITS>>,
-    s1_dx: DFF<Bits<POS_BITS>>,
-    s1_dd: DFF<Bits<POS_BITS>>,
-    s1_neg: DFF<Bit>,
-    s1_min: DFF<Bits<POS_BITS>>,
-    s2_seg: DFF<Bit>,
-    s2_last: DFF<Bits<WIDTH_BITS>>,
-    s2_ax: DFF<Bits<POS_BITS>>,
-    s2_ad: DFF<Bits<POS_BITS>>,
-    s2_dd: DFF<Bits<POS_BITS>>,
-    s2_m: DFF<Bits<POS_BITS>>,
-    s2_shape: DFF<Bits<SHAPE_BITS>>,
-    s3_seg: DFF<Bit>,
-    s3_last: DFF<Bits<WIDTH_BITS>>,
-    s3_ax: DFF<Bits<POS_BITS>>,
-    s3_ad: DFF<Bits<POS_BITS>>,
-    s3_dd: DFF<Bits<POS_BITS>>,
-    s3_shape: DFF<Bits<SHAPE_BITS>>,
+    s1_seg: ResetDff<Bit>,
+    s1_last: ResetDff<Bits<WIDTH_BITS>>,
+    s1_ax: ResetDff<Bits<POS_BITS>>,
+    s1_ad: ResetDff<Bits<POS_BITS>>,
+    s1_dx: ResetDff<Bits<POS_BITS>>,
+    s1_dd: ResetDff<Bits<POS_BITS>>,
+    s1_neg: ResetDff<Bit>,
+    s1_min: ResetDff<Bits<POS_BITS>>,
+    s2_seg: ResetDff<Bit>,
+    s2_last: ResetDff<Bits<WIDTH_BITS>>,
+    s2_ax: ResetDff<Bits<POS_BITS>>,
+    s2_ad: ResetDff<Bits<POS_BITS>>,
+    s2_dd: ResetDff<Bits<POS_BITS>>,
+    s2_m: ResetDff<Bits<POS_BITS>>,
+    s2_shape: ResetDff<Bits<SHAPE_BITS>>,
+    s3_seg: ResetDff<Bit>,
+    s3_last: ResetDff<Bits<WIDTH_BITS>>,
+    s3_ax: ResetDff<Bits<POS_BITS>>,
+    s3_ad: ResetDff<Bits<POS_BITS>>,
+    s3_dd: ResetDff<Bits<POS_BITS>>,
+    s3_shape: ResetDff<Bits<SHAPE_BITS>>,
     // Stage 4: the segment with its reciprocal, into the memory.
-    s4_seg: DFF<Bit>,
-    s4_last: DFF<Bits<WIDTH_BITS>>,
-    s4_ax: DFF<Bits<POS_BITS>>,
-    s4_ad: DFF<Bits<POS_BITS>>,
-    s4_dd: DFF<Bits<POS_BITS>>,
-    s4_shape: DFF<Bits<SHAPE_BITS>>,
-    s4_recip: DFF<Bits<RECIP_BITS>>,
+    s4_seg: ResetDff<Bit>,
+    s4_last: ResetDff<Bits<WIDTH_BITS>>,
+    s4_ax: ResetDff<Bits<POS_BITS>>,
+    s4_ad: ResetDff<Bits<POS_BITS>>,
+    s4_dd: ResetDff<Bits<POS_BITS>>,
+    s4_shape: ResetDff<Bits<SHAPE_BITS>>,
+    s4_recip: ResetDff<Bits<RECIP_BITS>>,
     recip: LogicRom<RECIP_BITS, RECIP_INDEX_BITS>,
     // ---- The segment memory, one RAM per field, and its pointers (one bit
     // above the address, so that full and empty differ).
@@ -247,52 +250,52 @@ pub struct Interpolator {
     seg_dd: BlockRam<POS_BITS, SEG_ADDR_BITS>,
     seg_shape: BlockRam<SHAPE_BITS, SEG_ADDR_BITS>,
     seg_recip: BlockRam<RECIP_BITS, SEG_ADDR_BITS>,
-    seg_wp: DFF<Bits<SEG_PTR_BITS>>,
+    seg_wp: ResetDff<Bits<SEG_PTR_BITS>>,
     // The prefetch: reads in order at `rd_ptr` whenever the registers will
     // have room, two clocks to their data (`rd1`, `rd2`), into four
     // registers `e0..e3` used as a ring (written at `wi`, the pixel
     // engine's segment at `ri`).
-    rd_ptr: DFF<Bits<SEG_PTR_BITS>>,
+    rd_ptr: ResetDff<Bits<SEG_PTR_BITS>>,
     // Segments written and not yet read; lines in the queue (public for
     // the drivers' diagnostics).
-    pub seg_used: DFF<Bits<SEG_PTR_BITS>>,
-    pub q_used: DFF<Bits<QUEUE_PTR_BITS>>,
+    pub seg_used: ResetDff<Bits<SEG_PTR_BITS>>,
+    pub q_used: ResetDff<Bits<QUEUE_PTR_BITS>>,
     // `seg_used > seg_limit` and `q_used ≥ LINE_QUEUE` as registers (0 at
     // power-up, as the counts): the admission reads no comparison.
-    seg_full: DFF<Bit>,
-    q_full: DFF<Bit>,
+    seg_full: ResetDff<Bit>,
+    q_full: ResetDff<Bit>,
     // `seg_used != 0` (the memory holds an unread segment: `seg_used` is
     // `seg_wp - rd_ptr`) as a register, written beside the count.
-    seg_any: DFF<Bit>,
-    rd1: DFF<Bit>,
-    rd2: DFF<Bit>,
-    fill: DFF<Bits<FILL_BITS>>,
-    wi: DFF<Bits<SLOT_BITS>>,
-    ri: DFF<Bits<SLOT_BITS>>,
-    e0_last: DFF<Bits<WIDTH_BITS>>,
-    e0_ax: DFF<Bits<POS_BITS>>,
-    e0_ad: DFF<Bits<POS_BITS>>,
-    e0_dd: DFF<Bits<POS_BITS>>,
-    e0_shape: DFF<Bits<SHAPE_BITS>>,
-    e0_recip: DFF<Bits<RECIP_BITS>>,
-    e1_last: DFF<Bits<WIDTH_BITS>>,
-    e1_ax: DFF<Bits<POS_BITS>>,
-    e1_ad: DFF<Bits<POS_BITS>>,
-    e1_dd: DFF<Bits<POS_BITS>>,
-    e1_shape: DFF<Bits<SHAPE_BITS>>,
-    e1_recip: DFF<Bits<RECIP_BITS>>,
-    e2_last: DFF<Bits<WIDTH_BITS>>,
-    e2_ax: DFF<Bits<POS_BITS>>,
-    e2_ad: DFF<Bits<POS_BITS>>,
-    e2_dd: DFF<Bits<POS_BITS>>,
-    e2_shape: DFF<Bits<SHAPE_BITS>>,
-    e2_recip: DFF<Bits<RECIP_BITS>>,
-    e3_last: DFF<Bits<WIDTH_BITS>>,
-    e3_ax: DFF<Bits<POS_BITS>>,
-    e3_ad: DFF<Bits<POS_BITS>>,
-    e3_dd: DFF<Bits<POS_BITS>>,
-    e3_shape: DFF<Bits<SHAPE_BITS>>,
-    e3_recip: DFF<Bits<RECIP_BITS>>,
+    seg_any: ResetDff<Bit>,
+    rd1: ResetDff<Bit>,
+    rd2: ResetDff<Bit>,
+    fill: ResetDff<Bits<FILL_BITS>>,
+    wi: ResetDff<Bits<SLOT_BITS>>,
+    ri: ResetDff<Bits<SLOT_BITS>>,
+    e0_last: ResetDff<Bits<WIDTH_BITS>>,
+    e0_ax: ResetDff<Bits<POS_BITS>>,
+    e0_ad: ResetDff<Bits<POS_BITS>>,
+    e0_dd: ResetDff<Bits<POS_BITS>>,
+    e0_shape: ResetDff<Bits<SHAPE_BITS>>,
+    e0_recip: ResetDff<Bits<RECIP_BITS>>,
+    e1_last: ResetDff<Bits<WIDTH_BITS>>,
+    e1_ax: ResetDff<Bits<POS_BITS>>,
+    e1_ad: ResetDff<Bits<POS_BITS>>,
+    e1_dd: ResetDff<Bits<POS_BITS>>,
+    e1_shape: ResetDff<Bits<SHAPE_BITS>>,
+    e1_recip: ResetDff<Bits<RECIP_BITS>>,
+    e2_last: ResetDff<Bits<WIDTH_BITS>>,
+    e2_ax: ResetDff<Bits<POS_BITS>>,
+    e2_ad: ResetDff<Bits<POS_BITS>>,
+    e2_dd: ResetDff<Bits<POS_BITS>>,
+    e2_shape: ResetDff<Bits<SHAPE_BITS>>,
+    e2_recip: ResetDff<Bits<RECIP_BITS>>,
+    e3_last: ResetDff<Bits<WIDTH_BITS>>,
+    e3_ax: ResetDff<Bits<POS_BITS>>,
+    e3_ad: ResetDff<Bits<POS_BITS>>,
+    e3_dd: ResetDff<Bits<POS_BITS>>,
+    e3_shape: ResetDff<Bits<SHAPE_BITS>>,
+    e3_recip: ResetDff<Bits<RECIP_BITS>>,
     // ---- The line queue: written at the marker, shown to the pixel engine
     // [`SEGMENT_LAG`] clocks after it (the write pointer delayed through
     // `q_wp1..5`).
@@ -303,90 +306,90 @@ pub struct Interpolator {
     // waits for the pixel's comparison.
     q_line: RAM<Bits<LINE_BITS>, LINE_QUEUE_BITS>,
     q_line_n: RAM<Bits<LINE_BITS>, LINE_QUEUE_BITS>,
-    q_wp: DFF<Bits<QUEUE_PTR_BITS>>,
-    q_wp1: DFF<Bits<QUEUE_PTR_BITS>>,
-    q_wp2: DFF<Bits<QUEUE_PTR_BITS>>,
-    q_wp3: DFF<Bits<QUEUE_PTR_BITS>>,
-    q_wp4: DFF<Bits<QUEUE_PTR_BITS>>,
-    q_wp5: DFF<Bits<QUEUE_PTR_BITS>>,
+    q_wp: ResetDff<Bits<QUEUE_PTR_BITS>>,
+    q_wp1: ResetDff<Bits<QUEUE_PTR_BITS>>,
+    q_wp2: ResetDff<Bits<QUEUE_PTR_BITS>>,
+    q_wp3: ResetDff<Bits<QUEUE_PTR_BITS>>,
+    q_wp4: ResetDff<Bits<QUEUE_PTR_BITS>>,
+    q_wp5: ResetDff<Bits<QUEUE_PTR_BITS>>,
     // A line is shown (`q_wp5` a clock ago against the read pointer),
     // computed a clock ahead from registers: the engine's control starts
     // at a register.
-    line_ready: DFF<Bit>,
-    q_rp: DFF<Bits<QUEUE_PTR_BITS>>,
-    q_rp1: DFFWithInit<Bits<QUEUE_PTR_BITS>>,
-    q_next_q: DFF<Bit>,
-    overflow_q: DFF<Bit>,
+    line_ready: ResetDff<Bit>,
+    q_rp: ResetDff<Bits<QUEUE_PTR_BITS>>,
+    q_rp1: ResetDff<Bits<QUEUE_PTR_BITS>>,
+    q_next_q: ResetDff<Bit>,
+    overflow_q: ResetDff<Bit>,
     // ---- Pixels: the line being sent, then the pixel pipeline.
-    x: DFF<Bits<WIDTH_BITS>>,
+    x: ResetDff<Bits<WIDTH_BITS>>,
     // `x + 1`, `x == 0`; the pixel's place on the next clock of the same
     // line (in the head, in a segment, the line's last: compared a clock
     // ahead against `x + 1`); `x` against each ring slot's last pixel.
-    x1: DFFWithInit<Bits<WIDTH_BITS>>,
-    x_zero: DFFWithInit<Bit>,
-    head_next: DFF<Bit>,
-    seg_next: DFF<Bit>,
-    last_next: DFF<Bit>,
-    at_e0: DFFWithInit<Bit>,
-    at_e1: DFFWithInit<Bit>,
-    at_e2: DFFWithInit<Bit>,
-    at_e3: DFFWithInit<Bit>,
-    p0_valid: DFF<Bit>,
-    p0_last: DFF<Bit>,
-    p0_sof: DFF<Bit>,
-    p0_empty: DFF<Bit>,
-    p0_ramp: DFF<Bit>,
-    p0_neg: DFF<Bit>,
-    p0_base: DFF<Bits<POS_BITS>>,
-    p0_u: DFF<Bits<POS_BITS>>,
-    p0_lz: DFF<Bits<LZ_BITS>>,
-    p0_recip: DFF<Bits<RECIP_BITS>>,
-    p0_dd: DFF<Bits<POS_BITS>>,
-    p1_valid: DFF<Bit>,
-    p1_last: DFF<Bit>,
-    p1_sof: DFF<Bit>,
-    p1_empty: DFF<Bit>,
-    p1_ramp: DFF<Bit>,
-    p1_neg: DFF<Bit>,
-    p1_base: DFF<Bits<POS_BITS>>,
-    p1_dd: DFF<Bits<POS_BITS>>,
-    p2_valid: DFF<Bit>,
-    p2_last: DFF<Bit>,
-    p2_sof: DFF<Bit>,
-    p2_empty: DFF<Bit>,
-    p2_ramp: DFF<Bit>,
-    p2_neg: DFF<Bit>,
-    p2_base: DFF<Bits<POS_BITS>>,
-    p2_prod: DFF<Bits<32>>,
-    p2_dd: DFF<Bits<POS_BITS>>,
-    p3_valid: DFF<Bit>,
-    p3_last: DFF<Bit>,
-    p3_sof: DFF<Bit>,
-    p3_empty: DFF<Bit>,
-    p3_ramp: DFF<Bit>,
-    p3_neg: DFF<Bit>,
-    p3_base: DFF<Bits<POS_BITS>>,
-    p4_valid: DFF<Bit>,
-    p4_last: DFF<Bit>,
-    p4_sof: DFF<Bit>,
-    p4_empty: DFF<Bit>,
-    p4_ramp: DFF<Bit>,
-    p4_neg: DFF<Bit>,
-    p4_base: DFF<Bits<POS_BITS>>,
-    p4_prod: DFF<Bits<32>>,
-    p5_valid: DFF<Bit>,
-    p5_last: DFF<Bit>,
-    p5_sof: DFF<Bit>,
-    p5_empty: DFF<Bit>,
-    p5_ramp: DFF<Bit>,
-    p5_neg: DFF<Bit>,
-    p5_base: DFF<Bits<POS_BITS>>,
-    p5_delta: DFF<Bits<POS_BITS>>,
-    o_valid: DFF<Bit>,
-    o_last: DFF<Bit>,
-    o_sof: DFF<Bit>,
-    o_empty: DFF<Bit>,
-    o_d: DFF<Bits<POS_BITS>>,
+    x1: ResetDff<Bits<WIDTH_BITS>>,
+    x_zero: ResetDff<Bit>,
+    head_next: ResetDff<Bit>,
+    seg_next: ResetDff<Bit>,
+    last_next: ResetDff<Bit>,
+    at_e0: ResetDff<Bit>,
+    at_e1: ResetDff<Bit>,
+    at_e2: ResetDff<Bit>,
+    at_e3: ResetDff<Bit>,
+    p0_valid: ResetDff<Bit>,
+    p0_last: ResetDff<Bit>,
+    p0_sof: ResetDff<Bit>,
+    p0_empty: ResetDff<Bit>,
+    p0_ramp: ResetDff<Bit>,
+    p0_neg: ResetDff<Bit>,
+    p0_base: ResetDff<Bits<POS_BITS>>,
+    p0_u: ResetDff<Bits<POS_BITS>>,
+    p0_lz: ResetDff<Bits<LZ_BITS>>,
+    p0_recip: ResetDff<Bits<RECIP_BITS>>,
+    p0_dd: ResetDff<Bits<POS_BITS>>,
+    p1_valid: ResetDff<Bit>,
+    p1_last: ResetDff<Bit>,
+    p1_sof: ResetDff<Bit>,
+    p1_empty: ResetDff<Bit>,
+    p1_ramp: ResetDff<Bit>,
+    p1_neg: ResetDff<Bit>,
+    p1_base: ResetDff<Bits<POS_BITS>>,
+    p1_dd: ResetDff<Bits<POS_BITS>>,
+    p2_valid: ResetDff<Bit>,
+    p2_last: ResetDff<Bit>,
+    p2_sof: ResetDff<Bit>,
+    p2_empty: ResetDff<Bit>,
+    p2_ramp: ResetDff<Bit>,
+    p2_neg: ResetDff<Bit>,
+    p2_base: ResetDff<Bits<POS_BITS>>,
+    p2_prod: ResetDff<Bits<32>>,
+    p2_dd: ResetDff<Bits<POS_BITS>>,
+    p3_valid: ResetDff<Bit>,
+    p3_last: ResetDff<Bit>,
+    p3_sof: ResetDff<Bit>,
+    p3_empty: ResetDff<Bit>,
+    p3_ramp: ResetDff<Bit>,
+    p3_neg: ResetDff<Bit>,
+    p3_base: ResetDff<Bits<POS_BITS>>,
+    p4_valid: ResetDff<Bit>,
+    p4_last: ResetDff<Bit>,
+    p4_sof: ResetDff<Bit>,
+    p4_empty: ResetDff<Bit>,
+    p4_ramp: ResetDff<Bit>,
+    p4_neg: ResetDff<Bit>,
+    p4_base: ResetDff<Bits<POS_BITS>>,
+    p4_prod: ResetDff<Bits<32>>,
+    p5_valid: ResetDff<Bit>,
+    p5_last: ResetDff<Bit>,
+    p5_sof: ResetDff<Bit>,
+    p5_empty: ResetDff<Bit>,
+    p5_ramp: ResetDff<Bit>,
+    p5_neg: ResetDff<Bit>,
+    p5_base: ResetDff<Bits<POS_BITS>>,
+    p5_delta: ResetDff<Bits<POS_BITS>>,
+    o_valid: ResetDff<Bit>,
+    o_last: ResetDff<Bit>,
+    o_sof: ResetDff<Bit>,
+    o_empty: ResetDff<Bit>,
+    o_d: ResetDff<Bits<POS_BITS>>,
     // ---- Locals.
     b_c: Signal<Local, Bits<WIDTH_BITS>>,
     x_up: Signal<Local, Bits<{ POS_BITS + 1 }>>,
@@ -529,6 +532,7 @@ impl Interpolator {
         let cs = |v: u64| Constant::<Bits<SHAPE_BITS>>::new(v.into());
         Interpolator {
             clock: Default::default(),
+            reset: Default::default(),
             a_valid: Default::default(),
             a_last: Default::default(),
             a_x: Default::default(),
@@ -630,19 +634,19 @@ impl Interpolator {
             q_wp5: Default::default(),
             line_ready: Default::default(),
             q_rp: Default::default(),
-            q_rp1: DFFWithInit::new(1u64.into()),
+            q_rp1: ResetDff::new(1u64.into()),
             q_next_q: Default::default(),
             overflow_q: Default::default(),
             x: Default::default(),
-            x1: DFFWithInit::new(1u64.into()),
-            x_zero: DFFWithInit::new(true),
+            x1: ResetDff::new(1u64.into()),
+            x_zero: ResetDff::new(true),
             head_next: Default::default(),
             seg_next: Default::default(),
             last_next: Default::default(),
-            at_e0: DFFWithInit::new(true),
-            at_e1: DFFWithInit::new(true),
-            at_e2: DFFWithInit::new(true),
-            at_e3: DFFWithInit::new(true),
+            at_e0: ResetDff::new(true),
+            at_e1: ResetDff::new(true),
+            at_e2: ResetDff::new(true),
+            at_e3: ResetDff::new(true),
             p0_valid: Default::default(),
             p0_last: Default::default(),
             p0_sof: Default::default(),
@@ -834,6 +838,155 @@ impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, s4_seg, s4_last, s4_ax, s4_ad, s4_dd, s4_shape, s4_recip, seg_wp, rd_ptr, seg_used, q_used, seg_full, seg_any, q_full, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_wp5, line_ready, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        self.in_line.reset.next = self.reset.val();
+        self.dropping.reset.next = self.reset.val();
+        self.has_prev.reset.next = self.reset.val();
+        self.prev_x.reset.next = self.reset.val();
+        self.prev_d.reset.next = self.reset.val();
+        self.prev_c.reset.next = self.reset.val();
+        self.first_d.reset.next = self.reset.val();
+        self.first_c.reset.next = self.reset.val();
+        self.s1_seg.reset.next = self.reset.val();
+        self.s1_last.reset.next = self.reset.val();
+        self.s1_ax.reset.next = self.reset.val();
+        self.s1_ad.reset.next = self.reset.val();
+        self.s1_dx.reset.next = self.reset.val();
+        self.s1_dd.reset.next = self.reset.val();
+        self.s1_neg.reset.next = self.reset.val();
+        self.s1_min.reset.next = self.reset.val();
+        self.s2_seg.reset.next = self.reset.val();
+        self.s2_last.reset.next = self.reset.val();
+        self.s2_ax.reset.next = self.reset.val();
+        self.s2_ad.reset.next = self.reset.val();
+        self.s2_dd.reset.next = self.reset.val();
+        self.s2_m.reset.next = self.reset.val();
+        self.s2_shape.reset.next = self.reset.val();
+        self.s3_seg.reset.next = self.reset.val();
+        self.s3_last.reset.next = self.reset.val();
+        self.s3_ax.reset.next = self.reset.val();
+        self.s3_ad.reset.next = self.reset.val();
+        self.s3_dd.reset.next = self.reset.val();
+        self.s3_shape.reset.next = self.reset.val();
+        self.s4_seg.reset.next = self.reset.val();
+        self.s4_last.reset.next = self.reset.val();
+        self.s4_ax.reset.next = self.reset.val();
+        self.s4_ad.reset.next = self.reset.val();
+        self.s4_dd.reset.next = self.reset.val();
+        self.s4_shape.reset.next = self.reset.val();
+        self.s4_recip.reset.next = self.reset.val();
+        self.seg_wp.reset.next = self.reset.val();
+        self.rd_ptr.reset.next = self.reset.val();
+        self.seg_used.reset.next = self.reset.val();
+        self.q_used.reset.next = self.reset.val();
+        self.seg_full.reset.next = self.reset.val();
+        self.seg_any.reset.next = self.reset.val();
+        self.q_full.reset.next = self.reset.val();
+        self.rd1.reset.next = self.reset.val();
+        self.rd2.reset.next = self.reset.val();
+        self.fill.reset.next = self.reset.val();
+        self.wi.reset.next = self.reset.val();
+        self.ri.reset.next = self.reset.val();
+        self.e0_last.reset.next = self.reset.val();
+        self.e0_ax.reset.next = self.reset.val();
+        self.e0_ad.reset.next = self.reset.val();
+        self.e0_dd.reset.next = self.reset.val();
+        self.e0_shape.reset.next = self.reset.val();
+        self.e0_recip.reset.next = self.reset.val();
+        self.e1_last.reset.next = self.reset.val();
+        self.e1_ax.reset.next = self.reset.val();
+        self.e1_ad.reset.next = self.reset.val();
+        self.e1_dd.reset.next = self.reset.val();
+        self.e1_shape.reset.next = self.reset.val();
+        self.e1_recip.reset.next = self.reset.val();
+        self.e2_last.reset.next = self.reset.val();
+        self.e2_ax.reset.next = self.reset.val();
+        self.e2_ad.reset.next = self.reset.val();
+        self.e2_dd.reset.next = self.reset.val();
+        self.e2_shape.reset.next = self.reset.val();
+        self.e2_recip.reset.next = self.reset.val();
+        self.e3_last.reset.next = self.reset.val();
+        self.e3_ax.reset.next = self.reset.val();
+        self.e3_ad.reset.next = self.reset.val();
+        self.e3_dd.reset.next = self.reset.val();
+        self.e3_shape.reset.next = self.reset.val();
+        self.e3_recip.reset.next = self.reset.val();
+        self.q_wp.reset.next = self.reset.val();
+        self.q_wp1.reset.next = self.reset.val();
+        self.q_wp2.reset.next = self.reset.val();
+        self.q_wp3.reset.next = self.reset.val();
+        self.q_wp4.reset.next = self.reset.val();
+        self.q_wp5.reset.next = self.reset.val();
+        self.line_ready.reset.next = self.reset.val();
+        self.q_rp.reset.next = self.reset.val();
+        self.q_rp1.reset.next = self.reset.val();
+        self.q_next_q.reset.next = self.reset.val();
+        self.overflow_q.reset.next = self.reset.val();
+        self.x.reset.next = self.reset.val();
+        self.x1.reset.next = self.reset.val();
+        self.x_zero.reset.next = self.reset.val();
+        self.head_next.reset.next = self.reset.val();
+        self.seg_next.reset.next = self.reset.val();
+        self.last_next.reset.next = self.reset.val();
+        self.at_e0.reset.next = self.reset.val();
+        self.at_e1.reset.next = self.reset.val();
+        self.at_e2.reset.next = self.reset.val();
+        self.at_e3.reset.next = self.reset.val();
+        self.p0_valid.reset.next = self.reset.val();
+        self.p0_last.reset.next = self.reset.val();
+        self.p0_sof.reset.next = self.reset.val();
+        self.p0_empty.reset.next = self.reset.val();
+        self.p0_ramp.reset.next = self.reset.val();
+        self.p0_neg.reset.next = self.reset.val();
+        self.p0_base.reset.next = self.reset.val();
+        self.p0_u.reset.next = self.reset.val();
+        self.p0_lz.reset.next = self.reset.val();
+        self.p0_recip.reset.next = self.reset.val();
+        self.p0_dd.reset.next = self.reset.val();
+        self.p1_valid.reset.next = self.reset.val();
+        self.p1_last.reset.next = self.reset.val();
+        self.p1_sof.reset.next = self.reset.val();
+        self.p1_empty.reset.next = self.reset.val();
+        self.p1_ramp.reset.next = self.reset.val();
+        self.p1_neg.reset.next = self.reset.val();
+        self.p1_base.reset.next = self.reset.val();
+        self.p1_dd.reset.next = self.reset.val();
+        self.p2_valid.reset.next = self.reset.val();
+        self.p2_last.reset.next = self.reset.val();
+        self.p2_sof.reset.next = self.reset.val();
+        self.p2_empty.reset.next = self.reset.val();
+        self.p2_ramp.reset.next = self.reset.val();
+        self.p2_neg.reset.next = self.reset.val();
+        self.p2_base.reset.next = self.reset.val();
+        self.p2_prod.reset.next = self.reset.val();
+        self.p2_dd.reset.next = self.reset.val();
+        self.p3_valid.reset.next = self.reset.val();
+        self.p3_last.reset.next = self.reset.val();
+        self.p3_sof.reset.next = self.reset.val();
+        self.p3_empty.reset.next = self.reset.val();
+        self.p3_ramp.reset.next = self.reset.val();
+        self.p3_neg.reset.next = self.reset.val();
+        self.p3_base.reset.next = self.reset.val();
+        self.p4_valid.reset.next = self.reset.val();
+        self.p4_last.reset.next = self.reset.val();
+        self.p4_sof.reset.next = self.reset.val();
+        self.p4_empty.reset.next = self.reset.val();
+        self.p4_ramp.reset.next = self.reset.val();
+        self.p4_neg.reset.next = self.reset.val();
+        self.p4_base.reset.next = self.reset.val();
+        self.p4_prod.reset.next = self.reset.val();
+        self.p5_valid.reset.next = self.reset.val();
+        self.p5_last.reset.next = self.reset.val();
+        self.p5_sof.reset.next = self.reset.val();
+        self.p5_empty.reset.next = self.reset.val();
+        self.p5_ramp.reset.next = self.reset.val();
+        self.p5_neg.reset.next = self.reset.val();
+        self.p5_base.reset.next = self.reset.val();
+        self.p5_delta.reset.next = self.reset.val();
+        self.o_valid.reset.next = self.reset.val();
+        self.o_last.reset.next = self.reset.val();
+        self.o_sof.reset.next = self.reset.val();
+        self.o_empty.reset.next = self.reset.val();
+        self.o_d.reset.next = self.reset.val();
         self.recip.clock.next = self.clock.val();
         self.seg_last.clock.next = self.clock.val();
         self.seg_ax.clock.next = self.clock.val();

@@ -38,11 +38,14 @@
 use crate::primitives::block_ram::BlockRam;
 use crate::params::*;
 use crate::post::row_check::WIDE;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
 pub(crate) struct NeighbourWindow {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub w_enable: Signal<In, Bit>,
     pub w_address: Signal<In, Bits<ROW_ADDR_BITS>>,
     pub w_data: Signal<In, Bits<ROW_ENTRY_BITS>>,
@@ -56,33 +59,33 @@ pub(crate) struct NeighbourWindow {
     pub crowd: Signal<Out, Bit>,
     pub complete: Signal<Out, Bit>,
     mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
-    base: DFF<Bits<ROW_ADDR_BITS>>,
-    rd: DFF<Bits<COUNT_BITS>>,
+    base: ResetDff<Bits<ROW_ADDR_BITS>>,
+    rd: ResetDff<Bits<COUNT_BITS>>,
     // The row's entries not yet read; none (`rend`).
-    rleft: DFF<Bits<COUNT_BITS>>,
-    rend: DFF<Bit>,
-    rd1: DFF<Bit>,
-    rd2: DFF<Bit>,
-    wi: DFF<Bits<ROW_WINDOW_BITS>>,
-    wpos: DFF<Bits<ROW_WINDOW_BITS>>,
+    rleft: ResetDff<Bits<COUNT_BITS>>,
+    rend: ResetDff<Bit>,
+    rd1: ResetDff<Bit>,
+    rd2: ResetDff<Bit>,
+    wi: ResetDff<Bits<ROW_WINDOW_BITS>>,
+    wpos: ResetDff<Bits<ROW_WINDOW_BITS>>,
     // Each slot: held, and its entry's bounds `X + DX`, `X - DX`, `d + DD`,
     // `d - DD` (the last two modulo `2^WIDE`: see the comparisons); the
     // newest entry's `X - DX` (0 at a row's start).
-    held: [DFF<Bit>; ROW_WINDOW],
-    xp: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    xm: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    dp: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    dm: [DFF<Bits<WIDE>>; ROW_WINDOW],
-    lxm: DFF<Bits<WIDE>>,
+    held: [ResetDff<Bit>; ROW_WINDOW],
+    xp: [ResetDff<Bits<WIDE>>; ROW_WINDOW],
+    xm: [ResetDff<Bits<WIDE>>; ROW_WINDOW],
+    dp: [ResetDff<Bits<WIDE>>; ROW_WINDOW],
+    dm: [ResetDff<Bits<WIDE>>; ROW_WINDOW],
+    lxm: ResetDff<Bits<WIDE>>,
     // The comparisons with the presented match, registered: each slot left
     // of its window (`lt`), a confirming entry among slots 0-3 and 4-7
     // (`okq`); the window full, the newest entry right of it (`beyond`),
     // the row read and arrived (`loaded`).
-    lt: [DFF<Bit>; ROW_WINDOW],
-    okq: [DFF<Bit>; 2],
-    full: DFF<Bit>,
-    beyond: DFF<Bit>,
-    loaded: DFF<Bit>,
+    lt: [ResetDff<Bit>; ROW_WINDOW],
+    okq: [ResetDff<Bit>; 2],
+    full: ResetDff<Bit>,
+    beyond: ResetDff<Bit>,
+    loaded: ResetDff<Bit>,
     // The comparisons as differences whose top bit is the borrow: `X + DX
     // - x`, `x - (X - DX)`, `d_q - (d - DD)`, `d + DD - d_q` (negative:
     // left of the window, right of it, below it, above it).
@@ -109,7 +112,7 @@ pub(crate) struct NeighbourWindow {
     // `lt` registers), a register of its own beside them: the crowded test
     // starts at registers, not two LUT levels of OR in front of the row
     // check's `both_ready`.
-    anylt: DFF<Bit>,
+    anylt: ResetDff<Bit>,
     beyond_c: Signal<Local, Bit>,
     loaded_c: Signal<Local, Bit>,
     wslot: [Constant<Bits<ROW_WINDOW_BITS>>; ROW_WINDOW],
@@ -126,6 +129,7 @@ impl Default for NeighbourWindow {
     fn default() -> Self {
         NeighbourWindow {
             clock: Default::default(),
+            reset: Default::default(),
             w_enable: Default::default(),
             w_address: Default::default(),
             w_data: Default::default(),
@@ -196,6 +200,19 @@ impl Logic for NeighbourWindow {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, base, rd, rleft, rend, rd1, rd2, wi, wpos, lxm, full, beyond, loaded, anylt);
+        self.base.reset.next = self.reset.val();
+        self.rd.reset.next = self.reset.val();
+        self.rleft.reset.next = self.reset.val();
+        self.rend.reset.next = self.reset.val();
+        self.rd1.reset.next = self.reset.val();
+        self.rd2.reset.next = self.reset.val();
+        self.wi.reset.next = self.reset.val();
+        self.wpos.reset.next = self.reset.val();
+        self.lxm.reset.next = self.reset.val();
+        self.full.reset.next = self.reset.val();
+        self.beyond.reset.next = self.reset.val();
+        self.loaded.reset.next = self.reset.val();
+        self.anylt.reset.next = self.reset.val();
         // The memory copy takes the loader's writes.
         self.mem.clock.next = self.clock.val();
         self.mem.write_enable.next = self.w_enable.val();
@@ -203,11 +220,17 @@ impl Logic for NeighbourWindow {
         self.mem.write_data.next = self.w_data.val();
         for i in 0..ROW_WINDOW {
             self.held[i].clock.next = self.clock.val();
+            self.held[i].reset.next = self.reset.val();
             self.xp[i].clock.next = self.clock.val();
+            self.xp[i].reset.next = self.reset.val();
             self.xm[i].clock.next = self.clock.val();
+            self.xm[i].reset.next = self.reset.val();
             self.dp[i].clock.next = self.clock.val();
+            self.dp[i].reset.next = self.reset.val();
             self.dm[i].clock.next = self.clock.val();
+            self.dm[i].reset.next = self.reset.val();
             self.lt[i].clock.next = self.clock.val();
+            self.lt[i].reset.next = self.reset.val();
             self.xp[i].d.next = self.xp[i].q.val();
             self.xm[i].d.next = self.xm[i].q.val();
             self.dp[i].d.next = self.dp[i].q.val();
@@ -287,7 +310,9 @@ impl Logic for NeighbourWindow {
             self.okc[i].next = !self.sl[i].val().get_bit(self.sign_at.val().index()) & !self.sg[i].val().get_bit(self.sign_at.val().index()) & !self.sdl[i].val().get_bit(self.sign_at.val().index()) & !self.sdh[i].val().get_bit(self.sign_at.val().index());
         }
         self.okq[0].clock.next = self.clock.val();
+        self.okq[0].reset.next = self.reset.val();
         self.okq[1].clock.next = self.clock.val();
+        self.okq[1].reset.next = self.reset.val();
         self.okq[0].d.next = self.okc[0].val() | self.okc[1].val() | self.okc[2].val() | self.okc[3].val();
         self.okq[1].d.next = self.okc[4].val() | self.okc[5].val() | self.okc[6].val() | self.okc[7].val();
         self.full.d.next = self.held[0].q.val() & self.held[1].q.val() & self.held[2].q.val() & self.held[3].q.val() & self.held[4].q.val() & self.held[5].q.val() & self.held[6].q.val() & self.held[7].q.val();

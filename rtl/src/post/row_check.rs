@@ -97,6 +97,7 @@
 use crate::primitives::block_ram::BlockRam;
 use crate::post::neighbour_window::NeighbourWindow;
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Clocks from the marker that makes a row ready to its start clock (the
@@ -174,6 +175,8 @@ pub const fn row_check_period() -> usize {
 #[derive(LogicBlock)]
 pub struct RowCheck {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub m_valid: Signal<In, Bit>,
     pub m_last: Signal<In, Bit>,
     pub m_x_ref: Signal<In, Bits<POS_BITS>>,
@@ -197,81 +200,81 @@ pub struct RowCheck {
     b_count: Signal<Local, Bits<COUNT_BITS>>,
     // A window found crowded for the row's next undecided match stays so
     // until that match is decided (`stuck`).
-    a_stuck: DFF<Bit>,
-    b_stuck: DFF<Bit>,
+    a_stuck: ResetDff<Bit>,
+    b_stuck: ResetDff<Bit>,
     a_stuck_n: Signal<Local, Bit>,
     b_stuck_n: Signal<Local, Bit>,
     // ---- The checked row's memory copy.
     cur_mem: BlockRam<ROW_ENTRY_BITS, ROW_ADDR_BITS>,
     // ---- Loader: the row being received (admission, its next index), the
     // rows stored (modulo 8; the bank is the low bits), each bank's row.
-    in_line: DFF<Bit>,
-    dropping: DFF<Bit>,
-    widx: DFF<Bits<COUNT_BITS>>,
-    wl: DFF<Bits<ROW_PTR_BITS>>,
-    sof_pending: DFF<Bit>,
-    nofree: DFF<Bit>,
-    cnt0: DFF<Bits<COUNT_BITS>>,
-    sof0: DFF<Bit>,
-    eof0: DFF<Bit>,
-    cnt1: DFF<Bits<COUNT_BITS>>,
-    sof1: DFF<Bit>,
-    eof1: DFF<Bit>,
-    cnt2: DFF<Bits<COUNT_BITS>>,
-    sof2: DFF<Bit>,
-    eof2: DFF<Bit>,
-    cnt3: DFF<Bits<COUNT_BITS>>,
-    sof3: DFF<Bit>,
-    eof3: DFF<Bit>,
+    in_line: ResetDff<Bit>,
+    dropping: ResetDff<Bit>,
+    widx: ResetDff<Bits<COUNT_BITS>>,
+    wl: ResetDff<Bits<ROW_PTR_BITS>>,
+    sof_pending: ResetDff<Bit>,
+    nofree: ResetDff<Bit>,
+    cnt0: ResetDff<Bits<COUNT_BITS>>,
+    sof0: ResetDff<Bit>,
+    eof0: ResetDff<Bit>,
+    cnt1: ResetDff<Bits<COUNT_BITS>>,
+    sof1: ResetDff<Bit>,
+    eof1: ResetDff<Bit>,
+    cnt2: ResetDff<Bits<COUNT_BITS>>,
+    sof2: ResetDff<Bit>,
+    eof2: ResetDff<Bit>,
+    cnt3: ResetDff<Bits<COUNT_BITS>>,
+    sof3: ResetDff<Bit>,
+    eof3: ResetDff<Bit>,
     // ---- Engine: the row checked (or next), whether the row before it is
     // still needed as its row above, the row's matches, flags, decisions
     // and kept matches.
-    el: DFF<Bits<ROW_PTR_BITS>>,
-    start_q: DFF<Bit>,
-    prev_needed: DFF<Bit>,
-    busy: DFF<Bit>,
-    n_cur: DFF<Bits<COUNT_BITS>>,
-    sof_cur: DFF<Bit>,
-    eof_cur: DFF<Bit>,
-    dec: DFF<Bits<COUNT_BITS>>,
-    dec1: DFF<Bits<COUNT_BITS>>,
-    kept: DFF<Bits<COUNT_BITS>>,
+    el: ResetDff<Bits<ROW_PTR_BITS>>,
+    start_q: ResetDff<Bit>,
+    prev_needed: ResetDff<Bit>,
+    busy: ResetDff<Bit>,
+    n_cur: ResetDff<Bits<COUNT_BITS>>,
+    sof_cur: ResetDff<Bit>,
+    eof_cur: ResetDff<Bit>,
+    dec: ResetDff<Bits<COUNT_BITS>>,
+    dec1: ResetDff<Bits<COUNT_BITS>>,
+    kept: ResetDff<Bits<COUNT_BITS>>,
     // The checked row's prefetch ring: reads issued, in flight, arrived.
-    crd: DFF<Bits<COUNT_BITS>>,
-    crd1: DFF<Bit>,
-    crd2: DFF<Bit>,
-    cwr: DFF<Bits<COUNT_BITS>>,
-    cx: [DFF<Bits<POS_BITS>>; CUR_RING],
-    cd: [DFF<Bits<POS_BITS>>; CUR_RING],
+    crd: ResetDff<Bits<COUNT_BITS>>,
+    crd1: ResetDff<Bit>,
+    crd2: ResetDff<Bit>,
+    cwr: ResetDff<Bits<COUNT_BITS>>,
+    cx: [ResetDff<Bits<POS_BITS>>; CUR_RING],
+    cd: [ResetDff<Bits<POS_BITS>>; CUR_RING],
     // The compare stage: the presented match (its index, whether there is
     // one, its `X` and `d` in WIDE bits), the index presented next.
-    pvalid: DFF<Bit>,
-    pidx: DFF<Bits<COUNT_BITS>>,
-    pn: DFF<Bits<COUNT_BITS>>,
+    pvalid: ResetDff<Bit>,
+    pidx: ResetDff<Bits<COUNT_BITS>>,
+    pn: ResetDff<Bits<COUNT_BITS>>,
     // `pn`'s ring slot and `dec + 1`'s, one-hot (the ring's read is an
     // AND-OR of its slots).
-    pn_oh: [DFF<Bit>; CUR_RING],
-    dec1_oh: [DFF<Bit>; CUR_RING],
-    px: DFF<Bits<WIDE>>,
-    pd: DFF<Bits<WIDE>>,
+    pn_oh: [ResetDff<Bit>; CUR_RING],
+    dec1_oh: [ResetDff<Bit>; CUR_RING],
+    px: ResetDff<Bits<WIDE>>,
+    pd: ResetDff<Bits<WIDE>>,
     // The decision stage: the compared match (the row's next undecided one
     // when `dvalid`), its `X` and `d`.
-    dvalid: DFF<Bit>,
+    dvalid: ResetDff<Bit>,
     // Both windows complete for the compared match (registered with the
     // comparisons).
-    both_ready: DFF<Bit>,
-    qx: DFF<Bits<POS_BITS>>,
-    qd: DFF<Bits<POS_BITS>>,
+    both_ready: ResetDff<Bit>,
+    qx: ResetDff<Bits<POS_BITS>>,
+    qd: ResetDff<Bits<POS_BITS>>,
     // ---- Output registers.
-    o_valid: DFF<Bit>,
-    o_last: DFF<Bit>,
-    o_x: DFF<Bits<POS_BITS>>,
-    o_d: DFF<Bits<POS_BITS>>,
-    o_sof: DFF<Bit>,
-    o_eof: DFF<Bit>,
-    o_count: DFF<Bits<COUNT_BITS>>,
-    overflow_q: DFF<Bit>,
-    crowded_q: DFF<Bit>,
+    o_valid: ResetDff<Bit>,
+    o_last: ResetDff<Bit>,
+    o_x: ResetDff<Bits<POS_BITS>>,
+    o_d: ResetDff<Bits<POS_BITS>>,
+    o_sof: ResetDff<Bit>,
+    o_eof: ResetDff<Bit>,
+    o_count: ResetDff<Bits<COUNT_BITS>>,
+    overflow_q: ResetDff<Bit>,
+    crowded_q: ResetDff<Bit>,
     // ---- Locals.
     first_event: Signal<Local, Bit>,
     used_now: Signal<Local, Bits<ROW_PTR_BITS>>,
@@ -337,6 +340,7 @@ impl RowCheck {
         let bank = |b: u64| Constant::<Bits<ROW_BANK_BITS>>::new(b.into());
         RowCheck {
             clock: Default::default(),
+            reset: Default::default(),
             m_valid: Default::default(),
             m_last: Default::default(),
             m_x_ref: Default::default(),
@@ -471,6 +475,58 @@ impl Logic for RowCheck {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, a_stuck, b_stuck, in_line, dropping, widx, wl, sof_pending, nofree, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, start_q, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, dec1, kept, crd, crd1, crd2, cwr, pvalid, pidx, pn, px, pd, dvalid, both_ready, qx, qd, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
+        self.a_stuck.reset.next = self.reset.val();
+        self.b_stuck.reset.next = self.reset.val();
+        self.in_line.reset.next = self.reset.val();
+        self.dropping.reset.next = self.reset.val();
+        self.widx.reset.next = self.reset.val();
+        self.wl.reset.next = self.reset.val();
+        self.sof_pending.reset.next = self.reset.val();
+        self.nofree.reset.next = self.reset.val();
+        self.cnt0.reset.next = self.reset.val();
+        self.sof0.reset.next = self.reset.val();
+        self.eof0.reset.next = self.reset.val();
+        self.cnt1.reset.next = self.reset.val();
+        self.sof1.reset.next = self.reset.val();
+        self.eof1.reset.next = self.reset.val();
+        self.cnt2.reset.next = self.reset.val();
+        self.sof2.reset.next = self.reset.val();
+        self.eof2.reset.next = self.reset.val();
+        self.cnt3.reset.next = self.reset.val();
+        self.sof3.reset.next = self.reset.val();
+        self.eof3.reset.next = self.reset.val();
+        self.el.reset.next = self.reset.val();
+        self.start_q.reset.next = self.reset.val();
+        self.prev_needed.reset.next = self.reset.val();
+        self.busy.reset.next = self.reset.val();
+        self.n_cur.reset.next = self.reset.val();
+        self.sof_cur.reset.next = self.reset.val();
+        self.eof_cur.reset.next = self.reset.val();
+        self.dec.reset.next = self.reset.val();
+        self.dec1.reset.next = self.reset.val();
+        self.kept.reset.next = self.reset.val();
+        self.crd.reset.next = self.reset.val();
+        self.crd1.reset.next = self.reset.val();
+        self.crd2.reset.next = self.reset.val();
+        self.cwr.reset.next = self.reset.val();
+        self.pvalid.reset.next = self.reset.val();
+        self.pidx.reset.next = self.reset.val();
+        self.pn.reset.next = self.reset.val();
+        self.px.reset.next = self.reset.val();
+        self.pd.reset.next = self.reset.val();
+        self.dvalid.reset.next = self.reset.val();
+        self.both_ready.reset.next = self.reset.val();
+        self.qx.reset.next = self.reset.val();
+        self.qd.reset.next = self.reset.val();
+        self.o_valid.reset.next = self.reset.val();
+        self.o_last.reset.next = self.reset.val();
+        self.o_x.reset.next = self.reset.val();
+        self.o_d.reset.next = self.reset.val();
+        self.o_sof.reset.next = self.reset.val();
+        self.o_eof.reset.next = self.reset.val();
+        self.o_count.reset.next = self.reset.val();
+        self.overflow_q.reset.next = self.reset.val();
+        self.crowded_q.reset.next = self.reset.val();
         self.cur_mem.clock.next = self.clock.val();
 
         // ================= Loader =================
@@ -624,6 +680,7 @@ impl Logic for RowCheck {
         // row memory takes the loader's writes; each window starts with the
         // engine's row and compares its entries with the presented match.
         self.above.clock.next = self.clock.val();
+        self.above.reset.next = self.reset.val();
         self.above.w_enable.next = self.take_match.val();
         self.above.w_address.next = self.waddr.val();
         self.above.w_data.next = self.wdata.val();
@@ -633,6 +690,7 @@ impl Logic for RowCheck {
         self.above.pd.next = self.pd.q.val();
         self.above.dvalid.next = self.dvalid.q.val();
         self.below.clock.next = self.clock.val();
+        self.below.reset.next = self.reset.val();
         self.below.w_enable.next = self.take_match.val();
         self.below.w_address.next = self.waddr.val();
         self.below.w_data.next = self.wdata.val();
@@ -658,7 +716,9 @@ impl Logic for RowCheck {
         self.cwslot.next = bit_cast::<CUR_SLOT_BITS, COUNT_BITS>(self.cwr.q.val());
         for i in 0..CUR_RING {
             self.cx[i].clock.next = self.clock.val();
+            self.cx[i].reset.next = self.reset.val();
             self.cd[i].clock.next = self.clock.val();
+            self.cd[i].reset.next = self.reset.val();
             self.cx[i].d.next = self.cx[i].q.val();
             self.cd[i].d.next = self.cd[i].q.val();
             if self.crd2.q.val() & (self.cwslot.val() == self.cslot[i].val()) {
@@ -673,7 +733,9 @@ impl Logic for RowCheck {
         // AND-OR of its slots).
         for i in 0..CUR_RING {
             self.pn_oh[i].clock.next = self.clock.val();
+            self.pn_oh[i].reset.next = self.reset.val();
             self.dec1_oh[i].clock.next = self.clock.val();
+            self.dec1_oh[i].reset.next = self.reset.val();
             self.pn_oh[i].d.next = self.pn_oh[i].q.val();
             self.dec1_oh[i].d.next = self.dec1_oh[i].q.val();
             self.cmask[i].next = 0.into();

@@ -73,6 +73,7 @@
 
 use crate::primitives::block_ram::BlockRam;
 use crate::params::*;
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Clocks from a pixel on `p_*` (or a pixel's clock of the flush) to the
@@ -100,6 +101,8 @@ const _: () = assert!(1 << BUF_BITS == MEDIAN_LINE_BUFFERS && (1 << SLOT_BITS) >
 #[derive(LogicBlock)]
 pub struct VerticalMedian {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub p_valid: Signal<In, Bit>,
     pub p_d: Signal<In, Bits<POS_BITS>>,
     pub p_last: Signal<In, Bit>,
@@ -113,74 +116,74 @@ pub struct VerticalMedian {
     // ---- The row being taken or flushed: its slot (saturated at 8), the
     // buffer of its row (k mod 8), the phase, the column, the last row's
     // last column, dropping the rest of a row.
-    slot: DFF<Bits<SLOT_BITS>>,
-    rot: DFF<Bits<BUF_BITS>>,
-    phase: DFF<Bits<PHASE_BITS>>,
-    col: DFF<Bits<X_BITS>>,
-    last_col: DFF<Bits<X_BITS>>,
-    dropping: DFF<Bit>,
-    overflow_q: DFF<Bit>,
+    slot: ResetDff<Bits<SLOT_BITS>>,
+    rot: ResetDff<Bits<BUF_BITS>>,
+    phase: ResetDff<Bits<PHASE_BITS>>,
+    col: ResetDff<Bits<X_BITS>>,
+    last_col: ResetDff<Bits<X_BITS>>,
+    dropping: ResetDff<Bit>,
+    overflow_q: ResetDff<Bit>,
     // ---- The line buffers: row r in line[r mod 8].
     line: [BlockRam<POS_BITS, W_MAX_BITS>; MEDIAN_LINE_BUFFERS],
     // ---- S0: the pixel a clock later (its write), its output's flags,
     // slot and phase; the forwarding of the write beside the read.
-    s0_write: DFF<Bit>,
-    s0_col: DFF<Bits<X_BITS>>,
-    s0_d: DFF<Bits<POS_BITS>>,
-    s0_buf: DFF<Bits<BUF_BITS>>,
-    s0_out: DFF<Bit>,
-    s0_sof: DFF<Bit>,
-    s0_last: DFF<Bit>,
-    s0_k: DFF<Bits<SLOT_BITS>>,
-    s0_ph: DFF<Bits<PHASE_BITS>>,
-    s0_rot: DFF<Bits<BUF_BITS>>,
-    s0_hit: DFF<Bit>,
-    s0_hit_buf: DFF<Bits<BUF_BITS>>,
-    s0_hit_d: DFF<Bits<POS_BITS>>,
+    s0_write: ResetDff<Bit>,
+    s0_col: ResetDff<Bits<X_BITS>>,
+    s0_d: ResetDff<Bits<POS_BITS>>,
+    s0_buf: ResetDff<Bits<BUF_BITS>>,
+    s0_out: ResetDff<Bit>,
+    s0_sof: ResetDff<Bit>,
+    s0_last: ResetDff<Bit>,
+    s0_k: ResetDff<Bits<SLOT_BITS>>,
+    s0_ph: ResetDff<Bits<PHASE_BITS>>,
+    s0_rot: ResetDff<Bits<BUF_BITS>>,
+    s0_hit: ResetDff<Bit>,
+    s0_hit_buf: ResetDff<Bits<BUF_BITS>>,
+    s0_hit_d: ResetDff<Bits<POS_BITS>>,
     // ---- S1: beside the buffers' output registers.
-    s1_d: DFF<Bits<POS_BITS>>,
-    s1_out: DFF<Bit>,
-    s1_sof: DFF<Bit>,
-    s1_last: DFF<Bit>,
-    s1_k: DFF<Bits<SLOT_BITS>>,
-    s1_ph: DFF<Bits<PHASE_BITS>>,
-    s1_rot: DFF<Bits<BUF_BITS>>,
-    s1_hit_tap: [DFF<Bit>; MEDIAN_LINE_BUFFERS],
-    s1_hit_d: DFF<Bits<POS_BITS>>,
+    s1_d: ResetDff<Bits<POS_BITS>>,
+    s1_out: ResetDff<Bit>,
+    s1_sof: ResetDff<Bit>,
+    s1_last: ResetDff<Bit>,
+    s1_k: ResetDff<Bits<SLOT_BITS>>,
+    s1_ph: ResetDff<Bits<PHASE_BITS>>,
+    s1_rot: ResetDff<Bits<BUF_BITS>>,
+    s1_hit_tap: [ResetDff<Bit>; MEDIAN_LINE_BUFFERS],
+    s1_hit_d: ResetDff<Bits<POS_BITS>>,
     // ---- R: rows k-8+i in r_v[i]; the clamp's flags: r_lo_ge[j] = the
     // first row of the frame is tap j + 1 or later (slot k <= 7 - j),
     // r_hi_le[m] = the frame's last row is tap 4 + m or earlier (flush
     // phase >= 4 - m).
-    r_v: [DFF<Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
-    r_d: DFF<Bits<POS_BITS>>,
-    r_out: DFF<Bit>,
-    r_sof: DFF<Bit>,
-    r_last: DFF<Bit>,
-    r_lo_ge: [DFF<Bit>; MEDIAN_HALF],
-    r_hi_le: [DFF<Bit>; MEDIAN_HALF],
+    r_v: [ResetDff<Bits<POS_BITS>>; MEDIAN_LINE_BUFFERS],
+    r_d: ResetDff<Bits<POS_BITS>>,
+    r_out: ResetDff<Bit>,
+    r_sof: ResetDff<Bit>,
+    r_last: ResetDff<Bit>,
+    r_lo_ge: [ResetDff<Bit>; MEDIAN_HALF],
+    r_hi_le: [ResetDff<Bit>; MEDIAN_HALF],
     // ---- T: the taps, rows y-4 ..= y+4, clamped to the frame.
-    t: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
-    t_out: DFF<Bit>,
-    t_sof: DFF<Bit>,
-    t_last: DFF<Bit>,
+    t: [ResetDff<Bits<POS_BITS>>; MEDIAN_TAPS],
+    t_out: ResetDff<Bit>,
+    t_sof: ResetDff<Bit>,
+    t_last: ResetDff<Bit>,
     // ---- The network's stages (golden's MEDIAN9_NETWORK, values p0..p8):
     // n1..n3 hold p0..p8; n4 p1..p7 (n4[i] = p(i+1)); n5 p2, p4, p6, p7;
     // n6 and n7 p2, p4, p6; n8 p2, p4. The output step takes min(p4, p2).
-    n1: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
-    n2: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
-    n3: [DFF<Bits<POS_BITS>>; MEDIAN_TAPS],
-    n4: [DFF<Bits<POS_BITS>>; 7],
-    n5: [DFF<Bits<POS_BITS>>; 4],
-    n6: [DFF<Bits<POS_BITS>>; 3],
-    n7: [DFF<Bits<POS_BITS>>; 3],
-    n8: [DFF<Bits<POS_BITS>>; 2],
-    g_out: [DFF<Bit>; NET_STAGES],
-    g_sof: [DFF<Bit>; NET_STAGES],
-    g_last: [DFF<Bit>; NET_STAGES],
-    o_valid: DFF<Bit>,
-    o_sof: DFF<Bit>,
-    o_last: DFF<Bit>,
-    o_d: DFF<Bits<POS_BITS>>,
+    n1: [ResetDff<Bits<POS_BITS>>; MEDIAN_TAPS],
+    n2: [ResetDff<Bits<POS_BITS>>; MEDIAN_TAPS],
+    n3: [ResetDff<Bits<POS_BITS>>; MEDIAN_TAPS],
+    n4: [ResetDff<Bits<POS_BITS>>; 7],
+    n5: [ResetDff<Bits<POS_BITS>>; 4],
+    n6: [ResetDff<Bits<POS_BITS>>; 3],
+    n7: [ResetDff<Bits<POS_BITS>>; 3],
+    n8: [ResetDff<Bits<POS_BITS>>; 2],
+    g_out: [ResetDff<Bit>; NET_STAGES],
+    g_sof: [ResetDff<Bit>; NET_STAGES],
+    g_last: [ResetDff<Bit>; NET_STAGES],
+    o_valid: ResetDff<Bit>,
+    o_sof: ResetDff<Bit>,
+    o_last: ResetDff<Bit>,
+    o_d: ResetDff<Bits<POS_BITS>>,
     // ---- Locals.
     flushing: Signal<Local, Bit>,
     take: Signal<Local, Bit>,
@@ -217,6 +220,7 @@ impl VerticalMedian {
         let cp = |v: u64| Constant::<Bits<PHASE_BITS>>::new(v.into());
         VerticalMedian {
             clock: Default::default(),
+            reset: Default::default(),
             p_valid: Default::default(),
             p_d: Default::default(),
             p_last: Default::default(),
@@ -323,42 +327,97 @@ impl Logic for VerticalMedian {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, slot, rot, phase, col, last_col, dropping, overflow_q, s0_write, s0_col, s0_d, s0_buf, s0_out, s0_sof, s0_last, s0_k, s0_ph, s0_rot, s0_hit, s0_hit_buf, s0_hit_d, s1_d, s1_out, s1_sof, s1_last, s1_k, s1_ph, s1_rot, s1_hit_d, r_d, r_out, r_sof, r_last, t_out, t_sof, t_last, o_valid, o_sof, o_last, o_d);
+        self.slot.reset.next = self.reset.val();
+        self.rot.reset.next = self.reset.val();
+        self.phase.reset.next = self.reset.val();
+        self.col.reset.next = self.reset.val();
+        self.last_col.reset.next = self.reset.val();
+        self.dropping.reset.next = self.reset.val();
+        self.overflow_q.reset.next = self.reset.val();
+        self.s0_write.reset.next = self.reset.val();
+        self.s0_col.reset.next = self.reset.val();
+        self.s0_d.reset.next = self.reset.val();
+        self.s0_buf.reset.next = self.reset.val();
+        self.s0_out.reset.next = self.reset.val();
+        self.s0_sof.reset.next = self.reset.val();
+        self.s0_last.reset.next = self.reset.val();
+        self.s0_k.reset.next = self.reset.val();
+        self.s0_ph.reset.next = self.reset.val();
+        self.s0_rot.reset.next = self.reset.val();
+        self.s0_hit.reset.next = self.reset.val();
+        self.s0_hit_buf.reset.next = self.reset.val();
+        self.s0_hit_d.reset.next = self.reset.val();
+        self.s1_d.reset.next = self.reset.val();
+        self.s1_out.reset.next = self.reset.val();
+        self.s1_sof.reset.next = self.reset.val();
+        self.s1_last.reset.next = self.reset.val();
+        self.s1_k.reset.next = self.reset.val();
+        self.s1_ph.reset.next = self.reset.val();
+        self.s1_rot.reset.next = self.reset.val();
+        self.s1_hit_d.reset.next = self.reset.val();
+        self.r_d.reset.next = self.reset.val();
+        self.r_out.reset.next = self.reset.val();
+        self.r_sof.reset.next = self.reset.val();
+        self.r_last.reset.next = self.reset.val();
+        self.t_out.reset.next = self.reset.val();
+        self.t_sof.reset.next = self.reset.val();
+        self.t_last.reset.next = self.reset.val();
+        self.o_valid.reset.next = self.reset.val();
+        self.o_sof.reset.next = self.reset.val();
+        self.o_last.reset.next = self.reset.val();
+        self.o_d.reset.next = self.reset.val();
         for b in 0..MEDIAN_LINE_BUFFERS {
             self.line[b].clock.next = self.clock.val();
             self.s1_hit_tap[b].clock.next = self.clock.val();
+            self.s1_hit_tap[b].reset.next = self.reset.val();
             self.r_v[b].clock.next = self.clock.val();
+            self.r_v[b].reset.next = self.reset.val();
             self.r_v[b].d.next = self.r_v[b].q.val();
         }
         for j in 0..MEDIAN_HALF {
             self.r_lo_ge[j].clock.next = self.clock.val();
+            self.r_lo_ge[j].reset.next = self.reset.val();
             self.r_lo_ge[j].d.next = self.r_lo_ge[j].q.val();
             self.r_hi_le[j].clock.next = self.clock.val();
+            self.r_hi_le[j].reset.next = self.reset.val();
             self.r_hi_le[j].d.next = self.r_hi_le[j].q.val();
         }
         for i in 0..MEDIAN_TAPS {
             self.t[i].clock.next = self.clock.val();
+            self.t[i].reset.next = self.reset.val();
             self.t[i].d.next = self.t[i].q.val();
             self.n1[i].clock.next = self.clock.val();
+            self.n1[i].reset.next = self.reset.val();
             self.n2[i].clock.next = self.clock.val();
+            self.n2[i].reset.next = self.reset.val();
             self.n3[i].clock.next = self.clock.val();
+            self.n3[i].reset.next = self.reset.val();
         }
         for i in 0..7 {
             self.n4[i].clock.next = self.clock.val();
+            self.n4[i].reset.next = self.reset.val();
         }
         for i in 0..4 {
             self.n5[i].clock.next = self.clock.val();
+            self.n5[i].reset.next = self.reset.val();
         }
         for i in 0..3 {
             self.n6[i].clock.next = self.clock.val();
+            self.n6[i].reset.next = self.reset.val();
             self.n7[i].clock.next = self.clock.val();
+            self.n7[i].reset.next = self.reset.val();
         }
         for i in 0..2 {
             self.n8[i].clock.next = self.clock.val();
+            self.n8[i].reset.next = self.reset.val();
         }
         for s in 0..NET_STAGES {
             self.g_out[s].clock.next = self.clock.val();
+            self.g_out[s].reset.next = self.reset.val();
             self.g_sof[s].clock.next = self.clock.val();
+            self.g_sof[s].reset.next = self.reset.val();
             self.g_last[s].clock.next = self.clock.val();
+            self.g_last[s].reset.next = self.reset.val();
         }
 
         // ================= The row: taken, dropped or flushed =================

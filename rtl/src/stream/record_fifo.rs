@@ -38,6 +38,7 @@
 //! No paper equation: stream plumbing.
 
 use crate::primitives::block_ram::{BlockRam, DP16KD_ADDR_BITS, DP16KD_WIDTH};
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Lanes of a beat: a record's 72 bits plus its marker's fields need five
@@ -65,6 +66,8 @@ type Lane = Bits<DP16KD_WIDTH>;
 #[derive(LogicBlock)]
 pub struct RecordFifo {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub w_valid: Signal<In, Bit>,
     pub w_marker: Signal<In, Bit>,
     pub w_lane0: Signal<In, Lane>,
@@ -91,29 +94,29 @@ pub struct RecordFifo {
     // from across the die, is not in one clock with `used`'s ± 1 and the
     // flags' choice. The flags are so one place too cautious for the clock
     // after a pop.
-    wp: DFF<Bits<PTR_BITS>>,
-    rp: DFF<Bits<PTR_BITS>>,
-    used: DFF<Bits<PTR_BITS>>,
+    wp: ResetDff<Bits<PTR_BITS>>,
+    rp: ResetDff<Bits<PTR_BITS>>,
+    used: ResetDff<Bits<PTR_BITS>>,
     // `used` has no room left for a record (`used ≥ DEPTH − 1`) / for a
     // marker (`used ≥ DEPTH`), kept as registers beside it: the next
     // clock's flags are picked from comparisons of `used` with constants,
     // made while the clock decides whether `used` moves, so that the
     // comparison, the write and `used`'s ± 1 are not in one clock.
-    full_rec: DFF<Bit>,
-    full_mark: DFF<Bit>,
+    full_rec: ResetDff<Bit>,
+    full_mark: ResetDff<Bit>,
     // Reads on their way (RAM register, output register).
-    rd1: DFF<Bit>,
-    rd2: DFF<Bit>,
+    rd1: ResetDff<Bit>,
+    rd2: ResetDff<Bit>,
     // The ring: written at `wi`, read at `ri`; `fill` = beats in it.
-    wi: DFF<Bits<RING_BITS>>,
-    ri: DFF<Bits<RING_BITS>>,
-    fill: DFF<Bits<RING_BITS>>,
-    e0: [DFF<Lane>; RECORD_FIFO_LANES],
-    e1: [DFF<Lane>; RECORD_FIFO_LANES],
-    e2: [DFF<Lane>; RECORD_FIFO_LANES],
-    e3: [DFF<Lane>; RECORD_FIFO_LANES],
-    dropped_q: DFF<Bit>,
-    popped: DFF<Bit>,
+    wi: ResetDff<Bits<RING_BITS>>,
+    ri: ResetDff<Bits<RING_BITS>>,
+    fill: ResetDff<Bits<RING_BITS>>,
+    e0: [ResetDff<Lane>; RECORD_FIFO_LANES],
+    e1: [ResetDff<Lane>; RECORD_FIFO_LANES],
+    e2: [ResetDff<Lane>; RECORD_FIFO_LANES],
+    e3: [ResetDff<Lane>; RECORD_FIFO_LANES],
+    dropped_q: ResetDff<Bit>,
+    popped: ResetDff<Bit>,
     write: Signal<Local, Bit>,
     pending: Signal<Local, Bits<RING_BITS>>,
     issue: Signal<Local, Bit>,
@@ -136,6 +139,7 @@ impl Default for RecordFifo {
         let cr = |v: usize| Constant::<Bits<RING_BITS>>::new((v as u64).into());
         RecordFifo {
             clock: Default::default(),
+            reset: Default::default(),
             w_valid: Default::default(),
             w_marker: Default::default(),
             w_lane0: Default::default(),
@@ -195,11 +199,27 @@ impl Logic for RecordFifo {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, wp, rp, used, full_rec, full_mark, rd1, rd2, wi, ri, fill, dropped_q, popped);
+        self.wp.reset.next = self.reset.val();
+        self.rp.reset.next = self.reset.val();
+        self.used.reset.next = self.reset.val();
+        self.full_rec.reset.next = self.reset.val();
+        self.full_mark.reset.next = self.reset.val();
+        self.rd1.reset.next = self.reset.val();
+        self.rd2.reset.next = self.reset.val();
+        self.wi.reset.next = self.reset.val();
+        self.ri.reset.next = self.reset.val();
+        self.fill.reset.next = self.reset.val();
+        self.dropped_q.reset.next = self.reset.val();
+        self.popped.reset.next = self.reset.val();
         for l in 0..RECORD_FIFO_LANES {
             self.e0[l].clock.next = self.clock.val();
+            self.e0[l].reset.next = self.reset.val();
             self.e1[l].clock.next = self.clock.val();
+            self.e1[l].reset.next = self.reset.val();
             self.e2[l].clock.next = self.clock.val();
+            self.e2[l].reset.next = self.reset.val();
             self.e3[l].clock.next = self.clock.val();
+            self.e3[l].reset.next = self.reset.val();
             self.e0[l].d.next = self.e0[l].q.val();
             self.e1[l].d.next = self.e1[l].q.val();
             self.e2[l].d.next = self.e2[l].q.val();

@@ -24,6 +24,7 @@
 //!
 //! No paper equation: stream plumbing.
 
+use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
 /// Clocks from a beat accepted from the camera to the same beat offered to
@@ -33,6 +34,8 @@ pub const SKID_LAG: usize = 1;
 #[derive(LogicBlock)]
 pub struct SkidBuffer<const D: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous, active-high reset.
+    pub reset: Signal<In, Bit>,
     pub s_tdata: Signal<In, Bits<D>>,
     pub s_tvalid: Signal<In, Bit>,
     pub s_tuser: Signal<In, Bit>,
@@ -44,15 +47,15 @@ pub struct SkidBuffer<const D: usize> {
     pub m_tlast: Signal<Out, Bit>,
     pub m_tready: Signal<In, Bit>,
     // The output register.
-    o_valid: DFF<Bit>,
-    o_data: DFF<Bits<D>>,
-    o_user: DFF<Bit>,
-    o_last: DFF<Bit>,
+    o_valid: ResetDff<Bit>,
+    o_data: ResetDff<Bits<D>>,
+    o_user: ResetDff<Bit>,
+    o_last: ResetDff<Bit>,
     // The skid register: the beat that came while the output was stalled.
-    k_valid: DFF<Bit>,
-    k_data: DFF<Bits<D>>,
-    k_user: DFF<Bit>,
-    k_last: DFF<Bit>,
+    k_valid: ResetDff<Bit>,
+    k_data: ResetDff<Bits<D>>,
+    k_user: ResetDff<Bit>,
+    k_last: ResetDff<Bit>,
     // The output register is free for a new beat at the clock's edge.
     o_free: Signal<Local, Bit>,
 }
@@ -61,6 +64,7 @@ impl<const D: usize> Default for SkidBuffer<D> {
     fn default() -> Self {
         SkidBuffer {
             clock: Default::default(),
+            reset: Default::default(),
             s_tdata: Default::default(),
             s_tvalid: Default::default(),
             s_tuser: Default::default(),
@@ -88,6 +92,14 @@ impl<const D: usize> Logic for SkidBuffer<D> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, o_valid, o_data, o_user, o_last, k_valid, k_data, k_user, k_last);
+        self.o_valid.reset.next = self.reset.val();
+        self.o_data.reset.next = self.reset.val();
+        self.o_user.reset.next = self.reset.val();
+        self.o_last.reset.next = self.reset.val();
+        self.k_valid.reset.next = self.reset.val();
+        self.k_data.reset.next = self.reset.val();
+        self.k_user.reset.next = self.reset.val();
+        self.k_last.reset.next = self.reset.val();
         self.s_tready.next = !self.k_valid.q.val();
         self.m_tvalid.next = self.o_valid.q.val();
         self.m_tdata.next = self.o_data.q.val();
