@@ -380,6 +380,8 @@ fn depth_stage_verilog_replays_the_rust_model_under_icarus_and_verilator() {
         "p_d" => b.d,
         "p_last" => b.last as u64,
         "p_sof" => b.sof as u64,
+        // The stimuli never reset the block.
+        "reset" => 0,
         other => panic!("unknown input {other}"),
     };
     let stimulus: Vec<Vec<u64>> = beats.iter().map(|b| names.iter().map(|n| value(b, n)).collect()).collect();
@@ -397,6 +399,7 @@ fn depth_stage_verilog_replays_the_rust_model_under_icarus_and_verilator() {
                     "p_d" => u.p_d.next = x.into(),
                     "p_last" => u.p_last.next = x != 0,
                     "p_sof" => u.p_sof.next = x != 0,
+                    "reset" => u.reset.next = x != 0,
                     _ => {}
                 }
             }

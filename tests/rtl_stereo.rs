@@ -186,3 +186,48 @@ fn lines_after_a_backlog_are_held_in_the_record_queues_not_dropped() {
     let blocks = blocks_one_after_the_other::<N_CELLS>(&left, &right, GainRule::Robust, Some(EDGE_JUMP_LSB), DepthCamera::default(), sim::formats::dispmax_lsb(dispmax, sim::Config::Sd).expect("dispmax"));
     check_blocks_and_golden_after_matcher(&run, &blocks, width);
 }
+
+/// A run's output and timing with its clocks counted from `start` (the
+/// clock its cameras began), to compare runs that began on other clocks.
+fn from_clock(run: &StereoRun, start: u64) -> impl PartialEq + std::fmt::Debug {
+    let lines: Vec<(u64, u64)> = run.line_cycles.iter().map(|&(a, b)| (a - start, b - start)).collect();
+    let counters = [run.records_dropped, run.lines_dropped, run.pixels_dropped, run.lines_full, run.lines_wide];
+    (
+        (run.rows.clone(), run.depth_rows.clone(), run.sof.clone(), lines),
+        (run.first_in - start, run.first_out.map(|c| c - start), run.last_in - start, run.last_out.map(|c| c - start)),
+        (run.pixels_in, run.stall_cycles, run.cycles - start, counters),
+    )
+}
+
+#[test]
+fn a_reset_mid_line_and_mid_frame_leaves_the_next_frame_equal_to_a_fresh_runs_beat_for_beat() {
+    use rtl::detector::declivity_detector::RESET_RECOVERY;
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
+    let dispmax = sim::formats::dispmax_lsb(data.dispmax + 1.0, sim::Config::Sd).expect("dispmax");
+    // Frame B, run fresh; frame A, cut short by the reset.
+    let (left, right) = (crop(&data.left, 150..156), crop(&data.right, 150..156));
+    let (cut_left, cut_right) = (crop(&data.left, 60..76), crop(&data.right, 60..76));
+    let w = left.width() as u64;
+    let fresh = StereoSim::<N_CELLS>::robust(dispmax).run(&left, &right, 0, |_| {});
+    assert_eq!(fresh.rows.len(), left.height());
+    let fresh_view = from_clock(&fresh, 0);
+    // Cut in line 2 (records of line 0 in the matcher), and in line 9
+    // (every stage busy, output lines leaving): both inside a line.
+    // A reset of one clock, and one of three.
+    for (cut, reset_clocks) in [(2 * w + w / 3, 1), (9 * w + w / 2, 3)] {
+        let mut sim = StereoSim::<N_CELLS>::robust(dispmax);
+        let before = sim.run_cut(&cut_left, &cut_right, 0, cut);
+        assert_eq!(sim.cycle, cut);
+        sim.reset(reset_clocks, RESET_RECOVERY as u64 + 2);
+        let start = sim.cycle;
+        let after = sim.run(&left, &right, 0, |_| {});
+        assert_eq!(from_clock(&after, start), fresh_view, "a reset of {reset_clocks} clocks at clock {cut} (after {} lines out)", before.rows.len());
+    }
+    // The negative control: the same cut without a reset leaves the cut
+    // frame's lines in the processor, and the next frame differs.
+    let mut sim = StereoSim::<N_CELLS>::robust(dispmax);
+    sim.run_cut(&cut_left, &cut_right, 0, 9 * w + w / 2);
+    let start = sim.cycle;
+    let after = sim.run(&left, &right, 0, |_| {});
+    assert_ne!(from_clock(&after, start), fresh_view, "without a reset the cut frame must show");
+}

@@ -31,8 +31,11 @@
 //! clocks, one bit each) and scales it (3 clocks):
 //! `done` comes [`THRESHOLD_LATENCY`] clocks after `scan_start`, whatever the
 //! line. A bank must not be counted into while it is being scanned.
-//! `inc_valid` low counts nothing. No reset: the block starts idle and both
-//! banks empty (Verilog initial values, all zero).
+//! `inc_valid` low counts nothing. The block starts idle with both banks
+//! empty (Verilog initial values, all zero). `reset` (synchronous, active
+//! high) returns it to idle and then clears both banks, one bin of each a
+//! clock: `clearing` is high for [`HIST_BINS`] clocks after the reset's
+//! last clock, and nothing may be counted meanwhile ([`CLEAR_CLOCKS`]).
 //!
 //! ## Fixed point
 //! `K·m·2^20` is the sum of `(2v - 1)·round(K·2^19)` (accumulated bin by bin
@@ -51,6 +54,9 @@ use rust_hdl::prelude::*;
 /// the line lands), [`HIST_BINS`] + 3 to read, count and test every bin,
 /// [`MEDIAN_Q_BITS`] to divide, 3 to scale (product, sum, rounding).
 pub const THRESHOLD_LATENCY: usize = 3 + HIST_BINS + 3 + MEDIAN_Q_BITS + 3;
+
+/// Clocks after a reset during which the banks are cleared (`clearing`).
+pub const CLEAR_CLOCKS: usize = HIST_BINS;
 
 /// Bits of the scan counter `0 ..= HIST_BINS + 1`.
 const SCAN_BITS: usize = HIST_ADDR_BITS + 2;
@@ -96,10 +102,19 @@ pub(crate) struct AdaptiveThreshold {
     pub scan_bank: Signal<In, Bit>,
     pub scan_n: Signal<In, Bits<HIST_COUNT_BITS>>,
     pub busy: Signal<Out, Bit>,
+    /// High while the banks are cleared after a reset; nothing may be
+    /// counted meanwhile.
+    pub clearing: Signal<Out, Bit>,
     pub done: Signal<Out, Bit>,
     pub dt: Signal<Out, Bits<DT_BITS>>,
     hist0: BlockRam<HIST_COUNT_BITS, HIST_ADDR_BITS>,
     hist1: BlockRam<HIST_COUNT_BITS, HIST_ADDR_BITS>,
+    // The sweep that clears both banks after a reset (a reset can cut a
+    // line's counting or a scan short, leaving counts behind): it is set by
+    // `reset` itself, not reset to its power-up value, because the banks
+    // are already empty after configuration.
+    sweeping: ResetDff<Bit>,
+    sweep_bin: ResetDff<Bits<HIST_ADDR_BITS>>,
     // Counting pipeline: the increments whose read is under way (p1: read
     // issued last clock; p2: data in the output register), the count being
     // written (f1: its bin, bank and new count in registers, on the RAM's
@@ -198,6 +213,7 @@ pub(crate) struct AdaptiveThreshold {
     pre_last_scan: Constant<Bits<SCAN_BITS>>,
     k_step: Constant<Bits<DT_ACC_BITS>>,
     need_sign: Constant<Bits<8>>,
+    last_bin: Constant<Bits<HIST_ADDR_BITS>>,
 }
 
 impl Default for AdaptiveThreshold {
@@ -212,6 +228,9 @@ impl Default for AdaptiveThreshold {
             scan_bank: Default::default(),
             scan_n: Default::default(),
             busy: Default::default(),
+            clearing: Default::default(),
+            sweeping: Default::default(),
+            sweep_bin: Default::default(),
             done: Default::default(),
             dt: Default::default(),
             hist0: Default::default(),
@@ -285,6 +304,7 @@ impl Default for AdaptiveThreshold {
             pre_last_scan: Constant::new((HIST_BINS as u64 + 1).into()),
             k_step: Constant::new((2 * K_HALF).into()),
             need_sign: Constant::new(((NEED_BITS - 1) as u64).into()),
+            last_bin: Constant::new(((HIST_BINS - 1) as u64).into()),
         }
     }
 }
@@ -294,6 +314,9 @@ impl Logic for AdaptiveThreshold {
     fn update(&mut self) {
         self.hist0.clock.next = self.clock.val();
         self.hist1.clock.next = self.clock.val();
+        dff_setup!(self, clock, sweeping, sweep_bin);
+        self.sweeping.reset.next = false;
+        self.sweep_bin.reset.next = false;
         dff_setup!(
             self, clock, p1_valid, p1_bank, p1_bin, p2_valid, p2_bank, p2_bin, f1_valid, f1_bank, f1_bin,
             f1_count, hit1, hit2, hit3, f2_valid, f2_bank, f2_bin, f2_count, f3_valid, f3_bank, f3_bin, f3_count, state, bank, n, cnt, cum, num, need, reach, hv, hv_nz, counting, testing, first_test, last_test, found,
@@ -401,6 +424,24 @@ impl Logic for AdaptiveThreshold {
         self.hist1.write_data.next = self.f1_count.q.val();
         self.hist0.write_enable.next = self.f1_valid.q.val() & !self.f1_bank.q.val();
         self.hist1.write_enable.next = self.f1_valid.q.val() & self.f1_bank.q.val();
+        // ---- After a reset: every bin of both banks to zero, one a clock.
+        self.clearing.next = self.sweeping.q.val();
+        if self.sweeping.q.val() {
+            self.hist0.write_address.next = self.sweep_bin.q.val();
+            self.hist1.write_address.next = self.sweep_bin.q.val();
+            self.hist0.write_data.next = 0.into();
+            self.hist1.write_data.next = 0.into();
+            self.hist0.write_enable.next = true;
+            self.hist1.write_enable.next = true;
+            self.sweep_bin.d.next = self.sweep_bin.q.val() + 1;
+            if self.sweep_bin.q.val() == self.last_bin.val() {
+                self.sweeping.d.next = false;
+            }
+        }
+        if self.reset.val() {
+            self.sweeping.d.next = true;
+            self.sweep_bin.d.next = 0.into();
+        }
 
         // ---- Scan: bin v is read at cnt = v, added to the running count
         // and cleared at cnt = v + 2 (from the output register), and tested

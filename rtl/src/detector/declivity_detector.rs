@@ -51,11 +51,15 @@
 //! golden's hardware-parity mode (`golden::hardware`) does the same.
 //!
 //! ## Reset
-//! None: the registers start from their Verilog initial values, with both
-//! banks free and the three engines idle.
+//! `reset` (synchronous, active high, one clock or more) returns every
+//! register to its value after configuration: both banks free, the three
+//! engines idle, a line cut short forgotten. The threshold's histograms
+//! are then cleared, one bin a clock: `s_tready` stays low for
+//! [`RESET_RECOVERY`] clocks after the reset's last clock, and the next
+//! line is processed as after configuration.
 
 use crate::primitives::block_ram::BlockRam;
-use crate::detector::adaptive_threshold::{AdaptiveThreshold, THRESHOLD_LATENCY};
+use crate::detector::adaptive_threshold::{AdaptiveThreshold, CLEAR_CLOCKS, THRESHOLD_LATENCY};
 use crate::detector::declivity_tracker::{DeclivityTracker, TRACKER_CENTER};
 use crate::params::*;
 use crate::detector::position_divider::{PositionDivider, DIVIDER_LATENCY};
@@ -67,6 +71,10 @@ use rust_hdl::prelude::*;
 /// reading starts, `THRESHOLD_LATENCY + 3` clocks after line n's last pixel
 /// (see [`line_starts`]).
 pub const MIN_LINE_PERIOD: usize = THRESHOLD_LATENCY + 3;
+
+/// Clocks after a reset's last clock during which `s_tready` is low: the
+/// threshold's histograms are cleared.
+pub const RESET_RECOVERY: usize = CLEAR_CLOCKS;
 
 /// The clock at which the first pixel of each line is accepted when lines of
 /// `widths` pixels are offered back to back from clock 0 (`tvalid` always
@@ -379,8 +387,8 @@ impl Logic for DeclivityDetector {
         if self.wb.q.val() {
             self.write_state.next = self.state1.q.val();
         }
-        self.s_tready.next = self.write_state.val() == self.bank_free.val();
-        self.accept.next = self.s_tvalid.val() & (self.write_state.val() == self.bank_free.val());
+        self.s_tready.next = (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val();
+        self.accept.next = self.s_tvalid.val() & (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val();
         self.x_now.next = 0.into();
         if self.in_line.q.val() {
             self.x_now.next = self.wx.q.val();

@@ -364,13 +364,46 @@ impl<const N: usize> StereoSim<N> {
         Ok(())
     }
 
-    pub fn run(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, mut progress: impl FnMut(usize)) -> StereoRun {
+    pub fn run(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, progress: impl FnMut(usize)) -> StereoRun {
+        self.run_until(left, right, hblank, None, progress)
+    }
+
+    /// As [`run`](Self::run), but stops after `clocks` clocks whatever has
+    /// come out: a frame cut short (by a reset, [`Self::reset`]).
+    pub fn run_cut(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, clocks: u64) -> StereoRun {
+        self.run_until(left, right, hblank, Some(clocks), |_| {})
+    }
+
+    /// Holds `reset` high for `clocks` clocks, with both cameras idle and
+    /// the parameters of the last run, then low for `idle` clocks. Output
+    /// beats during these clocks are ignored.
+    pub fn reset(&mut self, clocks: u64, idle: u64) {
+        for k in 0..clocks + idle {
+            let u = &mut *self.uut;
+            u.clock.next = false.into();
+            u.reset.next = k < clocks;
+            u.l_tvalid.next = false;
+            u.r_tvalid.next = false;
+            u.l_tuser.next = false;
+            u.r_tuser.next = false;
+            u.l_tlast.next = false;
+            u.r_tlast.next = false;
+            settle(u, SETTLE_LOW);
+            u.clock.next = true.into();
+            settle(u, SETTLE_HIGH);
+            self.cycle += 1;
+        }
+        self.uut.reset.next = false;
+    }
+
+    fn run_until(&mut self, left: &GreyImage, right: &GreyImage, hblank: usize, cut: Option<u64>, mut progress: impl FnMut(usize)) -> StereoRun {
         let quiet = QUIET_CLOCKS;
+        let start = self.cycle;
         let mut run = StereoRun { width: left.width().min(rtl::params::W_MAX), ..StereoRun::default() };
         let mut cams = [Camera { image: left, x: 0, y: 0, idle: 0 }, Camera { image: right, x: 0, y: 0, idle: 0 }];
         let mut row = PendingLine::default();
         let mut first_in = None;
-        let mut last_activity = 0u64;
+        let mut last_activity = start;
         let height = left.height();
         let mut state = QueueState::default();
         loop {
@@ -425,7 +458,7 @@ impl<const N: usize> StereoSim<N> {
                 cam.advance(t, hblank);
             }
             let inputs_done = cams.iter().all(Camera::done);
-            if run.rows.len() >= height || (inputs_done && self.cycle - last_activity > quiet) {
+            if run.rows.len() >= height || (inputs_done && self.cycle - last_activity > quiet) || cut.is_some_and(|c| self.cycle - start >= c) {
                 break;
             }
         }

@@ -43,7 +43,7 @@ use rtl::stereo_line_processor::{OUT_BITS, STATUS_BITS};
 use crate::config::Config;
 use crate::formats::SearchArea;
 
-use crate::hdl::cosim::{io_err, log_of, run_tool, top_ports, verilator_build, CosimError, Options, Port, Simulator, VerilatorBuild, WorkDir, CLOCK_PORT, TOP_MODULE};
+use crate::hdl::cosim::{io_err, log_of, run_tool, top_ports, verilator_build, CosimError, Options, Port, Simulator, VerilatorBuild, WorkDir, CLOCK_PORT, RESET_PORT, TOP_MODULE};
 use crate::hdl::primitives::MODELS_FILE;
 use crate::drive::stereo::{PendingLine, StereoRun, QUIET_CLOCKS};
 
@@ -108,7 +108,7 @@ impl FrameRun {
 fn expected_ports(config: Config) -> (Vec<Port>, Vec<Port>) {
     let sizes = config.sizes();
     let p = |name: &str, width: usize| Port { name: name.to_string(), width: width as u32 };
-    let mut ins = Vec::new();
+    let mut ins = vec![p(RESET_PORT, 1)];
     let mut outs = Vec::new();
     for side in ["l", "r"] {
         ins.push(p(&format!("{side}_tdata"), PIXEL_BITS));
@@ -190,6 +190,7 @@ fn frame_testbench(config: Config) -> String {
   reg have_in, done, l_off, r_off, l_take, r_take;
   initial begin
     clock = 1'b0;
+    {RESET_PORT} = 1'b0;
     fp = $fopen(\"{FRAME_PARAMS_FILE}\", \"r\");
     if (fp == 0) begin $display(\"{FRAME_ERROR} cannot open {FRAME_PARAMS_FILE}\"); $finish; end
     r = $fscanf(fp, \"%d %d %d %d %d %d %d\", w, h, hblank, dmin, dmax, quiet, limit);
@@ -344,6 +345,7 @@ int main(int argc, char** argv) {{
   uint64_t cycle = 0, stalls = 0, pixels_in = 0, first_in = 0, last_in = 0, last_activity = 0;
   bool have_in = false, done = false, over_limit = false;
   top->{CLOCK_PORT} = 0;
+  top->{RESET_PORT} = 0;
   top->dispmin = (uint64_t)dmin & {dispmin_mask};
   top->dispmax = (uint64_t)dmax & {dispmax_mask};
   top->height = (uint64_t)h & {height_mask};

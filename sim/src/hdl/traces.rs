@@ -89,6 +89,8 @@ pub fn detector_trace(verilog: &str, beats: &[PixelBeat]) -> Result<Trace, Cosim
                     "s_tvalid" => b.tvalid as u64,
                     "s_tuser" => b.tuser as u64,
                     "s_tlast" => b.tlast as u64,
+                    // The stimuli never reset the block.
+                    "reset" => 0,
                     other => panic!("unknown detector input {other}"),
                 })
                 .collect()
@@ -107,6 +109,7 @@ pub fn detector_trace(verilog: &str, beats: &[PixelBeat]) -> Result<Trace, Cosim
                     "s_tvalid" => u.s_tvalid.next = x != 0,
                     "s_tuser" => u.s_tuser.next = x != 0,
                     "s_tlast" => u.s_tlast.next = x != 0,
+                    "reset" => u.reset.next = x != 0,
                     _ => {}
                 }
             }
@@ -136,6 +139,8 @@ pub fn interpolator_trace(verilog: &str, lines: &[(&AnchorLine, usize)], tail: u
         "a_d" => b.d as u64,
         "a_width" => b.width as u64,
         "a_sof" => b.sof as u64,
+        // The stimuli never reset the block.
+        "reset" => 0,
         other => panic!("unknown interpolator input {other}"),
     };
     let stimulus: Vec<Vec<u64>> = bs.iter().map(|b| in_names.iter().map(|n| value(b, n)).collect()).collect();
@@ -154,6 +159,7 @@ pub fn interpolator_trace(verilog: &str, lines: &[(&AnchorLine, usize)], tail: u
                     "a_d" => u.a_d.next = x.into(),
                     "a_width" => u.a_width.next = x.into(),
                     "a_sof" => u.a_sof.next = x != 0,
+                    "reset" => u.reset.next = x != 0,
                     _ => {}
                 }
             }
@@ -184,6 +190,8 @@ pub fn median_trace(verilog: &str, beats: &[MedianBeat], tail: usize) -> Result<
         "p_last" => b.last as u64,
         "p_sof" => b.sof as u64,
         "p_eof" => b.eof as u64,
+        // The stimuli never reset the block.
+        "reset" => 0,
         other => panic!("unknown vertical median input {other}"),
     };
     let idle = std::iter::repeat_n(MedianBeat::default(), tail);
@@ -202,6 +210,7 @@ pub fn median_trace(verilog: &str, beats: &[MedianBeat], tail: usize) -> Result<
                     "p_last" => u.p_last.next = x != 0,
                     "p_sof" => u.p_sof.next = x != 0,
                     "p_eof" => u.p_eof.next = x != 0,
+                    "reset" => u.reset.next = x != 0,
                     _ => {}
                 }
             }

@@ -22,6 +22,8 @@ pub(crate) const BLESS_ENV: &str = "COSIM_BLESS";
 pub(crate) const TOP_MODULE: &str = "top";
 /// The clock input of the top module; it is not part of a trace's inputs.
 pub(crate) const CLOCK_PORT: &str = "clock";
+/// The synchronous, active-high reset input of every block.
+pub(crate) const RESET_PORT: &str = "reset";
 
 /// What can go wrong in a co-simulation.
 #[derive(Debug, Error)]
