@@ -47,6 +47,7 @@ fn cocotb_testbench_passes_a_band_of_tsukuba_under_icarus_and_verilator_and_fail
         "the testbench's packages are missing (python3 -m pip install --user -r tests/cocotb/requirements.txt):\n{log}"
     );
     assert!(out.status.success(), "the cocotb testbench failed:\n{log}");
-    // Two simulators × (the band against golden, the perturbed beat failing): four tests, none skipped.
-    assert!(log.contains("4 passed") && !log.contains("skipped"), "four tests expected to pass:\n{log}");
+    // Two simulators × (the band against golden, the band after a reset in mid-frame, the
+    // perturbed beat failing): six tests, none skipped.
+    assert!(log.contains("6 passed") && !log.contains("skipped"), "six tests expected to pass:\n{log}");
 }

@@ -201,7 +201,7 @@ fn from_clock(run: &StereoRun, start: u64) -> impl PartialEq + std::fmt::Debug {
 
 #[test]
 fn a_reset_mid_line_and_mid_frame_leaves_the_next_frame_equal_to_a_fresh_runs_beat_for_beat() {
-    use rtl::detector::declivity_detector::RESET_RECOVERY;
+    use rtl::stereo_line_processor::RESET_RECOVERY;
     let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
     let dispmax = sim::formats::dispmax_lsb(data.dispmax + 1.0, sim::Config::Sd).expect("dispmax");
     // Frame B, run fresh; frame A, cut short by the reset.

@@ -20,8 +20,9 @@
 //! Each block generates Verilog that is co-simulated bit-exactly against the
 //! Rust model and checked against `golden`.
 //!
-//! Conventions in every block: one clock input `clock`, no reset (registers
-//! start from their Verilog `initial` values, which rust-hdl writes), and
+//! Conventions in every block: one clock input `clock`; one synchronous,
+//! active-high `reset` that returns every register to its Verilog `initial`
+//! value, the value after configuration (`primitives::reset_register`); and
 //! arithmetic whose operands and result have the same width, so that Verilog's
 //! context-sized expressions compute exactly what the Rust simulation does.
 

@@ -29,6 +29,7 @@
 //!   camera the processor is generated for.
 //!
 //! ## Ports
+//! - `clock`; `reset`, synchronous and active high (see Reset).
 //! - In, per camera (`l_` left = reference, `r_` right), AXI4-Stream video:
 //!   `tdata` (grey level), `tvalid`, `tuser` (start of frame, on a line's
 //!   first pixel), `tlast` (end of line); out `tready` (the register
@@ -92,9 +93,19 @@
 //! than the others, fewer when the line period is longer than the line
 //! (`declivity budget` gives the number, `vblank_lines`).
 //!
-//! No reset: every block's registers start from their Verilog initial
-//! values (queues empty, engines idle, status counters at zero), so the
-//! first beat after configuration may start a frame.
+//! ## Reset
+//! Every block's registers start from their Verilog initial values (queues
+//! empty, engines idle, status counters at zero), so the first beat after
+//! configuration may start a frame. `reset` (synchronous, active high, one
+//! clock or more) returns every register to that value at any clock, in a
+//! line or between lines; lines in flight are forgotten and nothing leaves
+//! `m_*` until the next frame's. The detectors then clear their histograms:
+//! `l_tready` and `r_tready` fall once the input registers are full and stay
+//! low until [`RESET_RECOVERY`] clocks after the reset's last clock. The
+//! memories are not cleared otherwise: a row, a line or a record is read
+//! only after it has been written since the reset. From the next start of
+//! frame on, the output is a fresh run's, beat for beat
+//! (`tests/rtl_stereo.rs`, `tests/cocotb`).
 //!
 //! ## Lines in flight
 //! The interpolator sends one line per `W` clocks, the cameras' rate, so
@@ -148,6 +159,7 @@
 
 use crate::primitives::block_ram::DP16KD_WIDTH;
 use crate::detector::declivity_detector::DeclivityDetector;
+pub use crate::detector::declivity_detector::RESET_RECOVERY;
 use crate::matcher::declivity_matcher::{DeclivityMatcher, GainRule};
 use crate::post::depth_stage::{DepthCamera, DepthError, DepthStage};
 use crate::post::interpolator::{Interpolator, LINE_QUEUE, SEG_RESERVE};

@@ -46,9 +46,13 @@ def parse_ports(verilog_text, module="declivity_stereo"):
 # What each port of the top is, from rtl/src/stereo_line_processor.rs's "Ports" (the widths
 # come from the Verilog: a port missing here, or described but not generated, fails).
 PORT_GROUPS = [
-    ("Clock", {
-        "clock": "The one clock; every register samples on its rising edge. No reset port: "
-                 "registers start from their initial values (FPGA configuration).",
+    ("Clock and reset", {
+        "clock": "The one clock; every register samples on its rising edge. Registers start "
+                 "from their initial values (FPGA configuration).",
+        "reset": "Synchronous, active high, one clock or more, at any clock: every register "
+                 "back to its initial value, lines in flight forgotten, counters at zero. The "
+                 "detectors then clear their histograms, one clock per grey level: `l_tready` "
+                 "and `r_tready` are low until that is done ([Reset](#reset)).",
     }),
     ("Left camera, AXI4-Stream video in (the reference view)", {
         "l_tdata": "Grey level of the pixel.",

@@ -25,7 +25,12 @@ rtl code):
   (the 32-cell sensor matcher holds the 128 declivities a line the detector
   keeps; tsukuba's rows have fewer).
 
-The pytest side (`test_stereo_band`, `test_perturbed_beat_fails`) writes the
+With `STEREO_RESET_AT=N`, the same band is first played and cut short by the
+reset `N` clocks after its start (inside a line), which the sources and the
+monitor take as cocotbext-axi's reset; the band then played again must come
+out as above, beat for beat, with the status counters back at zero.
+
+The pytest side (`test_stereo_band`, `test_reset_mid_frame`, `test_perturbed_beat_fails`) writes the
 IP folder with `declivity verilog`, cuts the band into PNGs, runs golden with
 `declivity depth`, builds the core with cocotb's runner under Icarus or
 Verilator and runs the cocotb test below in the simulator. The perturbation
@@ -63,7 +68,7 @@ DISPARITY_BITS = 14
 #: The scoreboard's errors, one a line, written into the simulator's working folder.
 SCOREBOARD_FILE = "scoreboard_errors.txt"
 
-#: Clock period of the testbench (the core has one clock and no reset).
+#: Clock period of the testbench (the core has one clock, and a synchronous active-high reset).
 CLOCK_NS = 10
 
 # ---------------------------------------------------------------------------
@@ -210,7 +215,7 @@ async def watch_clocks(dut, errors: list[str], width: int, beats: list[int]) -> 
 
 #: The core's ports (datasheet, "Ports"), looked up by name before any bus is made.
 PORTS = (
-    "clock", "l_tdata", "l_tvalid", "l_tuser", "l_tlast", "l_tready",
+    "clock", "reset", "l_tdata", "l_tvalid", "l_tuser", "l_tlast", "l_tready",
     "r_tdata", "r_tvalid", "r_tuser", "r_tlast", "r_tready", "dispmin", "dispmax", "height",
     "m_tvalid", "m_tdata", "m_tuser", "m_tlast", *STATUS_COUNTERS,
 )
@@ -250,25 +255,48 @@ if cocotb is not None:
         perturb = os.environ.get("STEREO_PERTURB_BEAT")
         rng = random.Random(seed)
 
+        reset_at = os.environ.get("STEREO_RESET_AT")
         fetch_ports(dut)
         cocotb.start_soon(Clock(dut.clock, CLOCK_NS, units="ns").start())
+        dut.reset.value = 0
         dut.dispmin.value = 0
         dut.dispmax.value = band.dispmax_lsb
         dut.height.value = band.height
         for side in ("l", "r"):
             getattr(dut, f"{side}_tvalid").value = 0
-        left = AxiStreamSource(AxiStreamBus.from_prefix(dut, "l"), dut.clock)
-        right = AxiStreamSource(AxiStreamBus.from_prefix(dut, "r"), dut.clock)
+        left = AxiStreamSource(AxiStreamBus.from_prefix(dut, "l"), dut.clock, dut.reset)
+        right = AxiStreamSource(AxiStreamBus.from_prefix(dut, "r"), dut.clock, dut.reset)
         left.set_pause_generator(idle_pattern(random.Random(rng.random()), idle_share))
         right.set_pause_generator(idle_pattern(random.Random(rng.random()), idle_share))
         # One 32-bit word a beat (no tkeep): a single lane, not four bytes.
-        sink = AxiStreamMonitor(AxiStreamBus.from_prefix(dut, "m"), dut.clock, byte_lanes=1)
+        sink = AxiStreamMonitor(AxiStreamBus.from_prefix(dut, "m"), dut.clock, dut.reset, byte_lanes=1)
         for component in (left, right, sink):
             component.log.setLevel(logging.WARNING)  # no line of log per frame
         scoreboard = Scoreboard(band, int(perturb) if perturb else None)
         errors = scoreboard.errors
         # A few clocks for the registers' initial values to settle, then the frame.
         await ClockCycles(dut.clock, 4)
+        if reset_at:
+            # The band, cut short by a reset inside one of its lines: the sources drop the
+            # rest of their line (cocotbext-axi flushes on reset) and the band is played anew.
+            players = [
+                cocotb.start_soon(play_camera(source, rows, random.Random(rng.random()), hblank_max, dut.clock))
+                for source, rows in ((left, band.left), (right, band.right))
+            ]
+            await ClockCycles(dut.clock, int(reset_at))
+            for player in players:
+                player.kill()
+            left.clear()
+            right.clear()
+            await FallingEdge(dut.clock)
+            dut.reset.value = 1
+            await ClockCycles(dut.clock, 2)
+            await FallingEdge(dut.clock)
+            dut.reset.value = 0
+            sink.clear()
+            for name in STATUS_COUNTERS:
+                if int(getattr(dut, name).value) != 0:
+                    errors.append(f"status counter {name} is {int(getattr(dut, name).value)} after the reset")
         beats = [0]
         cocotb.start_soon(watch_clocks(dut, errors, band.width, beats))
         cocotb.start_soon(play_camera(left, band.left, random.Random(rng.random()), hblank_max, dut.clock))
@@ -421,6 +449,16 @@ def test_stereo_band(simulator: str, ip_folder: Path, band: tuple[Path, int], tm
     """Every output beat of the band equals golden's hardware parity; frame and counters clean."""
     tests, failed, messages = run_cocotb(simulator, ip_folder, band, tmp_path_factory, {})
     assert (tests, failed) == (1, 0), f"{simulator}: the cocotb test failed: {messages}"
+
+
+@pytest.mark.parametrize("simulator", SIMULATORS)
+def test_reset_mid_frame(simulator: str, ip_folder: Path, band: tuple[Path, int], tmp_path_factory: pytest.TempPathFactory) -> None:
+    """A reset inside the second line of a frame: the frame played again after it equals
+    golden's hardware parity, beat for beat, and the counters restart from zero."""
+    band_dir, _ = band
+    width = len(read_png_rows(band_dir / "left.png")[0])
+    tests, failed, messages = run_cocotb(simulator, ip_folder, band, tmp_path_factory, {"STEREO_RESET_AT": str(width + width // 2)})
+    assert (tests, failed) == (1, 0), f"{simulator}: the cocotb test after a reset failed: {messages}"
 
 
 @pytest.mark.parametrize("simulator", SIMULATORS)

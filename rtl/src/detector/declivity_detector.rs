@@ -18,6 +18,7 @@
 //! per clock), so line n + 2 streams in while line n is still being read.
 //!
 //! ## Ports
+//! - `clock`; `reset`, synchronous and active high (see Reset).
 //! - In: `s_tdata` (grey level), `s_tvalid`, `s_tuser` (start of frame, read
 //!   on a line's first pixel), `s_tlast` (end of line); out: `s_tready`.
 //! - Out: the record stream `m_valid` with `m_last` (the line's end marker),

@@ -38,8 +38,8 @@
 //! the stream stay aligned.
 //!
 //! ## Reset
-//! None: the registers start from their Verilog initial values (zero), as
-//! between two lines.
+//! The registers start from their Verilog initial values (zero), as between
+//! two lines; `reset` (synchronous, active high) returns them there.
 
 use crate::params::*;
 use crate::primitives::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS, MUL_PRODUCT_BITS};

@@ -16,7 +16,8 @@
 //!
 //! ## Timing
 //! Shifts on every clock, bubbles (`in_valid` low) included; registered
-//! outputs, all zero at start (no reset: Verilog initial values).
+//! outputs, all zero at start (Verilog initial values) and after `reset`
+//! (synchronous, active high).
 //!
 //! No paper equation of its own: it feeds the tracker's eq. 2–3 and the
 //! attributes of §III.

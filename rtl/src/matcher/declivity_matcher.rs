@@ -20,6 +20,7 @@
 //! their similar side). The reference view is the left one.
 //!
 //! ## Ports
+//! - `clock`; `reset`, synchronous and active high.
 //! - In, per side (`r_` reference = left, `o_` other = right), named as the
 //!   detector's outputs: `valid`, `last` (the line's marker), `pos`, `amp`,
 //!   `left0..2`, `right0..2`; on the marker `dt`, `wide`, `full` and, for the
@@ -56,9 +57,10 @@
 //! N_MAX`, takes `line_period(N_MAX, N_MAX, 0, N_MAX, N_CELLS)` = 845
 //! clocks of the engine, inside the 1024 of a `W_MAX` line.
 //!
-//! `r_valid` / `o_valid` low takes nothing. No reset: the registers start
-//! from their Verilog initial values, with no line loading, no pair
-//! waiting, and the engine and the traceback idle.
+//! `r_valid` / `o_valid` low takes nothing. The registers start from
+//! their Verilog initial values, with no line loading, no pair waiting, and
+//! the engine and the traceback idle; `reset` (synchronous, active high, one
+//! clock or more) returns them there, forgetting the lines in flight.
 
 use crate::params::*;
 use crate::matcher::record_input::RecordInput;

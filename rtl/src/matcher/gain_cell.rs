@@ -70,8 +70,8 @@
 //! so it reads `P(i, j)` on `up_p`, or on `up_p` two clocks late. A bubble
 //! (`c_valid` low) leaves `P = 0` behind it, which is `P(i, -1)` and
 //! `P(i-1, -1)` for the column that follows: a line's first column needs no
-//! flag. The other stages load only on a valid column. No reset: the
-//! registers start from their Verilog initial values (zero, so `P = 0`).
+//! flag. The other stages load only on a valid column. The registers
+//! start from their Verilog initial values (zero, so `P = 0`); `reset` (synchronous, active high) returns them there.
 //!
 //! Why the skew: a column moves a cell every two clocks, so with four phases
 //! node `(i, j)` of cell `c` (row `i = c + k·cells`) is reached at

@@ -18,8 +18,8 @@
 //! the loader keeps `ready` low on the clock after it took a line's marker
 //! (the marker is then in this register), so the register never holds a
 //! beat the loader cannot take. `valid` low (or `ready` low) leaves
-//! `q_valid` low on the next clock. No reset: `q_valid` starts low (Verilog
-//! initial value).
+//! `q_valid` low on the next clock. `q_valid` starts low (Verilog initial value)
+//! and `reset` (synchronous, active high) clears it.
 //!
 //! No paper equation: stream plumbing.
 

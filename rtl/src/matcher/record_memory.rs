@@ -36,9 +36,10 @@
 //! the engine's first read of it: see
 //! [`crate::matcher::declivity_matcher::TAKE_AFTER_MARKER`]), and its Verilog tells
 //! the synthesis so (`no_rw_check`): what such a read returns is left
-//! undefined. `w_enable` low writes nothing. No reset: the RAMs and
-//! registers start from their Verilog initial values (zero); the matcher
-//! reads only entries it has written.
+//! undefined. `w_enable` low writes nothing. The RAMs and
+//! registers start from their Verilog initial values (zero); `reset`
+//! (synchronous, active high) returns the registers there, and the RAMs need
+//! none: the matcher reads only entries it has written.
 
 use crate::primitives::block_ram::BlockRam;
 use crate::params::*;

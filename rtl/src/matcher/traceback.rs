@@ -46,8 +46,8 @@
 //! decisions); the `K` pairs then leave on consecutive clocks from two
 //! clocks after the last decision, and `out_last` one clock after the last
 //! pair: in all [`traceback_cycles`] clocks from `start` to `out_last`, at
-//! most `n + m + K + 7`. No reset: the walker starts idle (Verilog initial
-//! values).
+//! most `n + m + K + 7`. The walker starts idle (Verilog initial values);
+//! `reset` (synchronous, active high) returns it there.
 
 use crate::matcher::gain_cell::{CHOICE_LEFT, CHOICE_NODE, CHOICE_START, CHOICE_UP};
 use crate::params::*;

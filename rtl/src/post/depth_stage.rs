@@ -44,9 +44,9 @@
 //! A pipeline without back-pressure or state between pixels: the pixel on
 //! `p_*` at a clock is on `z_*` [`DEPTH_LAG`] clocks later, one pixel per
 //! clock, any pattern of `p_valid`. A clock with `p_valid` low gives, after
-//! the same lag, `z_valid` low and all other outputs 0. No reset: the
+//! the same lag, `z_valid` low and all other outputs 0. The
 //! pipeline's registers start from their Verilog initial values (zero: no
-//! valid pixel).
+//! valid pixel); `reset` (synchronous, active high) returns them to these values.
 
 use crate::primitives::dsp_multiplier::DspMultiplier;
 use crate::params::*;

@@ -57,6 +57,7 @@
 //! `|Δd|·2^-16`).
 //!
 //! ## Ports
+//! - `clock`; `reset`, synchronous and active high.
 //! - In, the match stream (as the matcher emits it, reference order):
 //!   `a_valid` with `a_last` low is a match, `a_x` (`X`) and `a_d` (its
 //!   disparity), both [`POS_FRAC_BITS`] fraction bits, strictly increasing
@@ -90,9 +91,10 @@
 //! catching up on a backlog). The line processor keeps at most
 //! `LINE_QUEUE` lines between the matcher's input and this output
 //! (`rtl::stereo_line_processor`, "Lines in flight"). `a_valid` low
-//! between matches only delays them. No reset: the registers start from
-//! their Verilog initial values, with the queue and the segment memory
-//! empty and the pixel engine idle.
+//! between matches only delays them. The registers start from their
+//! Verilog initial values, with the queue and the segment memory empty and
+//! the pixel engine idle; `reset` (synchronous, active high) returns them
+//! to these values.
 
 use crate::primitives::block_ram::BlockRam;
 use crate::primitives::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS};

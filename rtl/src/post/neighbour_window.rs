@@ -29,9 +29,9 @@
 //! at `t + 1`, where `found` shows them (the decision stage). A read
 //! issued at `t` lands in its slot at `t + 3` (the block RAM's address and
 //! output registers); a read is issued while its slot, after the reads in
-//! flight, is free, so the ring fills at one entry per clock. No reset:
-//! the ring starts empty (Verilog initial values); `start` empties it for
-//! each row.
+//! flight, is free, so the ring fills at one entry per clock. The ring
+//! starts empty (Verilog initial values) and is emptied by `reset`
+//! (synchronous, active high); `start` empties it for each row.
 //!
 //! No paper equation: part of golden's row check (`DESIGN.md` §2.2).
 

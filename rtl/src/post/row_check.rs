@@ -87,9 +87,10 @@
 //! that take far fewer clocks): a row whose matches do not wait takes
 //! about `n + `[`ROW_FIRST_LAG`] clocks, far inside its line.
 //!
-//! `m_valid` low is a gap: nothing is stored. No reset: the registers
-//! start from their Verilog initial values, with every bank free and the
-//! engine idle.
+//! `m_valid` low is a gap: nothing is stored. The registers start
+//! from their Verilog initial values, with every bank free and the engine
+//! idle; `reset` (synchronous, active high) returns them to these values. The row memories need no
+//! clearing: a row is read only after it is written in the same frame.
 //!
 //! No paper equation: the check is golden's default mode (`DESIGN.md`
 //! §2.2), not the paper's.

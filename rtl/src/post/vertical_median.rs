@@ -67,9 +67,9 @@
 //! 0 of a new frame. `p_sof` on a row's first pixel starts a frame at that
 //! row (a frame cut short without an `eof` row never emits its last four
 //! rows). Throughput: one pixel per clock; latency [`MEDIAN_HALF`] rows and
-//! [`MEDIAN_LAG`] clocks. No reset: the registers start from their
-//! Verilog initial values (slot 0, not flushing: the first row taken is
-//! row 0 of a frame).
+//! [`MEDIAN_LAG`] clocks. The registers start from their Verilog
+//! initial values (slot 0, not flushing: the first row taken is row 0 of a
+//! frame); `reset` (synchronous, active high) returns them to these values.
 
 use crate::primitives::block_ram::BlockRam;
 use crate::params::*;

@@ -32,8 +32,8 @@
 //! A beat written at clock `t` (into an empty queue) is on the outputs at
 //! `t + `[`RECORD_FIFO_LAG`] and leaves one per clock while `r_ready` is
 //! high. Throughput: one beat in and one out per clock. `w_valid` low
-//! writes nothing. No reset: the pointers and counts start at zero (an
-//! empty queue) from their Verilog initial values.
+//! writes nothing. The pointers and counts start at zero (an empty
+//! queue) from their Verilog initial values; `reset` (synchronous, active high) returns them there.
 //!
 //! No paper equation: stream plumbing.
 

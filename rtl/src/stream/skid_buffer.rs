@@ -19,8 +19,8 @@
 //! `s_tready` falls the clock after; when `m_tready` rises again the output
 //! register is refilled from the skid register first, so beats stay in
 //! order and none is lost or duplicated. `s_tvalid` low is a bubble that
-//! passes through. No reset: the registers start empty (`m_tvalid` low,
-//! `s_tready` high) from their Verilog initial values.
+//! passes through. The registers start empty (`m_tvalid` low, `s_tready`
+//! high) from their Verilog initial values; `reset` (synchronous, active high) returns them there.
 //!
 //! No paper equation: stream plumbing.
 
