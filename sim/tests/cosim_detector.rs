@@ -9,11 +9,11 @@
 
 use std::path::{Path, PathBuf};
 
-use rtl::detector::declivity_detector::MIN_LINE_PERIOD;
+use rtl::detector::declivity_detector::{MIN_LINE_PERIOD, RESET_RECOVERY};
 use rtl::params::W_MAX;
 use sim::hdl::cosim::{self, Options, Simulator, Trace};
 use sim::rng::VectorRng;
-use sim::drive::detector::frame_beats;
+use sim::drive::detector::{frame_beats, PixelBeat};
 use sim::hdl::traces::detector_trace;
 
 fn vectors() -> PathBuf {
@@ -80,6 +80,34 @@ fn real_trace(design: &str) -> Trace {
     detector_trace(design, &beats).expect("records")
 }
 
+/// Tsukuba rows with two resets: one of two clocks inside a line while the
+/// line before is being read (its records leaving), one of a clock while the
+/// threshold scans a line's histogram; after each, the detector's recovery
+/// (the histograms cleared) with `tvalid` low, then the next lines.
+fn reset_trace(design: &str) -> Trace {
+    let rows: Vec<Vec<u8>> = (100..107).map(|y| row("tsukuba", y)).collect();
+    let w = rows[0].len();
+    let part = |ys: std::ops::Range<usize>| {
+        let refs: Vec<&[u8]> = rows[ys].iter().map(|l| l.as_slice()).collect();
+        frame_beats(&refs, MIN_LINE_PERIOD, || false)
+    };
+    let reset = |clocks: usize| std::iter::repeat_n(PixelBeat { reset: true, ..PixelBeat::default() }, clocks);
+    let idle = |clocks: usize| std::iter::repeat_n(PixelBeat::default(), clocks);
+    let mut beats = part(0..2);
+    beats.truncate(w + MIN_LINE_PERIOD + w / 2);
+    beats.extend(reset(2));
+    beats.extend(idle(RESET_RECOVERY + 2));
+    let mut second = part(2..5);
+    // The third line's last pixel, then 40 clocks of its threshold's scan.
+    second.truncate(3 * w + 2 * MIN_LINE_PERIOD + 40);
+    beats.extend(second);
+    beats.extend(reset(1));
+    beats.extend(idle(RESET_RECOVERY + 2));
+    beats.extend(part(5..7));
+    beats.extend(idle(2 * MIN_LINE_PERIOD + 512));
+    detector_trace(design, &beats).expect("records")
+}
+
 fn committed(name: &str, fresh: &Trace) -> Trace {
     cosim::committed_trace(&vectors().join(name), fresh).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -94,6 +122,8 @@ fn cosim_detector_vectors_are_current_and_carry_records() {
     let d = design();
     let corner = committed("corner.trace", &corner_trace(&d));
     let real = committed("real.trace", &real_trace(&d));
+    let reset = committed("reset.trace", &reset_trace(&d));
+    assert!(valid_beats(&reset) > 100, "{}", valid_beats(&reset));
     // Every line's marker and a fair number of records, so the comparison
     // below is not about an idle bus.
     assert!(valid_beats(&corner) > 60, "{}", valid_beats(&corner));
@@ -111,7 +141,7 @@ fn cosim_detector_icarus_matches_rust_on_corner_cases() {
 #[test]
 fn cosim_detector_verilator_matches_rust_on_corner_cases_and_real_rows() {
     let d = design();
-    for (name, fresh) in [("corner.trace", corner_trace(&d)), ("real.trace", real_trace(&d))] {
+    for (name, fresh) in [("corner.trace", corner_trace(&d)), ("real.trace", real_trace(&d)), ("reset.trace", reset_trace(&d))] {
         let trace = committed(name, &fresh);
         let run = cosim::check(Simulator::Verilator, &d, &trace, &Options::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
         eprintln!(

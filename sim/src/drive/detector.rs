@@ -109,6 +109,8 @@ pub struct PixelBeat {
     pub tvalid: bool,
     pub tuser: bool,
     pub tlast: bool,
+    /// The block's synchronous reset on this clock.
+    pub reset: bool,
 }
 
 /// One output beat: a declivity record, or a line's end marker.
@@ -305,7 +307,7 @@ pub fn run_lines<D: DetectorDut>(
         let mut beat = PixelBeat::default();
         if li < lines.len() && !gap(sim.cycle) {
             let line = lines[li];
-            beat = PixelBeat { tdata: line[xi], tvalid: true, tuser: li == 0 && xi == 0, tlast: xi + 1 == line.len() };
+            beat = PixelBeat { tdata: line[xi], tvalid: true, tuser: li == 0 && xi == 0, tlast: xi + 1 == line.len(), reset: false };
         }
         let cycle = sim.cycle;
         let (accepted, out) = sim.cycle(beat);
@@ -545,7 +547,7 @@ pub fn frame_beats(lines: &[&[u8]], idle: usize, mut gap: impl FnMut() -> bool) 
             while gap() {
                 beats.push(PixelBeat::default());
             }
-            beats.push(PixelBeat { tdata: p, tvalid: true, tuser: y == 0 && x == 0, tlast: x + 1 == line.len() });
+            beats.push(PixelBeat { tdata: p, tvalid: true, tuser: y == 0 && x == 0, tlast: x + 1 == line.len(), reset: false });
         }
         beats.extend(std::iter::repeat_n(PixelBeat::default(), idle));
     }

@@ -89,8 +89,7 @@ pub fn detector_trace(verilog: &str, beats: &[PixelBeat]) -> Result<Trace, Cosim
                     "s_tvalid" => b.tvalid as u64,
                     "s_tuser" => b.tuser as u64,
                     "s_tlast" => b.tlast as u64,
-                    // The stimuli never reset the block.
-                    "reset" => 0,
+                    "reset" => b.reset as u64,
                     other => panic!("unknown detector input {other}"),
                 })
                 .collect()
