@@ -32,13 +32,15 @@ fn camera_register_slice_keeps_every_beat_in_order_and_the_axi_stream_rules_prov
 /// always ready (a beat overwrites the skid register), the skid register's
 /// beat dropped for the camera's, the skid register never emptied.
 #[test]
-fn the_proof_fails_on_slices_that_lose_reorder_or_stall_beats() {
+fn the_proof_fails_on_slices_that_lose_reorder_or_stall_beats_or_forget_the_reset() {
     check_broken(
         &skid_buffer(),
         &[
             ("s_tready = ~k_valid$q;", "s_tready = 1'b1;", Outcome::Fail),
             ("o_data$d = k_data$q;", "o_data$d = s_tdata;", Outcome::Fail),
             ("k_valid$d = 1'b0;", "k_valid$d = k_valid$q;", Outcome::Fail),
+            // A reset that forgets the skid register.
+            ("k_valid$reset = reset;", "k_valid$reset = 1'b0;", Outcome::Fail),
         ],
         proof_of,
     );
@@ -90,13 +92,15 @@ fn record_queue_never_overflows_or_underflows_counts_writes_minus_reads_and_keep
 /// induction finds the broken state, which the basecase cannot reach in
 /// four clocks).
 #[test]
-fn the_record_queue_proof_fails_on_queues_that_underflow_overfill_or_take_the_markers_place() {
+fn the_record_queue_proof_fails_on_queues_that_underflow_overfill_take_the_markers_place_or_forget_the_reset() {
     check_broken(
         &record_fifo(),
         &[
             ("issue = (rp$q != wp$q) & (pending < ahead);", "issue = (pending < ahead);", Outcome::Fail),
             ("write = ~full_rec$q;", "write = ~full_mark$q;", Outcome::Unknown),
             ("issue = (rp$q != wp$q) & (pending < ahead);", "issue = (rp$q != wp$q) & (pending <= ahead);", Outcome::Unknown),
+            // A reset that forgets the write pointer.
+            ("wp$reset = reset;", "wp$reset = 1'b0;", Outcome::Fail),
         ],
         record_fifo_proof,
     );

@@ -1,7 +1,8 @@
 // The record queue's contract (rtl::stream::record_fifo), spliced into its
 // generated module `top` before `endmodule` and proven by SymbiYosys with
 // k-induction (sim::hdl::formal). Its inputs are free: any w_valid,
-// w_marker, lanes and r_ready on any clock. The contract reads no data, so
+// w_marker, lanes, r_ready and reset on any clock; a reset empties the
+// queue and the reference counts alike. The contract reads no data, so
 // the block RAMs are sim::hdl::formal::free_dp16kd (any read value).
 // Parameters: PTR (pointer bits), DEPTH (beats), AHEAD (the ring's places).
 `ifdef FORMAL
@@ -9,10 +10,10 @@
     always @(posedge clock) f_past <= 1'b1;
     // Beats that left (r_valid && r_ready), counted modulo the pointers.
     reg [PTR-1:0] f_pops = 0;
-    always @(posedge clock) if (r_valid & r_ready) f_pops <= f_pops + 1'b1;
+    always @(posedge clock) if (reset) f_pops <= 0; else if (r_valid & r_ready) f_pops <= f_pops + 1'b1;
     // The last beat written was a record (not a marker).
     reg f_record_last = 1'b0;
-    always @(posedge clock) if (write) f_record_last <= !w_marker;
+    always @(posedge clock) if (reset) f_record_last <= 1'b0; else if (write) f_record_last <= !w_marker;
     wire [PTR-1:0] f_in_ram = wp$q - rp$q;
     wire [PTR-1:0] f_held = wp$q - f_pops;
     wire [3:0] f_ahead = {1'b0, fill$q} + {3'b0, rd1$q} + {3'b0, rd2$q};

@@ -1,7 +1,8 @@
 // The camera register slice's contract (rtl::stream::skid_buffer), spliced
 // into its generated module `top` before `endmodule` and proven by
 // SymbiYosys with k-induction (sim::hdl::formal). The camera side is left
-// free: any s_tvalid, s_tdata, s_tuser, s_tlast and m_tready on any clock.
+// free: any s_tvalid, s_tdata, s_tuser, s_tlast, m_tready and reset on any
+// clock. A reset empties the slice and the reference queue alike.
 //
 // A reference queue of the beats accepted and not yet taken (two at most:
 // the output register and the skid register) states what the slice must
@@ -17,7 +18,8 @@
     reg [WIDTH+1:0] f_head = 0;
     reg [WIDTH+1:0] f_next = 0;
     always @(posedge clock) begin
-        case ({f_push, f_pop})
+        if (reset) f_count <= 2'd0;
+        else case ({f_push, f_pop})
             2'b10: begin
                 if (f_count == 2'd0) f_head <= f_beat; else f_next <= f_beat;
                 f_count <= f_count + 2'd1;
@@ -47,8 +49,8 @@
 
     always @(posedge clock) if (f_past) begin
         // AXI4-Stream towards the detector: a beat offered and not taken
-        // stays, unchanged.
-        if ($past(m_tvalid && !m_tready)) begin
+        // stays, unchanged, unless a reset came.
+        if ($past(m_tvalid && !m_tready && !reset)) begin
             assert(m_tvalid);
             assert({m_tdata, m_tuser, m_tlast} == $past({m_tdata, m_tuser, m_tlast}));
         end
