@@ -124,6 +124,35 @@ mod frames {
         check::<{ super::CELLS }>(Simulator::Icarus, &crop(&left, 100..104), &crop(&right, 100..104), 16, dispmax, "tsukuba rows 100..104");
     }
 
+    /// A frame cut short inside its second line by a reset of two clocks,
+    /// then the recovery and the frame anew: under Icarus and Verilator,
+    /// the frame after the reset is the rust-hdl model's after the same
+    /// reset, clock for clock, and both are a fresh run's (the model's
+    /// fresh run is the Verilog's, by the tests above).
+    #[test]
+    fn cosim_a_reset_mid_frame_gives_the_models_run_and_a_fresh_ones_in_icarus_and_verilator() {
+        use rtl::stereo_line_processor::RESET_RECOVERY;
+        use sim::hdl::frame::{run_frame_after_reset, FrameReset};
+        let (left, right, dispmax) = pair("tsukuba");
+        let (left, right) = (crop(&left, 100..104), crop(&right, 100..104));
+        let hblank = 7;
+        let reset = FrameReset { cut: (left.width() + hblank + left.width() / 2) as u64, clocks: 2, idle: RESET_RECOVERY as u64 + 3 };
+        let design = sim::hdl::verilog::generate_with(sim::Config::Sd, sim::hdl::verilog::Top::Stereo, super::CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("a supported size");
+        let (fresh, _) = model::<{ super::CELLS }>(&left, &right, hblank, dispmax);
+        let mut sim = StereoSim::<{ super::CELLS }>::robust(dispmax);
+        sim.run_cut(&left, &right, hblank, reset.cut);
+        sim.reset(reset.clocks, reset.idle);
+        let start = sim.cycle;
+        let want = sim.run(&left, &right, hblank, |_| {}).counted_from(start);
+        let diff = differences(&fresh, &want);
+        assert!(diff.is_empty(), "the model after the reset differs from a fresh run: {diff:#?}");
+        for simulator in [Simulator::Icarus, Simulator::Verilator] {
+            let got = run_frame_after_reset(simulator, sim::Config::Sd, &design, &left, &right, hblank, sim::formats::SearchArea::below(dispmax), reset, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+            let diff = differences(&want, &got.run);
+            assert!(diff.is_empty(), "{} after the reset differs from the rust-hdl model: {diff:#?}", simulator.name());
+        }
+    }
+
     /// Verilator's C++ driver and Icarus's Verilog testbench (the camera
     /// model written twice) write the same files byte for byte on two lines
     /// of tsukuba with the 16 cells of the lint test, blanking between the

@@ -218,6 +218,21 @@ impl StereoRun {
         tlast
     }
 
+    /// The run with its clocks counted from `start` (the clock its frame
+    /// began, as after [`StereoSim::reset`]), to compare with a run that
+    /// began on clock 0. The probe keeps its own clocks.
+    pub fn counted_from(&self, start: u64) -> StereoRun {
+        StereoRun {
+            line_cycles: self.line_cycles.iter().map(|&(a, b)| (a - start, b - start)).collect(),
+            cycles: self.cycles - start,
+            first_in: self.first_in - start,
+            first_out: self.first_out.map(|c| c - start),
+            last_in: self.last_in - start,
+            last_out: self.last_out.map(|c| c - start),
+            ..self.clone()
+        }
+    }
+
     /// Clocks from the first pixel in to the first disparity out.
     pub fn latency_cycles(&self) -> Option<u64> {
         self.first_out.map(|o| o - self.first_in)
@@ -382,6 +397,8 @@ impl<const N: usize> StereoSim<N> {
             let u = &mut *self.uut;
             u.clock.next = false.into();
             u.reset.next = k < clocks;
+            u.l_tdata.next = 0.into();
+            u.r_tdata.next = 0.into();
             u.l_tvalid.next = false;
             u.r_tvalid.next = false;
             u.l_tuser.next = false;

@@ -70,7 +70,7 @@ const FRAME_ERROR: &str = "FRAME-ERROR";
 /// Verilator's arguments for the frame build, besides `--cc --exe`: `-O3`,
 /// Verilator's highest optimisation of the model (a faster run than its
 /// defaults; the comparison is in docs/timing-closure.md). No `--x-assign` or
-/// `--x-initial`: the design has no X to assign (no reset, every register
+/// `--x-initial`: the design has no X to assign (every register
 /// and memory starts from its Verilog initial value); no `--noassert`: the
 /// design has no assertion to remove. The C++ compiler's level is
 /// [`Options::verilator_cxx_opt`] (see `FRAME_BUILD`).
@@ -159,7 +159,8 @@ fn check_ports(design: &str, config: Config) -> Result<(), CosimError> {
 /// [`StereoSim::run`](crate::drive::stereo::StereoSim::run) in Verilog, for Icarus
 /// 11 (Verilator runs [`frame_driver`], the same model in C++). It reads [`FRAME_PARAMS_FILE`] (width,
 /// height, hblank, dispmin and dispmax in `1/2^POS_FRAC_BITS` px, quiet
-/// clocks, clock limit; decimal), the images as one hex byte per line
+/// clocks, clock limit, and the [`FrameReset`]'s cut, clocks and idle, 0 0
+/// 0 for none; decimal), the images as one hex byte per line
 /// ([`FRAME_LEFT_FILE`], [`FRAME_RIGHT_FILE`]), writes every output beat as
 /// `clock tdata tuser tlast` ([`FRAME_BEATS_FILE`]) and at the end `clocks
 /// stalls pixels_in first_in last_in` and the status counters
@@ -184,17 +185,17 @@ fn frame_testbench(config: Config) -> String {
     let _ = writeln!(s, "  reg [{}:0] right_img [0:{}];", PIXEL_BITS - 1, pixels_max - 1);
     let _ = write!(
         s,
-        "  integer fp, fb, fs, r, w, h, hblank, dmin, dmax, quiet, limit;
+        "  integer fp, fb, fs, r, w, h, hblank, dmin, dmax, quiet, limit, cut, reset_clocks, reset_idle, k;
   integer lx, ly, lidle, rx, ry, ridle, rows;
   reg [63:0] cycle, stalls, pixels_in, first_in, last_in, last_activity;
-  reg have_in, done, l_off, r_off, l_take, r_take;
+  reg have_in, done, cutting, l_off, r_off, l_take, r_take;
   initial begin
     clock = 1'b0;
     {RESET_PORT} = 1'b0;
     fp = $fopen(\"{FRAME_PARAMS_FILE}\", \"r\");
     if (fp == 0) begin $display(\"{FRAME_ERROR} cannot open {FRAME_PARAMS_FILE}\"); $finish; end
-    r = $fscanf(fp, \"%d %d %d %d %d %d %d\", w, h, hblank, dmin, dmax, quiet, limit);
-    if (r != 7) begin $display(\"{FRAME_ERROR} bad {FRAME_PARAMS_FILE}\"); $finish; end
+    r = $fscanf(fp, \"%d %d %d %d %d %d %d %d %d %d\", w, h, hblank, dmin, dmax, quiet, limit, cut, reset_clocks, reset_idle);
+    if (r != 10) begin $display(\"{FRAME_ERROR} bad {FRAME_PARAMS_FILE}\"); $finish; end
     $fclose(fp);
     $readmemh(\"{FRAME_LEFT_FILE}\", left_img, 0, w * h - 1);
     $readmemh(\"{FRAME_RIGHT_FILE}\", right_img, 0, w * h - 1);
@@ -203,8 +204,24 @@ fn frame_testbench(config: Config) -> String {
     if (fb == 0 || fs == 0) begin $display(\"{FRAME_ERROR} cannot write the output files\"); $finish; end
     lx = 0; ly = 0; lidle = 0; rx = 0; ry = 0; ridle = 0; rows = 0;
     cycle = 0; stalls = 0; pixels_in = 0; first_in = 0; last_in = 0; last_activity = 0;
-    have_in = 1'b0; done = 1'b0;
+    have_in = 1'b0; done = 1'b0; cutting = cut > 0;
     while (!done) begin
+      if (cutting && cycle == cut) begin
+        // The frame cut short: reset, idle, then the frame anew from clock 0.
+        l_tvalid = 1'b0; l_tdata = 0; l_tuser = 1'b0; l_tlast = 1'b0;
+        r_tvalid = 1'b0; r_tdata = 0; r_tuser = 1'b0; r_tlast = 1'b0;
+        for (k = 0; k < reset_clocks + reset_idle; k = k + 1) begin
+          {RESET_PORT} = k < reset_clocks;
+          #1;
+          clock = 1'b1;
+          #1;
+          clock = 1'b0;
+        end
+        {RESET_PORT} = 1'b0;
+        lx = 0; ly = 0; lidle = 0; rx = 0; ry = 0; ridle = 0; rows = 0;
+        cycle = 0; stalls = 0; pixels_in = 0; first_in = 0; last_in = 0; last_activity = 0;
+        have_in = 1'b0; cutting = 1'b0;
+      end
       l_off = (ly < h) && (lidle == 0);
       r_off = (ry < h) && (ridle == 0);
       l_tvalid = l_off;
@@ -228,7 +245,7 @@ fn frame_testbench(config: Config) -> String {
         last_in = cycle;
         last_activity = cycle;
       end
-      if (m_tvalid) begin
+      if (m_tvalid && !cutting) begin
         last_activity = cycle;
         $fwrite(fb, \"%0d %h %0d %0d\\n\", cycle, m_tdata, m_tuser, m_tlast);
         if (m_tlast) rows = rows + 1;
@@ -247,7 +264,7 @@ fn frame_testbench(config: Config) -> String {
         rx = rx + 1;
         if (rx == w) begin rx = 0; ry = ry + 1; ridle = hblank; end
       end
-      if (rows >= h || (ly >= h && ry >= h && cycle - last_activity > quiet)) done = 1'b1;
+      if (!cutting && (rows >= h || (ly >= h && ry >= h && cycle - last_activity > quiet))) done = 1'b1;
       if (cycle >= limit) begin $display(\"{FRAME_ERROR} the clock limit was reached\"); done = 1'b1; end
     end
 "
@@ -280,8 +297,12 @@ fn frame_testbench(config: Config) -> String {
 ///    both cameras are done and nothing happened for more than the quiet
 ///    clocks; past the clock limit it stops with an error.
 ///
-/// There is no reset: registers start from their Verilog initial values
-/// (Verilator's constructor and first `eval()` run the `initial` blocks).
+/// Registers start from their Verilog initial values (Verilator's
+/// constructor and first `eval()` run the `initial` blocks), `reset` low.
+/// With a [`FrameReset`] (`cut` > 0), the frame is cut at clock `cut`:
+/// `reset` high for `clocks` clocks and low for `idle`, the cameras idle,
+/// then the frame anew with the clocks counted from 0; nothing is written
+/// for the clocks before.
 /// It prints `FRAME-DONE <clocks>` at the end, or a line starting with
 /// `FRAME-ERROR` and exits 1.
 fn frame_driver(config: Config) -> String {
@@ -327,12 +348,12 @@ int main(int argc, char** argv) {{
   const std::unique_ptr<VerilatedContext> ctx{{new VerilatedContext}};
   ctx->commandArgs(argc, argv);
   const std::unique_ptr<V{TOP_MODULE}> top{{new V{TOP_MODULE}{{ctx.get()}}}};
-  long long w, h, hblank, dmin, dmax, quiet, limit;
+  long long w, h, hblank, dmin, dmax, quiet, limit, cut, reset_clocks, reset_idle;
   FILE* fp = std::fopen("{FRAME_PARAMS_FILE}", "r");
   if (!fp) return fail("cannot open {FRAME_PARAMS_FILE}");
-  int r = std::fscanf(fp, "%lld %lld %lld %lld %lld %lld %lld", &w, &h, &hblank, &dmin, &dmax, &quiet, &limit);
+  int r = std::fscanf(fp, "%lld %lld %lld %lld %lld %lld %lld %lld %lld %lld", &w, &h, &hblank, &dmin, &dmax, &quiet, &limit, &cut, &reset_clocks, &reset_idle);
   std::fclose(fp);
-  if (r != 7 || w <= 0 || h <= 0 || hblank < 0 || quiet < 0 || limit < 0) return fail("bad {FRAME_PARAMS_FILE}");
+  if (r != 10 || w <= 0 || h <= 0 || hblank < 0 || quiet < 0 || limit < 0 || cut < 0 || reset_clocks < 0 || reset_idle < 0) return fail("bad {FRAME_PARAMS_FILE}");
   std::vector<uint8_t> left, right;
   if (!read_image("{FRAME_LEFT_FILE}", left, w * h)) return fail("cannot read {FRAME_LEFT_FILE}");
   if (!read_image("{FRAME_RIGHT_FILE}", right, w * h)) return fail("cannot read {FRAME_RIGHT_FILE}");
@@ -343,13 +364,30 @@ int main(int argc, char** argv) {{
   std::setvbuf(fb, beats_buf, _IOFBF, sizeof beats_buf);
   long long lx = 0, ly = 0, lidle = 0, rx = 0, ry = 0, ridle = 0, rows = 0;
   uint64_t cycle = 0, stalls = 0, pixels_in = 0, first_in = 0, last_in = 0, last_activity = 0;
-  bool have_in = false, done = false, over_limit = false;
+  bool have_in = false, done = false, over_limit = false, cutting = cut > 0;
   top->{CLOCK_PORT} = 0;
   top->{RESET_PORT} = 0;
   top->dispmin = (uint64_t)dmin & {dispmin_mask};
   top->dispmax = (uint64_t)dmax & {dispmax_mask};
   top->height = (uint64_t)h & {height_mask};
   while (!done) {{
+    if (cutting && cycle == (uint64_t)cut) {{
+      // The frame cut short: reset, idle, then the frame anew from clock 0.
+      top->l_tvalid = 0; top->l_tdata = 0; top->l_tuser = 0; top->l_tlast = 0;
+      top->r_tvalid = 0; top->r_tdata = 0; top->r_tuser = 0; top->r_tlast = 0;
+      for (long long k = 0; k < reset_clocks + reset_idle; ++k) {{
+        top->{RESET_PORT} = k < reset_clocks;
+        top->eval();
+        top->{CLOCK_PORT} = 1;
+        top->eval();
+        top->{CLOCK_PORT} = 0;
+      }}
+      top->{RESET_PORT} = 0;
+      lx = ly = lidle = rx = ry = ridle = rows = 0;
+      cycle = stalls = pixels_in = first_in = last_in = last_activity = 0;
+      have_in = false;
+      cutting = false;
+    }}
     const bool l_off = ly < h && lidle == 0;
     const bool r_off = ry < h && ridle == 0;
     top->l_tvalid = l_off;
@@ -370,7 +408,7 @@ int main(int argc, char** argv) {{
       last_in = cycle;
       last_activity = cycle;
     }}
-    if (top->m_tvalid) {{
+    if (top->m_tvalid && !cutting) {{
       last_activity = cycle;
       std::fprintf(fb, "%llu %0{hex_digits}llx %u %u\n", (unsigned long long)cycle, (unsigned long long)top->m_tdata, (unsigned)top->m_tuser, (unsigned)top->m_tlast);
       if (top->m_tlast) ++rows;
@@ -387,7 +425,7 @@ int main(int argc, char** argv) {{
     else if (r_take) {{
       if (++rx == w) {{ rx = 0; ++ry; ridle = hblank; }}
     }}
-    if (rows >= h || (ly >= h && ry >= h && cycle - last_activity > (uint64_t)quiet)) done = true;
+    if (!cutting && (rows >= h || (ly >= h && ry >= h && cycle - last_activity > (uint64_t)quiet))) done = true;
     if (cycle >= (uint64_t)limit) {{ over_limit = true; done = true; }}
   }}
   std::fprintf(fs, "%llu %llu %llu %llu %llu{status_fmt}\n", (unsigned long long)cycle, (unsigned long long)stalls, (unsigned long long)pixels_in, (unsigned long long)first_in, (unsigned long long)last_in{status_args});
@@ -499,6 +537,37 @@ fn frame_cache_dir(design: &str, driver: &str, opts: &Options) -> PathBuf {
 /// [`FrameRun::work_dir`]).
 #[allow(clippy::too_many_arguments)]
 pub fn run_frame(simulator: Simulator, config: Config, design: &str, left: &GreyImage, right: &GreyImage, hblank: usize, area: SearchArea, opts: &Options) -> Result<FrameRun, CosimError> {
+    run_frame_with(simulator, config, design, left, right, hblank, area, None, opts)
+}
+
+/// A frame cut short by a reset ([`run_frame_after_reset`]): the frame is
+/// played for `cut` clocks, `reset` is held high for `clocks` clocks and
+/// low for `idle` more, both cameras idle, and the frame is then played
+/// anew from its first pixel. As [`StereoSim::run_cut`] and
+/// [`StereoSim::reset`] do to the rust-hdl model.
+///
+/// [`StereoSim::run_cut`]: crate::drive::stereo::StereoSim::run_cut
+/// [`StereoSim::reset`]: crate::drive::stereo::StereoSim::reset
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameReset {
+    pub cut: u64,
+    pub clocks: u64,
+    pub idle: u64,
+}
+
+/// As [`run_frame`], with the frame first cut short by `reset`; the run
+/// returned is the frame played after it, its clocks counted from the
+/// clock it began.
+#[allow(clippy::too_many_arguments)]
+pub fn run_frame_after_reset(simulator: Simulator, config: Config, design: &str, left: &GreyImage, right: &GreyImage, hblank: usize, area: SearchArea, reset: FrameReset, opts: &Options) -> Result<FrameRun, CosimError> {
+    if reset.cut == 0 {
+        return Err(CosimError::Port("a reset cut at clock 0 cuts nothing: give a clock inside the frame".into()));
+    }
+    run_frame_with(simulator, config, design, left, right, hblank, area, Some(reset), opts)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_frame_with(simulator: Simulator, config: Config, design: &str, left: &GreyImage, right: &GreyImage, hblank: usize, area: SearchArea, reset: Option<FrameReset>, opts: &Options) -> Result<FrameRun, CosimError> {
     let (w, h) = (left.width(), left.height());
     if (right.width(), right.height()) != (w, h) {
         return Err(CosimError::Port(format!("the images differ in size: left {w}×{h}, right {}×{}", right.width(), right.height())));
@@ -509,7 +578,7 @@ pub fn run_frame(simulator: Simulator, config: Config, design: &str, left: &Grey
     }
     check_ports(design, config)?;
     let mut dir = WorkDir::new(opts.work_root.as_deref(), &format!("frame-{}", simulator.name()))?;
-    let result = frame_in(simulator, config, design, left, right, hblank, area, opts, &dir);
+    let result = frame_in(simulator, config, design, left, right, hblank, area, reset, opts, &dir);
     dir.keep = opts.keep || matches!(result, Err(CosimError::ToolFailed { .. } | CosimError::Parse { .. }));
     let mut run = result?;
     if dir.keep {
@@ -519,9 +588,10 @@ pub fn run_frame(simulator: Simulator, config: Config, design: &str, left: &Grey
 }
 
 #[allow(clippy::too_many_arguments)]
-fn frame_in(simulator: Simulator, config: Config, design: &str, left: &GreyImage, right: &GreyImage, hblank: usize, area: SearchArea, opts: &Options, dir: &WorkDir) -> Result<FrameRun, CosimError> {
+fn frame_in(simulator: Simulator, config: Config, design: &str, left: &GreyImage, right: &GreyImage, hblank: usize, area: SearchArea, reset: Option<FrameReset>, opts: &Options, dir: &WorkDir) -> Result<FrameRun, CosimError> {
     let (w, h) = (left.width(), left.height());
-    dir.write(FRAME_PARAMS_FILE, &format!("{w} {h} {hblank} {} {} {QUIET_CLOCKS} {}\n", area.dispmin, area.dispmax, clock_limit(w, h, hblank)))?;
+    let cut = reset.unwrap_or(FrameReset { cut: 0, clocks: 0, idle: 0 });
+    dir.write(FRAME_PARAMS_FILE, &format!("{w} {h} {hblank} {} {} {QUIET_CLOCKS} {} {} {} {}\n", area.dispmin, area.dispmax, clock_limit(w, h, hblank), cut.cut, cut.clocks, cut.idle))?;
     dir.write(FRAME_LEFT_FILE, &image_hex(left))?;
     dir.write(FRAME_RIGHT_FILE, &image_hex(right))?;
     let t0 = Instant::now();
