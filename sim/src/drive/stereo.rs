@@ -220,15 +220,18 @@ impl StereoRun {
 
     /// The run with its clocks counted from `start` (the clock its frame
     /// began, as after [`StereoSim::reset`]), to compare with a run that
-    /// began on clock 0. The probe keeps its own clocks.
+    /// began on clock 0. The probe keeps its own clocks; a clock before
+    /// `start` (`first_in` and `last_in` of a run that took no pixel) counts
+    /// as 0.
     pub fn counted_from(&self, start: u64) -> StereoRun {
+        let from = |c: u64| c.saturating_sub(start);
         StereoRun {
-            line_cycles: self.line_cycles.iter().map(|&(a, b)| (a - start, b - start)).collect(),
-            cycles: self.cycles - start,
-            first_in: self.first_in - start,
-            first_out: self.first_out.map(|c| c - start),
-            last_in: self.last_in - start,
-            last_out: self.last_out.map(|c| c - start),
+            line_cycles: self.line_cycles.iter().map(|&(a, b)| (from(a), from(b))).collect(),
+            cycles: from(self.cycles),
+            first_in: from(self.first_in),
+            first_out: self.first_out.map(from),
+            last_in: from(self.last_in),
+            last_out: self.last_out.map(from),
             ..self.clone()
         }
     }
