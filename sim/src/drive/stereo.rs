@@ -315,6 +315,23 @@ fn settle<const N: usize>(u: &mut StereoLineProcessor<N>, passes: usize) {
     crate::drive::settle_block(u, passes, 300, "the line processor");
 }
 
+/// Sets both cameras' inputs: `(tdata, tuser, tlast)` of the pixel each
+/// offers (left, right), or `tvalid` low with the rest 0.
+fn offer_pixels<const N: usize>(u: &mut StereoLineProcessor<N>, offers: [Option<(u8, bool, bool)>; 2]) {
+    for (k, offer) in offers.iter().enumerate() {
+        let (tdata, tuser, tlast) = offer.unwrap_or((0, false, false));
+        let (d, v, us, l) = if k == 0 {
+            (&mut u.l_tdata, &mut u.l_tvalid, &mut u.l_tuser, &mut u.l_tlast)
+        } else {
+            (&mut u.r_tdata, &mut u.r_tvalid, &mut u.r_tuser, &mut u.r_tlast)
+        };
+        d.next = (tdata as u64).into();
+        v.next = offer.is_some();
+        us.next = tuser;
+        l.next = tlast;
+    }
+}
+
 /// One camera's stream: the pixel offered, and where it is.
 struct Camera<'a> {
     image: &'a GreyImage,
@@ -400,14 +417,7 @@ impl<const N: usize> StereoSim<N> {
             let u = &mut *self.uut;
             u.clock.next = false.into();
             u.reset.next = k < clocks;
-            u.l_tdata.next = 0.into();
-            u.r_tdata.next = 0.into();
-            u.l_tvalid.next = false;
-            u.r_tvalid.next = false;
-            u.l_tuser.next = false;
-            u.r_tuser.next = false;
-            u.l_tlast.next = false;
-            u.r_tlast.next = false;
+            offer_pixels(u, [None, None]);
             settle(u, SETTLE_LOW);
             u.clock.next = true.into();
             settle(u, SETTLE_HIGH);
@@ -433,18 +443,7 @@ impl<const N: usize> StereoSim<N> {
             u.dispmax.next = (self.dispmax as u64).into();
             u.height.next = (height as u64).into();
             let offers = [cams[0].offer(), cams[1].offer()];
-            for (k, offer) in offers.iter().enumerate() {
-                let (tdata, tuser, tlast) = offer.unwrap_or((0, false, false));
-                let (d, v, us, l) = if k == 0 {
-                    (&mut u.l_tdata, &mut u.l_tvalid, &mut u.l_tuser, &mut u.l_tlast)
-                } else {
-                    (&mut u.r_tdata, &mut u.r_tvalid, &mut u.r_tuser, &mut u.r_tlast)
-                };
-                d.next = (tdata as u64).into();
-                v.next = offer.is_some();
-                us.next = tuser;
-                l.next = tlast;
-            }
+            offer_pixels(u, offers);
             settle(u, SETTLE_LOW);
             let tracing = self.vcd.as_ref().is_some_and(|v| cams[0].y >= v.lines.start && run.rows.len() < v.lines.end);
             if let Some(v) = &mut self.vcd {
