@@ -257,8 +257,8 @@ impl CliTop {
 /// What `verilog` writes the block for.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum CliTarget {
-    /// The Lattice ECP5: DP16KD, MULT18X18D and TRELLIS_DPR16X4 instantiated by name (the
-    /// measured target; their simulation models beside the block).
+    /// The Lattice ECP5: DP16KD, MULT18X18D, TRELLIS_DPR16X4 and (the line processor's reset)
+    /// DCCA instantiated by name (the measured target; their simulation models beside the block).
     Ecp5,
     /// Any FPGA or ASIC flow: the primitives replaced by behavioural Verilog inside the block
     /// (memories with registered reads, `*`), which Yosys, Vivado and Quartus infer.

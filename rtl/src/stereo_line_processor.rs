@@ -105,7 +105,9 @@
 //! memories are not cleared otherwise: a row, a line or a record is read
 //! only after it has been written since the reset. From the next start of
 //! frame on, the output is a fresh run's, beat for beat
-//! (`tests/rtl_stereo.rs`, `tests/cocotb`).
+//! (`tests/rtl_stereo.rs`, `tests/cocotb`). `reset` reaches the blocks
+//! through a [`ResetBuffer`]: in the ECP5 a `DCCA` puts it on a global net
+//! to its 31 000 flip-flops, with no clock of latency.
 //!
 //! ## Lines in flight
 //! The interpolator sends one line per `W` clocks, the cameras' rate, so
@@ -168,6 +170,7 @@ use crate::stream::record_fifo::RecordFifo;
 use crate::post::row_check::RowCheck;
 use crate::stream::skid_buffer::SkidBuffer;
 use crate::post::vertical_median::VerticalMedian;
+use crate::primitives::reset_buffer::ResetBuffer;
 use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
 
@@ -260,6 +263,8 @@ pub struct StereoLineProcessor<const N: usize> {
     pub lines_full: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_wide: Signal<Out, Bits<STATUS_BITS>>,
     // The cameras' register slices (SKID_LAG), then their detectors.
+    /// `reset` on the global network, to every block and register.
+    reset_buffer: ResetBuffer,
     pub l_skid: SkidBuffer<PIXEL_BITS>,
     pub r_skid: SkidBuffer<PIXEL_BITS>,
     pub left: DeclivityDetector,
@@ -405,6 +410,7 @@ impl<const N: usize> StereoLineProcessor<N> {
             pixels_dropped: Default::default(),
             lines_full: Default::default(),
             lines_wide: Default::default(),
+            reset_buffer: Default::default(),
             l_skid: Default::default(),
             r_skid: Default::default(),
             left: Default::default(),
@@ -487,69 +493,70 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, in_flight, flight_left, hold_q, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
-        self.m_row.reset.next = self.reset.val();
-        self.p_row.reset.next = self.reset.val();
-        self.h_m1.reset.next = self.reset.val();
-        self.h_one.reset.next = self.reset.val();
-        self.m_row_last.reset.next = self.reset.val();
-        self.i_valid.reset.next = self.reset.val();
-        self.i_last.reset.next = self.reset.val();
-        self.i_d.reset.next = self.reset.val();
-        self.i_sof.reset.next = self.reset.val();
-        self.i_eof.reset.next = self.reset.val();
-        self.l_count.reset.next = self.reset.val();
-        self.l_width.reset.next = self.reset.val();
-        self.l_acc.reset.next = self.reset.val();
-        self.l_acc_last.reset.next = self.reset.val();
-        self.width.reset.next = self.reset.val();
-        self.n_records_dropped.reset.next = self.reset.val();
-        self.n_lines_dropped.reset.next = self.reset.val();
-        self.n_pixels_dropped.reset.next = self.reset.val();
-        self.n_lines_full.reset.next = self.reset.val();
-        self.n_lines_wide.reset.next = self.reset.val();
-        self.ev_records.reset.next = self.reset.val();
-        self.ev_lines.reset.next = self.reset.val();
-        self.ev_pixels.reset.next = self.reset.val();
-        self.ev_full.reset.next = self.reset.val();
-        self.ev_wide.reset.next = self.reset.val();
-        self.in_flight.reset.next = self.reset.val();
-        self.flight_left.reset.next = self.reset.val();
-        self.hold_q.reset.next = self.reset.val();
-        self.k_valid.reset.next = self.reset.val();
-        self.k_last.reset.next = self.reset.val();
-        self.k_x.reset.next = self.reset.val();
-        self.k_d.reset.next = self.reset.val();
-        self.k_sof.reset.next = self.reset.val();
-        self.v_valid.reset.next = self.reset.val();
-        self.v_last.reset.next = self.reset.val();
-        self.v_d.reset.next = self.reset.val();
-        self.v_sof.reset.next = self.reset.val();
-        self.out_valid.reset.next = self.reset.val();
-        self.out_data.reset.next = self.reset.val();
-        self.out_user.reset.next = self.reset.val();
-        self.out_last.reset.next = self.reset.val();
+        self.reset_buffer.reset_in.next = self.reset.val();
+        self.m_row.reset.next = self.reset_buffer.reset.val();
+        self.p_row.reset.next = self.reset_buffer.reset.val();
+        self.h_m1.reset.next = self.reset_buffer.reset.val();
+        self.h_one.reset.next = self.reset_buffer.reset.val();
+        self.m_row_last.reset.next = self.reset_buffer.reset.val();
+        self.i_valid.reset.next = self.reset_buffer.reset.val();
+        self.i_last.reset.next = self.reset_buffer.reset.val();
+        self.i_d.reset.next = self.reset_buffer.reset.val();
+        self.i_sof.reset.next = self.reset_buffer.reset.val();
+        self.i_eof.reset.next = self.reset_buffer.reset.val();
+        self.l_count.reset.next = self.reset_buffer.reset.val();
+        self.l_width.reset.next = self.reset_buffer.reset.val();
+        self.l_acc.reset.next = self.reset_buffer.reset.val();
+        self.l_acc_last.reset.next = self.reset_buffer.reset.val();
+        self.width.reset.next = self.reset_buffer.reset.val();
+        self.n_records_dropped.reset.next = self.reset_buffer.reset.val();
+        self.n_lines_dropped.reset.next = self.reset_buffer.reset.val();
+        self.n_pixels_dropped.reset.next = self.reset_buffer.reset.val();
+        self.n_lines_full.reset.next = self.reset_buffer.reset.val();
+        self.n_lines_wide.reset.next = self.reset_buffer.reset.val();
+        self.ev_records.reset.next = self.reset_buffer.reset.val();
+        self.ev_lines.reset.next = self.reset_buffer.reset.val();
+        self.ev_pixels.reset.next = self.reset_buffer.reset.val();
+        self.ev_full.reset.next = self.reset_buffer.reset.val();
+        self.ev_wide.reset.next = self.reset_buffer.reset.val();
+        self.in_flight.reset.next = self.reset_buffer.reset.val();
+        self.flight_left.reset.next = self.reset_buffer.reset.val();
+        self.hold_q.reset.next = self.reset_buffer.reset.val();
+        self.k_valid.reset.next = self.reset_buffer.reset.val();
+        self.k_last.reset.next = self.reset_buffer.reset.val();
+        self.k_x.reset.next = self.reset_buffer.reset.val();
+        self.k_d.reset.next = self.reset_buffer.reset.val();
+        self.k_sof.reset.next = self.reset_buffer.reset.val();
+        self.v_valid.reset.next = self.reset_buffer.reset.val();
+        self.v_last.reset.next = self.reset_buffer.reset.val();
+        self.v_d.reset.next = self.reset_buffer.reset.val();
+        self.v_sof.reset.next = self.reset_buffer.reset.val();
+        self.out_valid.reset.next = self.reset_buffer.reset.val();
+        self.out_data.reset.next = self.reset_buffer.reset.val();
+        self.out_user.reset.next = self.reset_buffer.reset.val();
+        self.out_last.reset.next = self.reset_buffer.reset.val();
         self.l_skid.clock.next = self.clock.val();
-        self.l_skid.reset.next = self.reset.val();
+        self.l_skid.reset.next = self.reset_buffer.reset.val();
         self.r_skid.clock.next = self.clock.val();
-        self.r_skid.reset.next = self.reset.val();
+        self.r_skid.reset.next = self.reset_buffer.reset.val();
         self.left.clock.next = self.clock.val();
-        self.left.reset.next = self.reset.val();
+        self.left.reset.next = self.reset_buffer.reset.val();
         self.right.clock.next = self.clock.val();
-        self.right.reset.next = self.reset.val();
+        self.right.reset.next = self.reset_buffer.reset.val();
         self.l_queue.clock.next = self.clock.val();
-        self.l_queue.reset.next = self.reset.val();
+        self.l_queue.reset.next = self.reset_buffer.reset.val();
         self.r_queue.clock.next = self.clock.val();
-        self.r_queue.reset.next = self.reset.val();
+        self.r_queue.reset.next = self.reset_buffer.reset.val();
         self.matcher.clock.next = self.clock.val();
-        self.matcher.reset.next = self.reset.val();
+        self.matcher.reset.next = self.reset_buffer.reset.val();
         self.row_check.clock.next = self.clock.val();
-        self.row_check.reset.next = self.reset.val();
+        self.row_check.reset.next = self.reset_buffer.reset.val();
         self.interpolator.clock.next = self.clock.val();
-        self.interpolator.reset.next = self.reset.val();
+        self.interpolator.reset.next = self.reset_buffer.reset.val();
         self.median.clock.next = self.clock.val();
-        self.median.reset.next = self.reset.val();
+        self.median.reset.next = self.reset_buffer.reset.val();
         self.depth.clock.next = self.clock.val();
-        self.depth.reset.next = self.reset.val();
+        self.depth.reset.next = self.reset_buffer.reset.val();
 
         // ---- The cameras through their register slices into their
         // detectors.

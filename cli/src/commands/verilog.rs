@@ -31,9 +31,10 @@ fn long_about() -> String {
     format!(
         "Write a hardware block as a self-contained IP folder in --out: the Verilog that rust-hdl \
          generates for it (DIR/declivity_<block>.v, module declivity_<block>, submodules \
-         declivity_<block>$..., one clock input `clock`, no reset: registers start from their \
-         Verilog initial values); for --target ecp5, the behavioural models of the ECP5 \
-         primitives it instantiates (DP16KD, MULT18X18D, TRELLIS_DPR16X4) in DIR/{}/, one module \
+         declivity_<block>$..., one clock input `clock`, one synchronous active-high `reset`; registers also start from \
+         the values reset gives them, as Verilog initial values); for --target ecp5, the \
+         behavioural models of the ECP5 primitives it instantiates (DP16KD, MULT18X18D, \
+         TRELLIS_DPR16X4; for --top stereo the DCCA that puts reset on a global net) in DIR/{}/, one module \
          a file, for simulation only (--target generic puts those models, renamed, inside the \
          block instead, as behavioural Verilog any synthesis tool infers); a simulation file list DIR/declivity_<block>.f (paths under \
          ${{DECLIVITY_<BLOCK>_DIR}}; iverilog -c, verilator -f); a FuseSoC CAPI2 core \

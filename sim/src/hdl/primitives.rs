@@ -3,7 +3,9 @@
 //! Some blocks instantiate an ECP5 primitive by name (`rtl::primitives::block_ram`: the
 //! `DP16KD` block RAM with its output register, which Yosys never infers;
 //! `rtl::primitives::dsp_multiplier`: the `MULT18X18D` with its input registers;
-//! `rtl::primitives::lut_ram`: the `TRELLIS_DPR16X4` LUT RAM of the gain cells' rows).
+//! `rtl::primitives::lut_ram`: the `TRELLIS_DPR16X4` LUT RAM of the gain cells' rows;
+//! `rtl::primitives::reset_buffer`: the `DCCA` that puts the line processor's reset on a
+//! global net).
 //! Yosys's `synth_ecp5` maps them itself; the co-simulation (Icarus,
 //! Verilator), the lint and the latch check read the behavioural models here
 //! beside the design, as `models.v`.
@@ -17,22 +19,32 @@ const MULT18X18D_MODEL: &str = include_str!("models/ecp5_mult18x18d_sim.v");
 /// Behavioural model of `TRELLIS_DPR16X4` as `rtl::primitives::lut_ram::LutRam` uses it.
 const DPR16X4_MODEL: &str = include_str!("models/ecp5_dpr16x4_sim.v");
 
+/// Behavioural model of `DCCA` as `rtl::primitives::reset_buffer::ResetBuffer` uses it.
+const DCCA_MODEL: &str = include_str!("models/ecp5_dcca_sim.v");
+
 /// The file the models are written to beside `top.v`.
 pub(crate) const MODELS_FILE: &str = "models.v";
 
 /// The primitives with a model: the module name, the model's text.
-const MODELS: [(&str, &str); 3] = [("DP16KD", DP16KD_MODEL), ("MULT18X18D", MULT18X18D_MODEL), ("TRELLIS_DPR16X4", DPR16X4_MODEL)];
+const MODELS: [(&str, &str); 4] =
+    [("DP16KD", DP16KD_MODEL), ("MULT18X18D", MULT18X18D_MODEL), ("TRELLIS_DPR16X4", DPR16X4_MODEL), ("DCCA", DCCA_MODEL)];
 
-/// An instance of primitive `name` in rust-hdl's Verilog (`    NAME #(`;
-/// not the generic target's `top$NAME #(`).
-fn instance(name: &str) -> String {
-    format!(" {name} #(")
+/// Whether `line` of rust-hdl's Verilog starts an instance of primitive
+/// `name` (`    NAME #(` or `    NAME inst (`; not the generic target's
+/// `top$NAME`, not a comment or a module header).
+fn starts_instance(line: &str, name: &str) -> bool {
+    line.trim_start().strip_prefix(name).is_some_and(|rest| rest.starts_with(' '))
+}
+
+/// Whether `design` instantiates primitive `name`.
+fn instantiates(design: &str, name: &str) -> bool {
+    design.lines().any(|line| starts_instance(line, name))
 }
 
 /// The primitives `design` instantiates, each with its model's text (one
 /// module a model, named as the primitive).
 pub(crate) fn models_used(design: &str) -> Vec<(&'static str, &'static str)> {
-    MODELS.into_iter().filter(|(name, _)| design.contains(&instance(name))).collect()
+    MODELS.into_iter().filter(|(name, _)| instantiates(design, name)).collect()
 }
 
 /// `design` (rust-hdl's Verilog, top module `top`) for the `generic`
@@ -44,12 +56,17 @@ pub(crate) fn models_used(design: &str) -> Vec<(&'static str, &'static str)> {
 /// models', which the co-simulation checks against the rust-hdl model.
 pub(crate) fn to_generic(design: &str) -> String {
     let used = models_used(design);
-    let mut text = design.to_string();
+    let stand_in = |name: &str| format!("{}${name}", super::cosim::TOP_MODULE);
+    let mut text: String = design
+        .split_inclusive('\n')
+        .map(|line| match used.iter().find(|(name, _)| starts_instance(line, name)) {
+            Some((name, _)) => line.replacen(name, &stand_in(name), 1),
+            None => line.to_string(),
+        })
+        .collect();
     for (name, model) in used {
-        let stand_in = format!("{}${name}", super::cosim::TOP_MODULE);
-        text = text.replace(&instance(name), &format!(" {stand_in} #("));
         text.push('\n');
-        text.push_str(&model.replacen(&format!("module {name}("), &format!("module {stand_in}("), 1));
+        text.push_str(&model.replacen(&format!("module {name}("), &format!("module {}(", stand_in(name)), 1));
     }
     text
 }
@@ -72,6 +89,9 @@ mod tests {
         assert!(models_for("    TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module TRELLIS_DPR16X4("));
         assert!(!models_for("    TRELLIS_DPR16X4 #(\n.WCKMUX(\"WCK\")) ram_0 ();").contains("module DP16KD("));
         assert_eq!(models_for("module top(clock); endmodule"), "");
+        assert!(models_for("    DCCA reset_dcca (.CLKI(reset_in), .CE(1'b1), .CLKO(reset));").contains("module DCCA("));
+        // A comment naming a primitive is no instance of it.
+        assert_eq!(models_for("    // a DCCA puts the reset on a global net\n    /* DP16KD */"), "");
     }
 
     #[test]
@@ -84,5 +104,7 @@ mod tests {
         // No primitive is left for the ECP5 models to stand in for.
         assert_eq!(models_for(&g), "");
         assert_eq!(to_generic("module top(clock); endmodule"), "module top(clock); endmodule");
+        let g = to_generic("module top(reset_in, reset);\n    DCCA reset_dcca (.CLKI(reset_in), .CE(1'b1), .CLKO(reset));\nendmodule // top\n");
+        assert!(g.contains("    top$DCCA reset_dcca (") && g.contains("module top$DCCA(") && !instantiates(&g, "DCCA"));
     }
 }

@@ -41,8 +41,9 @@ impl Top {
 /// What the Verilog is written for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Target {
-    /// The Lattice ECP5: `DP16KD`, `MULT18X18D` and `TRELLIS_DPR16X4`
-    /// instantiated by name (the measured and timed target).
+    /// The Lattice ECP5: `DP16KD`, `MULT18X18D`, `TRELLIS_DPR16X4` and
+    /// (the line processor's reset) `DCCA` instantiated by name (the
+    /// measured and timed target).
     #[default]
     Ecp5,
     /// Any FPGA or ASIC flow: each primitive replaced by its behavioural
