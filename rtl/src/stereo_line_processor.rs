@@ -107,7 +107,7 @@
 //! frame on, the output is a fresh run's, beat for beat
 //! (`tests/rtl_stereo.rs`, `tests/cocotb`). `reset` reaches the blocks
 //! through a [`ResetBuffer`]: in the ECP5 a `DCCA` puts it on a global net
-//! to its 31 000 flip-flops, with no clock of latency.
+//! to every flip-flop (31 000 in `sd`), with no clock of latency.
 //!
 //! ## Lines in flight
 //! The interpolator sends one line per `W` clocks, the cameras' rate, so
@@ -262,9 +262,9 @@ pub struct StereoLineProcessor<const N: usize> {
     pub pixels_dropped: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_full: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_wide: Signal<Out, Bits<STATUS_BITS>>,
-    // The cameras' register slices (SKID_LAG), then their detectors.
     /// `reset` on the global network, to every block and register.
     reset_buffer: ResetBuffer,
+    // The cameras' register slices (SKID_LAG), then their detectors.
     pub l_skid: SkidBuffer<PIXEL_BITS>,
     pub r_skid: SkidBuffer<PIXEL_BITS>,
     pub left: DeclivityDetector,

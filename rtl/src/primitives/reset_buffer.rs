@@ -1,7 +1,8 @@
 //! The line processor's `reset` on its way to every register: an ECP5
 //! `DCCA` clock buffer puts it on the global network.
 //!
-//! `reset` reaches the synchronous reset (`LSR`) of some 31 000 flip-flops.
+//! `reset` reaches the synchronous reset (`LSR`) of every flip-flop, some
+//! 31 000 in `sd` and 58 000 in `hd`.
 //! On the general routing such a net is slow to route and slow to arrive;
 //! nextpnr-ecp5 promotes only clock nets to the global network by itself.
 //! Driven by a `DCCA`, the net is routed on a global (one of the eight that
