@@ -7,16 +7,12 @@
 
 use sim::hdl::cosim::{self, Options, Simulator};
 use sim::hdl::frame::run_frame;
+use sim::hdl::primitives::instantiates;
 use sim::hdl::verilog::{generate, Target, Top};
 use sim::Config;
 
 /// The primitives the `ecp5` target instantiates by name.
 const PRIMITIVES: [&str; 4] = ["DP16KD", "MULT18X18D", "TRELLIS_DPR16X4", "DCCA"];
-
-/// Whether `v` instantiates primitive `p` (a line `    P #(` or `    P inst (`).
-fn instantiates(v: &str, p: &str) -> bool {
-    v.lines().any(|l| l.trim_start().strip_prefix(p).is_some_and(|rest| rest.starts_with(' ')))
-}
 
 fn generic(top: Top) -> String {
     Target::Generic.retarget(generate(Config::Sd, top))

