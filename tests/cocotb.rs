@@ -3,7 +3,9 @@
 //! through `declivity_stereo` by cocotbext-axi sources with idle clocks and
 //! blanking, every output beat checked against golden's hardware parity,
 //! the frame structure and the status counters checked, under Icarus and
-//! under Verilator; and the scoreboard shown to fail on a perturbed beat.
+//! under Verilator; the scoreboard shown to fail on a perturbed beat, and
+//! the output contract (no `m_tready`: the sink takes every beat) shown to
+//! fail on a sink that stalls.
 //! Runs `python3 -m pytest tests/cocotb`, which needs the pinned packages of
 //! `tests/cocotb/requirements.txt` and the release `declivity` binary
 //! (`cargo test --workspace --release` builds it for the cli's tests).
@@ -33,7 +35,7 @@ fn path_with_user_scripts() -> std::ffi::OsString {
 }
 
 #[test]
-fn cocotb_testbench_passes_a_band_of_tsukuba_under_icarus_and_verilator_and_fails_on_a_perturbed_beat() {
+fn cocotb_testbench_passes_a_band_of_tsukuba_under_icarus_and_verilator_and_fails_on_a_perturbed_beat_or_a_stalling_sink() {
     let out = Command::new("python3")
         .args(["-m", "pytest", "tests/cocotb", "-q", "-p", "no:cacheprovider"])
         .current_dir(repo())
@@ -48,6 +50,7 @@ fn cocotb_testbench_passes_a_band_of_tsukuba_under_icarus_and_verilator_and_fail
     );
     assert!(out.status.success(), "the cocotb testbench failed:\n{log}");
     // Two simulators × (the band against golden, the band after a reset in mid-frame, the
-    // perturbed beat failing): six tests, none skipped.
-    assert!(log.contains("6 passed") && !log.contains("skipped"), "six tests expected to pass:\n{log}");
+    // perturbed beat failing), and the stalling sink failing under Icarus: seven tests,
+    // none skipped.
+    assert!(log.contains("7 passed") && !log.contains("skipped"), "seven tests expected to pass:\n{log}");
 }

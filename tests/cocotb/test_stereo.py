@@ -30,11 +30,18 @@ reset `N` clocks after its start (inside a line), which the sources and the
 monitor take as cocotbext-axi's reset; the band then played again must come
 out as above, beat for beat, with the status counters back at zero.
 
-The pytest side (`test_stereo_band`, `test_reset_mid_frame`, `test_perturbed_beat_fails`) writes the
+The output's contract is asserted on every clock: with no `m_tready`, the sink
+takes a beat on every clock `m_tvalid` is high. `STEREO_SINK_STALL=p` models a
+sink that is not ready on a share `p` of the clocks; each beat it would miss
+is reported as lost.
+
+The pytest side (`test_stereo_band`, `test_reset_mid_frame`, `test_perturbed_beat_fails`,
+`test_sink_that_stalls_breaks_the_output_contract`) writes the
 IP folder with `declivity verilog`, cuts the band into PNGs, runs golden with
 `declivity depth`, builds the core with cocotb's runner under Icarus or
 Verilator and runs the cocotb test below in the simulator. The perturbation
-test flips one expected disparity and asserts that the scoreboard then fails.
+test flips one expected disparity and asserts that the scoreboard then fails;
+the stalling-sink test, that the contract's assertion then fails.
 """
 
 from __future__ import annotations
@@ -187,14 +194,25 @@ class Scoreboard:
 STATUS_COUNTERS = ("records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide")
 
 
-async def watch_clocks(dut, errors: list[str], width: int, beats: list[int]) -> None:
+async def watch_clocks(dut, errors: list[str], width: int, beats: list[int], sink_stall: float, rng: random.Random) -> None:
     """Every clock: the beats of a line on consecutive clocks, `m_tlast` only on a line's
     last beat, and the status counters unchanged from their values at the start.
-    `beats[0]` counts every output beat seen."""
+    `beats[0]` counts every output beat seen.
+
+    The output contract, asserted: the core has no `m_tready`, so its sink must take a beat
+    on every clock `m_tvalid` is high (datasheet, "Stream rules"). The sink modelled here is
+    not ready on a share `sink_stall` of the clocks (0: always ready, a sink that keeps the
+    contract); a beat offered on such a clock is lost, and reported."""
     start = {name: int(getattr(dut, name).value) for name in STATUS_COUNTERS}
     in_line = 0  # beats of the current output line so far
+    clock = 0
     while True:
         await RisingEdge(dut.clock)
+        clock += 1
+        sink_ready = rng.random() >= sink_stall
+        if int(dut.m_tvalid.value) and not sink_ready:
+            errors.append(f"beat lost on clock {clock}: m_tvalid high while the sink was not ready "
+                          "(no m_tready: the sink must take a beat on every clock it is offered)")
         for name, value in start.items():
             now = int(getattr(dut, name).value)
             if now != value:
@@ -253,6 +271,7 @@ if cocotb is not None:
         idle_share = float(os.environ.get("STEREO_IDLE", "0.1"))
         hblank_max = int(os.environ.get("STEREO_HBLANK", "32"))
         perturb = os.environ.get("STEREO_PERTURB_BEAT")
+        sink_stall = float(os.environ.get("STEREO_SINK_STALL", "0"))
         rng = random.Random(seed)
 
         reset_at = os.environ.get("STEREO_RESET_AT")
@@ -298,7 +317,7 @@ if cocotb is not None:
                 if int(getattr(dut, name).value) != 0:
                     errors.append(f"status counter {name} is {int(getattr(dut, name).value)} after the reset")
         beats = [0]
-        cocotb.start_soon(watch_clocks(dut, errors, band.width, beats))
+        cocotb.start_soon(watch_clocks(dut, errors, band.width, beats, sink_stall, random.Random(rng.random())))
         cocotb.start_soon(play_camera(left, band.left, random.Random(rng.random()), hblank_max, dut.clock))
         cocotb.start_soon(play_camera(right, band.right, random.Random(rng.random()), hblank_max, dut.clock))
 
@@ -472,3 +491,14 @@ def test_perturbed_beat_fails(simulator: str, ip_folder: Path, band: tuple[Path,
     assert (tests, failed) == (1, 1), f"{simulator}: the perturbed run was expected to fail"
     errors = messages.splitlines()
     assert len(errors) == 1 and errors[0].startswith(f"({x}, {y}): disparity"), f"{simulator}: the one error expected is the perturbed beat's: {messages}"
+
+
+@pytest.mark.parametrize("simulator", ["icarus"])
+def test_sink_that_stalls_breaks_the_output_contract(simulator: str, ip_folder: Path, band: tuple[Path, int], tmp_path_factory: pytest.TempPathFactory) -> None:
+    """A sink that is not ready on a tenth of the clocks loses beats, and the contract's
+    assertion reports each one, with nothing else wrong: the core has no `m_tready` and does
+    not wait. (Icarus only: the check is the testbench's, the same under both simulators.)"""
+    tests, failed, messages = run_cocotb(simulator, ip_folder, band, tmp_path_factory, {"STEREO_SINK_STALL": "0.1"})
+    assert (tests, failed) == (1, 1), f"{simulator}: the run with a stalling sink was expected to fail"
+    errors = messages.splitlines()
+    assert errors and all(e.startswith("beat lost on clock") for e in errors), f"{simulator}: only lost beats expected: {messages[:2000]}"
