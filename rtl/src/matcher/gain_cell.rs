@@ -771,11 +771,13 @@ impl Logic for GainCell {
         if self.e_valid.q.val() {
             self.f_ph0.d.next = self.e_ph0.q.val();
             self.f_node.d.next = self.take_node.val();
-            self.f_best.d.next = 0.into();
-            if self.take_node.val() {
-                self.f_best.d.next = bit_cast::<PATH_BITS, SCORE_BITS>(self.e_score.q.val());
-            }
+            self.f_best.d.next = bit_cast::<PATH_BITS, SCORE_BITS>(self.e_score.q.val());
         }
+        // A beat that is not a node clears `f_best`: through the register's
+        // synchronous reset, beside the block's (one LUT for the cell, on
+        // the flip-flops' LSR, where a clear inside the enable would cost a
+        // LUT a bit once the reset holds the LSR).
+        self.f_best.reset.next = self.reset.val() | (self.e_valid.q.val() & !self.take_node.val());
 
         // ---- G: P(i-1, j) only when strictly greater: the cell above's P
         // as soon as it is out (the node above is two clocks ahead, in the
@@ -823,11 +825,10 @@ impl Logic for GainCell {
             self.best.next = self.left.val();
             self.best_choice.next = self.choice_left.val();
         }
-        // A bubble leaves P = 0 (a synchronous reset).
-        self.p_reg.d.next = 0.into();
-        if self.g_valid.q.val() {
-            self.p_reg.d.next = self.best.val();
-        }
+        // A bubble leaves P = 0: the register's synchronous reset, beside
+        // the block's (on the flip-flops' LSR, as `f_best`'s clear).
+        self.p_reg.d.next = self.best.val();
+        self.p_reg.reset.next = self.reset.val() | !self.g_valid.q.val();
         self.p_d1.d.next = self.p_reg.q.val();
         self.p_d2.d.next = self.p_d1.q.val();
         self.p_d3.d.next = self.p_d2.q.val();
