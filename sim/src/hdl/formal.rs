@@ -66,6 +66,9 @@ pub fn free_primitive(name: &str) -> Result<String, SynthError> {
         .map(|n| n.trim().trim_end_matches(");").trim())
         .filter(|n| !n.is_empty())
         .collect();
+    if outputs.is_empty() {
+        return Err(parse("no output port".into()));
+    }
     let params: Vec<&str> = model[ports_end..].lines().filter(|l| l.trim_start().starts_with("parameter")).collect();
     Ok(format!(
         "{}\n{}\n  (* anyseq *) reg [{}:0] f_any;\n  assign {{{}}} = f_any;\nendmodule\n",
