@@ -201,6 +201,8 @@ pub(crate) struct AdaptiveThreshold {
     bin: Signal<Local, Bits<HIST_ADDR_BITS>>,
     acc: Signal<Local, Bits<DT_ACC_BITS>>,
     rounded: Signal<Local, Bits<DT_ACC_BITS>>,
+    // A scan starts on this clock (Idle and `scan_start`).
+    scan_clear: Signal<Local, Bit>,
     // Constants of the fixed-point scaling.
     k_half: Constant<Bits<DT_ACC_BITS>>,
     k_frac: Constant<Bits<MUL_OPERAND_BITS>>,
@@ -292,6 +294,7 @@ impl Default for AdaptiveThreshold {
             num: Default::default(),
             bin: Default::default(),
             acc: Default::default(),
+            scan_clear: Default::default(),
             rounded: Default::default(),
             k_half: Constant::new(K_HALF.into()),
             k_frac: Constant::new(K_FRAC.into()),
@@ -470,12 +473,10 @@ impl Logic for AdaptiveThreshold {
                 if self.scan_start.val() {
                     self.bank.d.next = self.scan_bank.val();
                     self.n.d.next = self.scan_n.val();
-                    self.cnt.d.next = 0.into();
-                    self.cum.d.next = 0.into();
-                    self.hv.d.next = 0.into();
+                    // (`cnt`, `cum`, `hv` and `term1` are cleared through
+                    // their synchronous reset, below.)
                     self.found.d.next = false;
                     self.zero_bin.d.next = false;
-                    self.term1.d.next = 0.into();
                     // (2v - 1)·K_HALF at v = 0, wrapping: -K_HALF.
                     self.ramp.d.next = 0 - self.k_half.val();
                     self.den.d.next = 1.into();
@@ -601,6 +602,19 @@ impl Logic for AdaptiveThreshold {
                 self.state.d.next = ThresholdState::Divide;
             }
         }
+        // The scan's start clears its counts and its median's term through
+        // the registers' synchronous reset, beside the block's (on the
+        // flip-flops' LSR: a clear in the data would cost a LUT a bit once
+        // the reset holds the LSR). The same values as a clear in Idle:
+        // `cnt` is written only in Idle and Scan, `cum` and `hv` only while
+        // `counting`, `term1` only while `testing`, and both flags are high
+        // only in Scan (set there, cleared on its last clock, at the start
+        // and by the reset).
+        self.scan_clear.next = (self.state.q.val() == ThresholdState::Idle) & self.scan_start.val();
+        self.cnt.reset.next = self.reset.val() | self.scan_clear.val();
+        self.cum.reset.next = self.reset.val() | self.scan_clear.val();
+        self.hv.reset.next = self.reset.val() | self.scan_clear.val();
+        self.term1.reset.next = self.reset.val() | self.scan_clear.val();
         // The quotient register shifted: on the last Divide clock, the
         // final quotient but its last bit (added in Sum through `lsb_k`).
         self.scale.clock.next = self.clock.val();
