@@ -349,12 +349,9 @@ impl Logic for AdaptiveThreshold {
         self.state.reset.next = self.reset.val();
         self.bank.reset.next = self.reset.val();
         self.n.reset.next = self.reset.val();
-        self.cnt.reset.next = self.reset.val();
-        self.cum.reset.next = self.reset.val();
         self.num.reset.next = self.reset.val();
         self.need.reset.next = self.reset.val();
         self.reach.reset.next = self.reset.val();
-        self.hv.reset.next = self.reset.val();
         self.hv_nz.reset.next = self.reset.val();
         self.counting.reset.next = self.reset.val();
         self.testing.reset.next = self.reset.val();
@@ -362,7 +359,6 @@ impl Logic for AdaptiveThreshold {
         self.last_test.reset.next = self.reset.val();
         self.found.reset.next = self.reset.val();
         self.zero_bin.reset.next = self.reset.val();
-        self.term1.reset.next = self.reset.val();
         self.ramp.reset.next = self.reset.val();
         self.den.reset.next = self.reset.val();
         self.rem.reset.next = self.reset.val();

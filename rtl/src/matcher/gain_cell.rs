@@ -533,12 +533,10 @@ impl Logic for GainCell {
         self.f_valid.reset.next = self.reset.val();
         self.f_ph0.reset.next = self.reset.val();
         self.f_node.reset.next = self.reset.val();
-        self.f_best.reset.next = self.reset.val();
         self.g_valid.reset.next = self.reset.val();
         self.g_best.reset.next = self.reset.val();
         self.g_node.reset.next = self.reset.val();
         self.g_up.reset.next = self.reset.val();
-        self.p_reg.reset.next = self.reset.val();
         self.p_d1.reset.next = self.reset.val();
         self.p_d2.reset.next = self.reset.val();
         self.p_d3.reset.next = self.reset.val();
