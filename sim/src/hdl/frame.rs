@@ -76,7 +76,7 @@ const FRAME_ERROR: &str = "FRAME-ERROR";
 /// [`Options::verilator_cxx_opt`] (see `FRAME_BUILD`).
 const FRAME_VERILATOR_ARGS: &[&str] = &["-O3"];
 /// The binary of the frame build.
-const FRAME_BINARY: &str = "Vframe";
+pub(crate) const FRAME_BINARY: &str = "Vframe";
 
 /// What a frame under a Verilog simulator gave, and what it cost.
 #[derive(Debug, Clone)]
@@ -105,7 +105,7 @@ impl FrameRun {
 /// them (the formats of the pixels, the output and the counters are the
 /// same in every configuration; `dispmin`, `dispmax` and `height` are its
 /// widths).
-fn expected_ports(config: Config) -> (Vec<Port>, Vec<Port>) {
+pub(crate) fn expected_ports(config: Config) -> (Vec<Port>, Vec<Port>) {
     let sizes = config.sizes();
     let p = |name: &str, width: usize| Port { name: name.to_string(), width: width as u32 };
     let mut ins = vec![p(RESET_PORT, 1)];
@@ -130,12 +130,12 @@ fn expected_ports(config: Config) -> (Vec<Port>, Vec<Port>) {
 }
 
 /// The status counters, in the order of the summary file.
-const STATUS_NAMES: [&str; 5] = ["records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide"];
+pub(crate) const STATUS_NAMES: [&str; 5] = ["records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide"];
 
 /// Checks that `design`'s `top` has exactly the ports the testbench of
 /// `config` connects (a design of another block or configuration is refused
 /// before any build).
-fn check_ports(design: &str, config: Config) -> Result<(), CosimError> {
+pub(crate) fn check_ports(design: &str, config: Config) -> Result<(), CosimError> {
     let (mut ins, outs) = top_ports(design)?;
     ins.retain(|p| p.name != CLOCK_PORT);
     let (want_ins, want_outs) = expected_ports(config);
@@ -513,7 +513,7 @@ const FRAME_BUILD: VerilatorBuild<'static> = VerilatorBuild {
 /// driver `driver` under `opts`: a hash of the design, its primitives'
 /// models, the driver, the build's flags, and the Verilator, compiler and
 /// `-O` flag behind the runtime objects.
-fn frame_cache_dir(design: &str, driver: &str, opts: &Options) -> PathBuf {
+pub(crate) fn frame_cache_dir(design: &str, driver: &str, opts: &Options) -> PathBuf {
     use std::hash::{Hash, Hasher};
     let mut h = std::collections::hash_map::DefaultHasher::new();
     design.hash(&mut h);
@@ -634,7 +634,7 @@ fn frame_in(simulator: Simulator, config: Config, design: &str, left: &GreyImage
 /// Builds the Verilator simulator of `design` with the C++ driver in a
 /// directory of its own and moves the binary to `cache` (a directory made
 /// atomically: a build racing another leaves one of the two).
-fn build_verilator(design: &str, driver: &str, opts: &Options, cache: &Path) -> Result<(), CosimError> {
+pub(crate) fn build_verilator(design: &str, driver: &str, opts: &Options, cache: &Path) -> Result<(), CosimError> {
     let mut build = WorkDir::new(opts.work_root.as_deref(), "frame-build")?;
     build.write_design(design)?;
     build.write(FRAME_DRIVER_FILE, driver)?;

@@ -4,7 +4,8 @@
 //! of the Verilog against the Rust model under Icarus and Verilator and
 //! Verilator's lint ([`cosim`]), the traces each block's co-simulation
 //! replays ([`traces`]), whole frames through the line processor's Verilog
-//! ([`frame`]), synthesis for the ECP5 with Yosys and nextpnr ([`synth`])
+//! ([`frame`]) and beat by beat from scripts that may break the stream's
+//! rules ([`beats`]; the fault campaign, [`faults`]), synthesis for the ECP5 with Yosys and nextpnr ([`synth`])
 //! and formal proofs with SymbiYosys ([`formal`]), each in a work directory
 //! of its own ([`workdir`]).
 
@@ -15,5 +16,7 @@ pub mod ip;
 pub mod cosim;
 pub mod traces;
 pub mod frame;
+pub mod beats;
+pub mod faults;
 pub mod synth;
 pub mod formal;
