@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """Compares two co-simulation traces (`# cosim trace v1`, vectors/README.md) clock by clock.
 
-    python3 scripts/trace-diff.py OLD NEW [--ignore-input NAME ...]
+    python3 scripts/trace-diff.py OLD NEW [--ignore-input NAME ...] [--new-port NAME ...]
 
 Expands the `*N` repeats, drops the named input columns of either trace (each must be 0 on
-every clock of the trace that has it), and reports the ports and clocks that differ. It exits
-0 when both traces have the same ports, clocks and values, 1 when they differ. Used to show
-that a re-blessed vector changed only by a new input held at 0 (the `reset` port).
+every clock of the trace that has it) and the new ports of NEW (inputs or outputs that OLD
+lacks; it prints on how many clocks each is not 0), and reports the ports and clocks that
+differ. It exits 0 when both traces have the same ports, clocks and values, 1 when they differ.
+Used to show that a re-blessed vector changed only by a new input held at 0 (the `reset`
+port), or only by new ports (the matcher's `o_sof`, `r_unpaired`, `o_unpaired`).
 """
 import argparse
 import sys
@@ -40,15 +42,29 @@ def drop(path, ins, cycles, ignore):
     return [ins[k] for k in keep], [([i[k] for k in keep], o) for i, o in cycles]
 
 
+def drop_new(path, ins, outs, cycles, new):
+    """Drops the ports named in `new` from a trace; prints on how many clocks each is not 0."""
+    ki = [k for k, (name, _) in enumerate(ins) if name not in new]
+    ko = [k for k, (name, _) in enumerate(outs) if name not in new]
+    for side, ports in ((0, ins), (1, outs)):
+        for k, (name, _) in enumerate(ports):
+            if name in new:
+                n = sum(int(c[side][k], 16) != 0 for c in cycles)
+                print(f"{path}: new {'input' if side == 0 else 'output'} {name} is not 0 on {n} of {len(cycles)} clocks")
+    return [ins[k] for k in ki], [outs[k] for k in ko], [([i[k] for k in ki], [o[k] for k in ko]) for i, o in cycles]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("old")
     ap.add_argument("new")
     ap.add_argument("--ignore-input", action="append", default=[], metavar="NAME")
+    ap.add_argument("--new-port", action="append", default=[], metavar="NAME")
     a = ap.parse_args()
     (oi, oo, oc), (ni, no, nc) = read(a.old), read(a.new)
     oi, oc = drop(a.old, oi, oc, a.ignore_input)
     ni, nc = drop(a.new, ni, nc, a.ignore_input)
+    ni, no, nc = drop_new(a.new, ni, no, nc, a.new_port)
     if (oi, oo) != (ni, no):
         print(f"ports differ: {oi} | {oo} against {ni} | {no}")
         return 1
@@ -56,7 +72,7 @@ def main():
     if len(oc) != len(nc) or diff:
         print(f"{len(oc)} against {len(nc)} clocks; {len(diff)} differ, first {diff[:5]}")
         return 1
-    print(f"{a.new}: {len(nc)} clocks, {len(ni)} inputs and {len(no)} outputs, every clock equal (ignoring {', '.join(a.ignore_input) or 'nothing'})")
+    print(f"{a.new}: {len(nc)} clocks, {len(ni)} inputs and {len(no)} outputs, every clock equal (ignoring {', '.join(a.ignore_input + a.new_port) or 'nothing'})")
     return 0
 
 

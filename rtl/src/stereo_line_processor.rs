@@ -64,8 +64,10 @@
 //!   sensor's [`N_CELLS`] cells) declivities on a side: the first are
 //!   matched),
 //!   `lines_wide` (line pairs with a side wider than [`W_MAX`]: the first
-//!   `W_MAX` pixels are processed). Each counts its event two clocks after
-//!   it (the event is registered beside its source).
+//!   `W_MAX` pixels are processed), `lines_unpaired` (lines of one camera
+//!   dropped because the other camera's line at their place starts a frame
+//!   and they do not: see the matcher's Pairing). Each counts its event two
+//!   clocks after it (the event is registered beside its source).
 //!
 //! ## Timing
 //! Throughput: one pixel per clock per camera while the matcher keeps up on
@@ -109,6 +111,16 @@
 //! through a [`ResetBuffer`]: in the ECP5 a `DCCA` puts it on a global net
 //! to every flip-flop (31 000 in `sd`), with no clock of latency.
 //!
+//! ## Faulty cameras
+//! Lines are paired in order within a frame: a line that starts a frame
+//! (`tuser`) is paired only with the other camera's line that starts a
+//! frame, the other camera's extra lines of the frame before being dropped
+//! unpaired (`lines_unpaired`; the matcher's Pairing). A `tuser` inside a
+//! line ends that line on the beat before (the detector's Faults); the
+//! reference width count restarts on it. Frames cut short, restarted,
+//! out of step or paused: `docs/hardware/datasheet.md`, "Faulty cameras",
+//! and the fault campaign, `sim::hdl::faults`.
+//!
 //! ## Lines in flight
 //! The interpolator sends one line per `W` clocks, the cameras' rate, so
 //! once its output has fallen behind it never catches up within a frame:
@@ -132,7 +144,8 @@
 //! Instead the top keeps at most [`LINES_IN_FLIGHT`] = [`LINE_QUEUE`] (8)
 //! lines between the matcher's input and the interpolator's output: a line
 //! counts from its reference marker taken by the matcher to its last pixel
-//! out of the interpolator (or its drop; these are counted a clock late, so
+//! out of the interpolator (or its drop, by the row check, the interpolator
+//! or, unpaired, the matcher; these are counted a clock late, so
 //! the hold lasts a clock longer than it must), and while that many are in flight
 //! the reference record queue is held (its `r_valid` to the matcher low; the
 //! limit is reached only on a marker, so whole lines are held). The rest of
@@ -206,6 +219,8 @@ pub const OUTPUT_REGISTER_LAG: usize = 1;
 pub const INTERP_REGISTER_LAG: usize = 1;
 /// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
 const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
+/// Bits of the count of lines that leave the flight on one clock, `0 ..= 4`.
+const FLIGHT_LEFT_BITS: usize = 3;
 // The interpolator admits every line the limit lets through: at a line's
 // admission the other lines in flight, at most `LINES_IN_FLIGHT - 1`, hold
 // at most `N_MAX - 1` segments each, and a line is admitted with
@@ -262,6 +277,7 @@ pub struct StereoLineProcessor<const N: usize> {
     pub pixels_dropped: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_full: Signal<Out, Bits<STATUS_BITS>>,
     pub lines_wide: Signal<Out, Bits<STATUS_BITS>>,
+    pub lines_unpaired: Signal<Out, Bits<STATUS_BITS>>,
     /// `reset` on the global network, to every block and register.
     reset_buffer: ResetBuffer,
     // The cameras' register slices (SKID_LAG), then their detectors.
@@ -336,12 +352,15 @@ pub struct StereoLineProcessor<const N: usize> {
     // handshake drives two flip-flops, not the 22 of the count and width.
     l_acc: ResetDff<Bit>,
     l_acc_last: ResetDff<Bit>,
+    l_acc_user: ResetDff<Bit>,
+    l_base: Signal<Local, Bits<WIDTH_BITS>>,
     width: ResetDff<Bits<WIDTH_BITS>>,
     n_records_dropped: ResetDff<Bits<STATUS_BITS>>,
     n_lines_dropped: ResetDff<Bits<STATUS_BITS>>,
     n_pixels_dropped: ResetDff<Bits<STATUS_BITS>>,
     n_lines_full: ResetDff<Bits<STATUS_BITS>>,
     n_lines_wide: ResetDff<Bits<STATUS_BITS>>,
+    n_lines_unpaired: ResetDff<Bits<STATUS_BITS>>,
     // The events the status counters count, registered beside their
     // sources (the counters then count a clock later: the route from a
     // block's output to its counter gets a clock of its own).
@@ -350,19 +369,21 @@ pub struct StereoLineProcessor<const N: usize> {
     ev_pixels: ResetDff<Bit>,
     ev_full: ResetDff<Bit>,
     ev_wide: ResetDff<Bit>,
+    ev_unpaired: ResetDff<Bit>,
     // Lines in flight: reference markers the matcher took, less the lines
     // the interpolator sent (or the row check or the interpolator dropped);
     // the reference queue held (public for the drivers' diagnostics).
     pub in_flight: ResetDff<Bits<FLIGHT_BITS>>,
     flight_now: Signal<Local, Bits<FLIGHT_BITS>>,
-    // The lines that left on the clock before (0–3: one out of the
-    // interpolator, one dropped by it, one by the row check), registered
+    // The lines that left on the clock before (0–4: one out of the
+    // interpolator, one dropped by it, one by the row check, one reference
+    // line dropped unpaired by the matcher), registered
     // beside their sources, and the count less them: a taken marker then
     // only picks `flight_base` or `flight_base + 1`, and the marker's
     // handshake, the hold and three ± 1 are not in series in one clock.
-    flight_left: ResetDff<Bits<2>>,
+    flight_left: ResetDff<Bits<FLIGHT_LEFT_BITS>>,
     flight_base: Signal<Local, Bits<FLIGHT_BITS>>,
-    flight_left_now: Signal<Local, Bits<2>>,
+    flight_left_now: Signal<Local, Bits<FLIGHT_LEFT_BITS>>,
     pub hold: Signal<Local, Bit>,
     // `in_flight >= LINES_IN_FLIGHT` as a register, its next value picked
     // from comparisons of `flight_base` by the taken marker, so that the
@@ -410,6 +431,7 @@ impl<const N: usize> StereoLineProcessor<N> {
             pixels_dropped: Default::default(),
             lines_full: Default::default(),
             lines_wide: Default::default(),
+            lines_unpaired: Default::default(),
             reset_buffer: Default::default(),
             l_skid: Default::default(),
             r_skid: Default::default(),
@@ -443,6 +465,8 @@ impl<const N: usize> StereoLineProcessor<N> {
             i_eof: Default::default(),
             l_acc: Default::default(),
             l_acc_last: Default::default(),
+            l_acc_user: Default::default(),
+            l_base: Default::default(),
             l_width: ResetDff::new((W_MAX as u64).into()),
             width: ResetDff::new((W_MAX as u64).into()),
             n_records_dropped: Default::default(),
@@ -450,11 +474,13 @@ impl<const N: usize> StereoLineProcessor<N> {
             n_pixels_dropped: Default::default(),
             n_lines_full: Default::default(),
             n_lines_wide: Default::default(),
+            n_lines_unpaired: Default::default(),
             ev_records: Default::default(),
             ev_lines: Default::default(),
             ev_pixels: Default::default(),
             ev_full: Default::default(),
             ev_wide: Default::default(),
+            ev_unpaired: Default::default(),
             in_flight: Default::default(),
             k_valid: Default::default(),
             k_last: Default::default(),
@@ -492,7 +518,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, in_flight, flight_left, hold_q, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
+        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, l_acc_user, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, n_lines_unpaired, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, ev_unpaired, in_flight, flight_left, hold_q, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
         self.reset_buffer.reset_in.next = self.reset.val();
         self.m_row.reset.next = self.reset_buffer.reset.val();
         self.p_row.reset.next = self.reset_buffer.reset.val();
@@ -508,17 +534,20 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.l_width.reset.next = self.reset_buffer.reset.val();
         self.l_acc.reset.next = self.reset_buffer.reset.val();
         self.l_acc_last.reset.next = self.reset_buffer.reset.val();
+        self.l_acc_user.reset.next = self.reset_buffer.reset.val();
         self.width.reset.next = self.reset_buffer.reset.val();
         self.n_records_dropped.reset.next = self.reset_buffer.reset.val();
         self.n_lines_dropped.reset.next = self.reset_buffer.reset.val();
         self.n_pixels_dropped.reset.next = self.reset_buffer.reset.val();
         self.n_lines_full.reset.next = self.reset_buffer.reset.val();
         self.n_lines_wide.reset.next = self.reset_buffer.reset.val();
+        self.n_lines_unpaired.reset.next = self.reset_buffer.reset.val();
         self.ev_records.reset.next = self.reset_buffer.reset.val();
         self.ev_lines.reset.next = self.reset_buffer.reset.val();
         self.ev_pixels.reset.next = self.reset_buffer.reset.val();
         self.ev_full.reset.next = self.reset_buffer.reset.val();
         self.ev_wide.reset.next = self.reset_buffer.reset.val();
+        self.ev_unpaired.reset.next = self.reset_buffer.reset.val();
         self.in_flight.reset.next = self.reset_buffer.reset.val();
         self.flight_left.reset.next = self.reset_buffer.reset.val();
         self.hold_q.reset.next = self.reset_buffer.reset.val();
@@ -587,15 +616,23 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         // register-to-register routes join them.
         self.l_acc.d.next = self.l_tvalid.val() & self.l_skid.s_tready.val();
         self.l_acc_last.d.next = self.l_tlast.val();
+        self.l_acc_user.d.next = self.l_tuser.val();
         self.width.d.next = self.l_width.q.val();
+        // A beat with `tuser` is a line's first pixel (inside a line it ends
+        // the line before: the detector's Faults).
+        self.l_base.next = self.l_count.q.val();
+        if self.l_acc_user.q.val() {
+            self.l_base.next = 0.into();
+        }
         if self.l_acc.q.val() {
-            if self.l_count.q.val() < self.w_max.val() {
-                self.l_count.d.next = self.l_count.q.val() + 1;
+            self.l_count.d.next = self.l_base.val();
+            if self.l_base.val() < self.w_max.val() {
+                self.l_count.d.next = self.l_base.val() + 1;
             }
             if self.l_acc_last.q.val() {
                 self.l_count.d.next = 0.into();
-                self.l_width.d.next = self.l_count.q.val() + 1;
-                if self.l_count.q.val() == self.w_max.val() {
+                self.l_width.d.next = self.l_base.val() + 1;
+                if self.l_base.val() == self.w_max.val() {
                     self.l_width.d.next = self.w_max.val();
                 }
             }
@@ -683,6 +720,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.matcher.o_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.r_queue.r_lane0.val());
         self.matcher.o_wide.next = (self.r_queue.r_lane0.val() & self.wide_mask.val()).any();
         self.matcher.o_full.next = (self.r_queue.r_lane0.val() & self.full_mask.val()).any();
+        self.matcher.o_sof.next = (self.r_queue.r_lane0.val() & self.sof_mask.val()).any();
         self.matcher.o_amp.next = bit_cast::<AMP_BITS, DP16KD_WIDTH>(self.r_queue.r_lane1.val());
         self.matcher.o_dt.next = bit_cast::<DT_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());
         self.matcher.o_left0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());
@@ -783,8 +821,11 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         if self.row_check.overflow.val() {
             self.flight_left_now.next = self.flight_left_now.val() + 1;
         }
+        if self.matcher.r_unpaired.val() {
+            self.flight_left_now.next = self.flight_left_now.val() + 1;
+        }
         self.flight_left.d.next = self.flight_left_now.val();
-        self.flight_base.next = self.in_flight.q.val() - bit_cast::<FLIGHT_BITS, 2>(self.flight_left.q.val());
+        self.flight_base.next = self.in_flight.q.val() - bit_cast::<FLIGHT_BITS, FLIGHT_LEFT_BITS>(self.flight_left.q.val());
         self.took_last.next = self.l_queue.r_valid.val() & self.matcher.r_ready.val() & !self.hold.val() & self.matcher.r_last.val();
         self.flight_now.next = self.flight_base.val();
         self.hold_q.d.next = self.flight_base.val() >= self.flight_max.val();
@@ -800,6 +841,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.ev_pixels.d.next = self.median.overflow.val();
         self.ev_full.d.next = self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_full.val();
         self.ev_wide.d.next = self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_wide.val();
+        self.ev_unpaired.d.next = self.matcher.r_unpaired.val() | self.matcher.o_unpaired.val();
         if self.ev_records.q.val() {
             self.n_records_dropped.d.next = self.n_records_dropped.q.val() + 1;
         }
@@ -815,10 +857,14 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         if self.ev_wide.q.val() {
             self.n_lines_wide.d.next = self.n_lines_wide.q.val() + 1;
         }
+        if self.ev_unpaired.q.val() {
+            self.n_lines_unpaired.d.next = self.n_lines_unpaired.q.val() + 1;
+        }
         self.records_dropped.next = self.n_records_dropped.q.val();
         self.lines_dropped.next = self.n_lines_dropped.q.val();
         self.pixels_dropped.next = self.n_pixels_dropped.q.val();
         self.lines_full.next = self.n_lines_full.q.val();
         self.lines_wide.next = self.n_lines_wide.q.val();
+        self.lines_unpaired.next = self.n_lines_unpaired.q.val();
     }
 }

@@ -98,6 +98,9 @@ PORT_GROUPS = [
                       "the first `N_MAX` are matched.",
         "lines_wide": "Line pairs with a side wider than `W_MAX`: the first `W_MAX` pixels "
                       "are processed.",
+        "lines_unpaired": "Lines of one camera dropped unpaired: the other camera's line at "
+                          "their place starts a frame and they do not (the frame before had "
+                          "more lines on their camera).",
     }),
 ]
 

@@ -199,8 +199,9 @@ fn corner_pairs() -> Vec<(&'static str, MatchLine, MatchLine)> {
         };
         pairs.push(("random lines", r, o));
     }
-    // Start of frame on the first pair.
-    pairs[0].1.sof = true;
+    // Start of frame on the first pair (both lines: the matcher pairs the
+    // lines of one frame).
+    (pairs[0].1.sof, pairs[0].2.sof) = (true, true);
     pairs
 }
 

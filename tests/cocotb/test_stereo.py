@@ -21,7 +21,7 @@ rtl code):
   input, the beats of a line on consecutive clocks, as many output lines as
   input lines;
 - the status counters (`records_dropped`, `lines_dropped`, `pixels_dropped`,
-  `lines_wide`) do not move on this clean input, and `lines_full` stays 0
+  `lines_wide`, `lines_unpaired`) do not move on this clean input, and `lines_full` stays 0
   (the 32-cell sensor matcher holds the 128 declivities a line the detector
   keeps; tsukuba's rows have fewer).
 
@@ -191,7 +191,7 @@ class Scoreboard:
                 self.errors.append(f"({x}, {y}): depth {depth} mm, golden {want_depth} mm (bound ±{depth_tolerance_mm(want_depth):.2f})")
 
 
-STATUS_COUNTERS = ("records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide")
+STATUS_COUNTERS = ("records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide", "lines_unpaired")
 
 
 async def watch_clocks(dut, errors: list[str], width: int, beats: list[int], sink_stall: float, rng: random.Random) -> None:

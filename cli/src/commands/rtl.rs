@@ -96,7 +96,7 @@ px_per_clk, stall_cycles, latency_cycles (first pixel in to first disparity out)
 of pixels whose disparity equals golden's hardware parity exactly), exact_depth_px (the same for \
 the depth), agree_quarter_px (share of pixels within 1/4 px of golden), sim_cycles_per_s, seconds, engine, build_seconds, \
 lines_out, and the status counters records_dropped, lines_dropped, pixels_dropped, lines_full, \
-lines_wide. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one scale), \
+lines_wide, lines_unpaired. Writes into --out disparity_rtl.png and disparity_golden.png (near is bright, one scale), \
 disparity16_rtl.png (the output word's disparity: 16-bit, value = d x {unit}, 0 = none) and \
 depth_mm_rtl.png (its depth in millimetres, 0 = none).",
         rows = 2 * MEDIAN_HALF + 1,
@@ -381,8 +381,8 @@ fn depth(a: DepthArgs) -> Result<(), SimError> {
     println!("  exact_depth_px      {:.4} (share of depths equal to golden's hardware parity)", r.exact_depth_px);
     println!("  agree_quarter_px    {:.4} (share within 1/4 px of golden)", r.agree_quarter_px);
     println!(
-        "  status              {} lines out, {} records dropped, {} lines dropped, {} pixels dropped, {} lines full, {} lines wide",
-        r.lines_out, r.records_dropped, r.lines_dropped, r.pixels_dropped, r.lines_full, r.lines_wide
+        "  status              {} lines out, {} records dropped, {} lines dropped, {} pixels dropped, {} lines full, {} lines wide, {} lines unpaired",
+        r.lines_out, r.records_dropped, r.lines_dropped, r.pixels_dropped, r.lines_full, r.lines_wide, r.lines_unpaired
     );
     println!("  simulation          {} clocks in {:.1} s, {:.0} clocks/s ({}; build {:.1} s)", r.cycles, r.seconds, r.sim_cycles_per_s, r.engine, r.build_seconds);
     for (p, what) in &files {

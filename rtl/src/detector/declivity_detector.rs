@@ -19,8 +19,9 @@
 //!
 //! ## Ports
 //! - `clock`; `reset`, synchronous and active high (see Reset).
-//! - In: `s_tdata` (grey level), `s_tvalid`, `s_tuser` (start of frame, read
-//!   on a line's first pixel), `s_tlast` (end of line); out: `s_tready`.
+//! - In: `s_tdata` (grey level), `s_tvalid`, `s_tuser` (start of frame, on
+//!   a line's first pixel; on a later beat it ends the line first: see
+//!   Faults), `s_tlast` (end of line); out: `s_tready`.
 //! - Out: the record stream `m_valid` with `m_last` (the line's end marker),
 //!   no back-pressure. A record carries `m_start`, `m_end` (the extrema
 //!   `x_i`, `x_{i+1}`), `m_amp` (`a_i`, two's complement), `m_pos` (`X_i`
@@ -48,6 +49,18 @@
 //!   the rest are accepted and dropped, and the marker's `m_wide` is set.
 //! - More than [`N_MAX`] characteristic declivities: the first `N_MAX` are
 //!   sent, the rest dropped, and `m_full` is set.
+//!
+//! ## Faults
+//! - A `tlast` missing: the line runs on into the next one, as one line
+//!   (wider than [`W_MAX`] if the two are: see Overflow).
+//! - `s_tuser` on a beat that is not a line's first (a camera that restarts
+//!   its frame inside a line, or whose line before lost its `tlast`): the
+//!   line ends on the beat before, as if it had `tlast` (its width the
+//!   pixels taken), and the beat is not taken on that clock (`s_tready`
+//!   low); on a later clock it is taken as the first pixel of a line that
+//!   starts a frame. `s_tready` then depends on `s_tvalid` and `s_tuser`
+//!   (the line processor's register slice keeps its own `tready` a
+//!   register).
 //!
 //! golden's hardware-parity mode (`golden::hardware`) does the same.
 //!
@@ -214,6 +227,8 @@ pub struct DeclivityDetector {
     // Combinational.
     write_state: Signal<Local, Bits<2>>,
     accept: Signal<Local, Bit>,
+    // A start of frame inside a line: the line ends before this beat.
+    early: Signal<Local, Bit>,
     x_now: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
     stored: Signal<Local, Bit>,
     diff: Signal<Local, Bits<PIXEL_BITS>>,
@@ -307,6 +322,7 @@ impl Default for DeclivityDetector {
             d_sof: Default::default(),
             write_state: Default::default(),
             accept: Default::default(),
+            early: Default::default(),
             x_now: Default::default(),
             stored: Default::default(),
             diff: Default::default(),
@@ -388,8 +404,12 @@ impl Logic for DeclivityDetector {
         if self.wb.q.val() {
             self.write_state.next = self.state1.q.val();
         }
-        self.s_tready.next = (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val();
-        self.accept.next = self.s_tvalid.val() & (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val();
+        // A beat with `tuser` inside a line is not taken: the line ends on
+        // the beat before (as if that beat had `tlast`), and the beat is
+        // taken on a later clock as the first pixel of the next line.
+        self.early.next = self.s_tvalid.val() & self.s_tuser.val() & self.in_line.q.val();
+        self.s_tready.next = (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val() & !self.early.val();
+        self.accept.next = self.s_tvalid.val() & (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val() & !self.early.val();
         self.x_now.next = 0.into();
         if self.in_line.q.val() {
             self.x_now.next = self.wx.q.val();
@@ -409,6 +429,9 @@ impl Logic for DeclivityDetector {
         self.threshold.inc_valid.next = self.accept.val() & self.stored.val() & self.in_line.q.val();
         self.threshold.inc_bank.next = self.wb.q.val();
         self.threshold.inc_bin.next = self.diff.val();
+        if self.early.val() {
+            self.in_line.d.next = false;
+        }
         if self.accept.val() {
             self.prev_pix.d.next = self.s_tdata.val();
             self.in_line.d.next = !self.s_tlast.val();
@@ -531,6 +554,22 @@ impl Logic for DeclivityDetector {
                     self.width0.d.next = self.x_now.val();
                     self.wide0.d.next = true;
                 }
+            }
+        }
+        // A line ended early (its `x_now` pixels stored, all of them taken
+        // on earlier clocks).
+        if self.early.val() {
+            self.wb.d.next = !self.wb.q.val();
+            if self.wb.q.val() {
+                self.state1.d.next = self.bank_full.val();
+                self.width1.d.next = self.x_now.val();
+                self.wide1.d.next = self.line_wide.q.val();
+                self.sof1.d.next = self.line_sof.q.val();
+            } else {
+                self.state0.d.next = self.bank_full.val();
+                self.width0.d.next = self.x_now.val();
+                self.wide0.d.next = self.line_wide.q.val();
+                self.sof0.d.next = self.line_sof.q.val();
             }
         }
         if self.threshold.done.val() {

@@ -23,8 +23,8 @@
 //! - `clock`; `reset`, synchronous and active high.
 //! - In, per side (`r_` reference = left, `o_` other = right), named as the
 //!   detector's outputs: `valid`, `last` (the line's marker), `pos`, `amp`,
-//!   `left0..2`, `right0..2`; on the marker `dt`, `wide`, `full` and, for the
-//!   reference, `sof`. Out: `r_ready`, `o_ready`: records and markers are
+//!   `left0..2`, `right0..2`; on the marker `dt`, `wide`, `full` and `sof`
+//!   (the line starts a frame). Out: `r_ready`, `o_ready`: records and markers are
 //!   taken only while ready (a side is not ready from its marker until the
 //!   pair is handed to the engine, nor while a complete pair waits). A
 //!   side's records beyond `4·N` (four per cell; [`N_MAX`] in the sensor's
@@ -40,6 +40,21 @@
 //!   bits); `m_valid` with `m_last` high ends the line: `m_count` (matches),
 //!   `m_n`, `m_m` (declivities of each side), `m_wide`, `m_full` (either
 //!   side), `m_sof`.
+//! - `r_unpaired`, `o_unpaired`: high for a clock when a reference line, or
+//!   an other line, was dropped unpaired (see Pairing).
+//!
+//! ## Pairing
+//! The two sides' lines are paired in order within a frame. When both
+//! markers are in and one line starts a frame (`sof`) and the other does
+//! not, the other is a line of the frame before that its camera sent
+//! beyond the lines of the first camera (a frame cut short on one camera,
+//! a line more on the other, or a `tlast` missing on one): it is dropped
+//! (its `_unpaired` output high for a clock, two clocks after the later
+//! marker is taken) and its side loads its next line, into the same bank.
+//! So a frame with unequal line counts loses its extra lines, and the next
+//! frame is paired from its first line on. Lines paired (both or neither
+//! starting a frame) go on as before, on the same clocks: well-formed
+//! streams are not affected.
 //!
 //! ## Timing
 //! With the engine idle, a pair whose second marker is taken at clock `t`
@@ -262,6 +277,7 @@ pub struct DeclivityMatcher<const N: usize> {
     pub o_dt: Signal<In, Bits<DT_BITS>>,
     pub o_wide: Signal<In, Bit>,
     pub o_full: Signal<In, Bit>,
+    pub o_sof: Signal<In, Bit>,
     pub o_ready: Signal<Out, Bit>,
     pub dispmin: Signal<In, Bits<DISPMAX_BITS>>,
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
@@ -277,12 +293,17 @@ pub struct DeclivityMatcher<const N: usize> {
     pub m_wide: Signal<Out, Bit>,
     pub m_full: Signal<Out, Bit>,
     pub m_sof: Signal<Out, Bit>,
+    /// A reference line, or an other line, dropped unpaired (high for a
+    /// clock; see "Pairing").
+    pub r_unpaired: Signal<Out, Bit>,
+    pub o_unpaired: Signal<Out, Bit>,
     pub array: SystolicMatcher<N>,
     pub traceback: Traceback,
     // The input registers of the two streams.
     r_in: RecordInput,
     o_in: RecordInput,
     r_sof_in: ResetDff<Bit>,
+    o_sof_in: ResetDff<Bit>,
     // Record memories, two banks each (bank bit on top of the index).
     r_mem: RecordMemory,
     o_mem: RecordMemory,
@@ -301,6 +322,12 @@ pub struct DeclivityMatcher<const N: usize> {
     o_flags_wide: ResetDff<Bit>,
     o_flags_full: ResetDff<Bit>,
     r_sof_reg: ResetDff<Bit>,
+    o_sof_reg: ResetDff<Bit>,
+    // Both markers in, one line starting a frame and the other not; the
+    // line dropped (registered).
+    mismatch: Signal<Local, Bit>,
+    r_drop_q: ResetDff<Bit>,
+    o_drop_q: ResetDff<Bit>,
     // The waiting pair.
     pend: ResetDff<Bit>,
     pend_bank: ResetDff<Bit>,
@@ -566,6 +593,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             r_wide: Default::default(),
             r_full: Default::default(),
             r_sof: Default::default(),
+            o_sof: Default::default(),
             r_ready: Default::default(),
             o_valid: Default::default(),
             o_last: Default::default(),
@@ -595,11 +623,14 @@ impl<const N: usize> DeclivityMatcher<N> {
             m_wide: Default::default(),
             m_full: Default::default(),
             m_sof: Default::default(),
+            r_unpaired: Default::default(),
+            o_unpaired: Default::default(),
             array: Default::default(),
             traceback: Default::default(),
             r_in: Default::default(),
             o_in: Default::default(),
             r_sof_in: Default::default(),
+            o_sof_in: Default::default(),
             r_mem: Default::default(),
             o_mem: Default::default(),
             lbank: Default::default(),
@@ -615,6 +646,10 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_flags_wide: Default::default(),
             o_flags_full: Default::default(),
             r_sof_reg: Default::default(),
+            o_sof_reg: Default::default(),
+            mismatch: Default::default(),
+            r_drop_q: Default::default(),
+            o_drop_q: Default::default(),
             pend: Default::default(),
             pend_bank: Default::default(),
             pend_pbank: Default::default(),
@@ -850,7 +885,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.r_mem.relative.next = self.relative.val();
         self.o_mem.relative.next = self.relative.val();
         dff_setup!(
-            self, clock, r_sof_in, lbank, lpbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
+            self, clock, r_sof_in, o_sof_in, o_sof_reg, r_drop_q, o_drop_q, lbank, lpbank, r_count, o_count, r_done, o_done, r_dt_reg, o_dt_reg, r_flags_wide, r_flags_full,
             o_flags_wide, o_flags_full, r_sof_reg, pend, pend_bank, pend_pbank, pend_n, pend_m, pend_dt_sum, pend_wide,
             pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, e_wi0, e_wj0, e_diag0, e_empty, tq_wi0, tq_wj0, tq_diag0, tq_empty, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, lim1, lim2, lim3, cw_diag_q, cw_phase_q, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
@@ -858,6 +893,10 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             out_sof
         );
         self.r_sof_in.reset.next = self.reset.val();
+        self.o_sof_in.reset.next = self.reset.val();
+        self.o_sof_reg.reset.next = self.reset.val();
+        self.r_drop_q.reset.next = self.reset.val();
+        self.o_drop_q.reset.next = self.reset.val();
         self.lbank.reset.next = self.reset.val();
         self.lpbank.reset.next = self.reset.val();
         self.r_count.reset.next = self.reset.val();
@@ -1019,6 +1058,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.r_in.wide.next = self.r_wide.val();
         self.r_in.full.next = self.r_full.val();
         self.r_sof_in.d.next = self.r_sof.val();
+        self.o_sof_in.d.next = self.o_sof.val();
 
         self.o_in.clock.next = self.clock.val();
         self.o_in.reset.next = self.reset.val();
@@ -1098,9 +1138,29 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.o_dt_reg.d.next = self.o_in.q_dt.val();
             self.o_flags_wide.d.next = self.o_in.q_wide.val();
             self.o_flags_full.d.next = self.o_flags_full.q.val() | self.o_in.q_full.val();
+            self.o_sof_reg.d.next = self.o_sof_in.q.val();
         }
-        // Both markers in and the slot free: the pair waits for the engine.
-        self.handoff.next = self.r_done.q.val() & self.o_done.q.val() & !self.pend.q.val();
+        // Both markers in, one line starting a frame and the other not: the
+        // other belongs to the frame before (its camera sent more lines than
+        // this one's); it is dropped, and its side loads its next line
+        // into the same bank (see "Pairing").
+        self.mismatch.next = self.r_done.q.val() & self.o_done.q.val() & (self.r_sof_reg.q.val() ^ self.o_sof_reg.q.val());
+        self.r_drop_q.d.next = self.mismatch.val() & !self.r_sof_reg.q.val();
+        self.o_drop_q.d.next = self.mismatch.val() & self.r_sof_reg.q.val();
+        if self.mismatch.val() {
+            if self.r_sof_reg.q.val() {
+                self.o_done.d.next = false;
+                self.o_count.d.next = 0.into();
+                self.o_flags_full.d.next = false;
+            } else {
+                self.r_done.d.next = false;
+                self.r_count.d.next = 0.into();
+                self.r_flags_full.d.next = false;
+            }
+        }
+        // Both markers in, both lines starting a frame or neither, and the
+        // slot free: the pair waits for the engine.
+        self.handoff.next = self.r_done.q.val() & self.o_done.q.val() & !self.pend.q.val() & !self.mismatch.val();
         // d_t,ref + d_t,other, each rounded down to MATCH_DT_FRAC_BITS and
         // saturated at MATCH_DT_BITS.
         self.r_dt_m.next = self.r_dt_reg.q.val().get_bits::<MATCH_DT_BITS>(self.dt_drop.val().index());
@@ -1551,5 +1611,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.m_wide.next = self.out_wide.q.val();
         self.m_full.next = self.out_full.q.val();
         self.m_sof.next = self.out_sof.q.val();
+        self.r_unpaired.next = self.r_drop_q.q.val();
+        self.o_unpaired.next = self.o_drop_q.q.val();
     }
 }

@@ -106,6 +106,7 @@ macro_rules! matcher_dut {
                 u.o_dt.next = (o.dt as u64).into();
                 u.o_wide.next = o.wide;
                 u.o_full.next = o.full;
+                u.o_sof.next = o.sof;
             }
             fn rise(&mut self) {
                 self.clock.next = true.into();
@@ -558,8 +559,8 @@ pub fn image_lines_in(left: &golden::GreyImage, right: &golden::GreyImage, confi
                 let features = LineFeatures { sigma: d.dt / golden::noise::THRESHOLD_FACTOR, dt: d.dt, declivities: d.declivities };
                 MatchLine { wide: img.width() > sizes.w_max, ..quantize_line(&features, sizes.n_max) }
             };
-            let (mut l, r) = (f(left), f(right));
-            l.sof = y == 0;
+            let (mut l, mut r) = (f(left), f(right));
+            (l.sof, r.sof) = (y == 0, y == 0);
             (l, r)
         })
         .collect()

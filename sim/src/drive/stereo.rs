@@ -45,6 +45,7 @@ pub struct StereoRun {
     pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
+    pub lines_unpaired: u64,
     /// The queues between the detectors and the pixels, as seen clock by
     /// clock (diagnostics).
     pub probe: QueueProbe,
@@ -491,6 +492,7 @@ impl<const N: usize> StereoSim<N> {
         run.pixels_dropped = u.pixels_dropped.val().to_u64();
         run.lines_full = u.lines_full.val().to_u64();
         run.lines_wide = u.lines_wide.val().to_u64();
+        run.lines_unpaired = u.lines_unpaired.val().to_u64();
         run
     }
 }

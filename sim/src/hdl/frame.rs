@@ -130,7 +130,7 @@ pub(crate) fn expected_ports(config: Config) -> (Vec<Port>, Vec<Port>) {
 }
 
 /// The status counters, in the order of the summary file.
-pub(crate) const STATUS_NAMES: [&str; 5] = ["records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide"];
+pub(crate) const STATUS_NAMES: [&str; 6] = ["records_dropped", "lines_dropped", "pixels_dropped", "lines_full", "lines_wide", "lines_unpaired"];
 
 /// Checks that `design`'s `top` has exactly the ports the testbench of
 /// `config` connects (a design of another block or configuration is refused
@@ -493,6 +493,7 @@ fn parse_frame(beats: &str, summary: &str, width: usize) -> Result<StereoRun, Co
     run.pixels_dropped = v[7];
     run.lines_full = v[8];
     run.lines_wide = v[9];
+    run.lines_unpaired = v[10];
     Ok(run)
 }
 
@@ -672,6 +673,7 @@ pub fn differences(model: &StereoRun, hdl: &StereoRun) -> Vec<String> {
         ("pixels_dropped", model.pixels_dropped, hdl.pixels_dropped),
         ("lines_full", model.lines_full, hdl.lines_full),
         ("lines_wide", model.lines_wide, hdl.lines_wide),
+        ("lines_unpaired", model.lines_unpaired, hdl.lines_unpaired),
         ("output lines", model.rows.len() as u64, hdl.rows.len() as u64),
     ];
     for (name, a, b) in scalars {
@@ -734,7 +736,7 @@ mod tests {
     #[test]
     fn beats_and_summary_parse_into_lines_with_their_clocks() {
         let beats = "10 00100020 1 0\n11 00200030 0 1\n15 0 0 0\n16 ffff0001 0 1\n";
-        let summary = "40 3 4 2 7 1 2 3 4 5\n";
+        let summary = "40 3 4 2 7 1 2 3 4 5 6\n";
         let run = parse_frame(beats, summary, 2).expect("parses");
         assert_eq!(run.rows, vec![vec![0x20, 0x30], vec![0, 1]]);
         assert_eq!(run.depth_rows, vec![vec![0x10, 0x20], vec![0, 0xffff]]);
@@ -742,7 +744,7 @@ mod tests {
         assert_eq!(run.line_cycles, vec![(10, 11), (15, 16)]);
         assert_eq!((run.first_out, run.last_out), (Some(10), Some(16)));
         assert_eq!((run.cycles, run.stall_cycles, run.pixels_in, run.first_in, run.last_in), (40, 3, 4, 2, 7));
-        assert_eq!((run.records_dropped, run.lines_dropped, run.pixels_dropped, run.lines_full, run.lines_wide), (1, 2, 3, 4, 5));
+        assert_eq!((run.records_dropped, run.lines_dropped, run.pixels_dropped, run.lines_full, run.lines_wide, run.lines_unpaired), (1, 2, 3, 4, 5, 6));
         assert!(matches!(parse_frame("3 xxxx 0 0\n", summary, 2), Err(CosimError::Parse { .. })));
         assert!(matches!(parse_frame(beats, "1 2 3", 2), Err(CosimError::Parse { .. })));
     }

@@ -68,6 +68,7 @@ pub struct StereoReport {
     pub pixels_dropped: u64,
     pub lines_full: u64,
     pub lines_wide: u64,
+    pub lines_unpaired: u64,
     /// The most lines in flight between the matcher's input and the
     /// interpolator's output (at most `LINES_IN_FLIGHT`), and the clocks
     /// on which that limit held the reference queue back: probed inside the
@@ -202,6 +203,7 @@ fn run_pair(
         pixels_dropped: run.pixels_dropped,
         lines_full: run.lines_full,
         lines_wide: run.lines_wide,
+        lines_unpaired: run.lines_unpaired,
         lines_in_flight_peak: (engine == Engine::RustHdl).then_some(run.probe.peak.in_flight),
         held_cycles: (engine == Engine::RustHdl).then_some(run.probe.peak.held_clocks),
     };
