@@ -39,10 +39,12 @@ fn campaign(frames: u64, classes: Vec<Fault>) -> CampaignReport {
     let report = run_campaign(&spec, &sources(), &design, &Options::default(), &mut |p| eprintln!("{p}")).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("injected {:?}", report.injected);
     eprintln!("{} output lines, {} clocks in {:.1} s, hung {}, status {:?}", report.output_lines, report.cycles, report.sim_seconds, report.hung, report.status);
-    eprintln!("clean frames exact: {} of {}", report.clean_exact, report.clean_frames);
+    eprintln!("clean frames exact: {} of {} ({} of them a clock late)", report.clean_exact, report.clean_frames, report.clean_late);
     eprintln!("violated {:?}; after {:?}", report.violated, report.violated_after);
-    for v in report.violations.iter().take(20) {
-        eprintln!("  {}: {}", v.invariant, v.detail);
+    for invariant in sim::hdl::faults::INVARIANTS {
+        for v in report.violations.iter().filter(|v| v.invariant == invariant).take(5) {
+            eprintln!("  {}: {}", v.invariant, v.detail);
+        }
     }
     report
 }
