@@ -71,7 +71,7 @@ pub fn rtl_match(name: &str, left: &GreyImage, right: &GreyImage, job: &MatchJob
     let rows = job.rows.clone();
     let mut pairs = image_lines_in(left, right, job.config).drain(rows.clone()).collect::<Vec<_>>();
     if let Some(first) = pairs.first_mut() {
-        first.0.sof = true;
+        (first.0.sof, first.1.sof) = (true, true);
     }
     let t0 = std::time::Instant::now();
     const SD: usize = rtl::params::N_CELLS;
