@@ -536,3 +536,48 @@ fn in_the_hd_configuration_rows_of_more_than_128_declivities_match_golden_node_f
     assert_eq!(outcomes.last().map(|o| o.rtl.matches.len()), Some(hd.n_max), "the generated pair takes every node");
     assert!(report.max_engine_period <= hd.w_max as u64, "{report:?}");
 }
+
+/// Lines are paired by frame (the matcher's Pairing): a line that meets the
+/// other side's first line of a frame while it is not one itself is a line
+/// of the frame before, one more than the other camera sent; it is dropped
+/// and flagged (`r_unpaired` or `o_unpaired`, on either side), and the
+/// next frame is paired from its first line, each pair matched as golden
+/// matches it. Tsukuba rows 140..146 as two frames of three rows, with one
+/// row more in the first frame on one side, then on the other.
+#[test]
+fn a_line_more_on_either_side_is_dropped_unpaired_and_the_next_frame_is_paired_from_its_first_line() {
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
+    let all = image_lines(&data.left, &data.right);
+    let dispmax = 16 * PX;
+    let frame = |rows: std::ops::Range<usize>| -> Vec<(MatchLine, MatchLine)> {
+        let mut lines: Vec<(MatchLine, MatchLine)> = all[rows].to_vec();
+        for (k, (l, r)) in lines.iter_mut().enumerate() {
+            (l.sof, r.sof) = (k == 0, k == 0);
+        }
+        lines
+    };
+    let (a, b) = (frame(140..143), frame(143..146));
+    let extra = all[150].clone();
+    for extra_on_reference in [false, true] {
+        let mut refs: Vec<MatchLine> = a.iter().map(|p| p.0.clone()).collect();
+        let mut others: Vec<MatchLine> = a.iter().map(|p| p.1.clone()).collect();
+        if extra_on_reference {
+            refs.push(MatchLine { sof: false, ..extra.0.clone() });
+        } else {
+            others.push(MatchLine { sof: false, ..extra.1.clone() });
+        }
+        refs.extend(b.iter().map(|p| p.0.clone()));
+        others.extend(b.iter().map(|p| p.1.clone()));
+        let mut sim = MatcherSim::<CELLS>::new(GainRule::Robust, dispmax);
+        let (got, r_unpaired, o_unpaired) = sim.run_sides(&refs, &others, 2_000);
+        let what = if extra_on_reference { "a reference line more" } else { "an other line more" };
+        assert_eq!((r_unpaired, o_unpaired), if extra_on_reference { (1, 0) } else { (0, 1) }, "{what}: the extra line flagged on its side, once");
+        assert_eq!(got.len(), a.len() + b.len(), "{what}: one line out per pair, none for the extra line");
+        for (k, ((l, r), g)) in a.iter().chain(&b).zip(&got).enumerate() {
+            let want = golden_match(l, r, dispmax, GainRule::Robust);
+            assert!(!want.nodes.is_empty(), "{what}, pair {k}: the rows match");
+            assert_eq!(g.pairs(), want.nodes, "{what}, pair {k}: matched with its own partner");
+            assert_eq!(g.marker.sof, k == 0 || k == a.len(), "{what}, pair {k}: the frame's first line starts the frame");
+        }
+    }
+}

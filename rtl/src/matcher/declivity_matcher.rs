@@ -49,8 +49,9 @@
 //! not, the other is a line of the frame before that its camera sent
 //! beyond the lines of the first camera (a frame cut short on one camera,
 //! a line more on the other, or a `tlast` missing on one): it is dropped
-//! (its `_unpaired` output high for a clock, two clocks after the later
-//! marker is taken) and its side loads its next line, into the same bank.
+//! (its `_unpaired` output high for a clock, on the clock the pair would
+//! have entered the waiting slot: see Timing) and its side loads its next
+//! line, into the same bank.
 //! So a frame with unequal line counts loses its extra lines, and the next
 //! frame is paired from its first line on. Lines paired (both or neither
 //! starting a frame) go on as before, on the same clocks: well-formed

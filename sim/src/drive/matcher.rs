@@ -52,6 +52,8 @@ pub trait MatcherDut: Block + Send + Sized + 'static {
     fn ready(&self) -> (bool, bool);
     /// The output beat, when `m_valid`.
     fn beat(&self) -> Option<MatchBeat>;
+    /// `r_unpaired`, `o_unpaired`.
+    fn unpaired(&self) -> (bool, bool);
     /// Clocks of the sweep of an `n × m` line pair.
     fn sweep_cycles(n: usize, m: usize) -> u64;
     /// Clocks of the traceback of an `n × m` pair that stops at diagonal
@@ -113,6 +115,9 @@ macro_rules! matcher_dut {
             }
             fn ready(&self) -> (bool, bool) {
                 (self.r_ready.val(), self.o_ready.val())
+            }
+            fn unpaired(&self) -> (bool, bool) {
+                (self.r_unpaired.val(), self.o_unpaired.val())
             }
             fn beat(&self) -> Option<MatchBeat> {
                 let u = self;
@@ -337,6 +342,54 @@ impl<const N: usize, D: MatcherDut> MatcherSim<N, D> {
             }
         }
         out
+    }
+}
+
+impl<const N: usize, D: MatcherDut> MatcherSim<N, D> {
+    /// Runs each side's lines through the matcher as its own stream (the
+    /// two sides may have different numbers of lines: a camera's frame with
+    /// a line more or less), each side's records offered back to back as
+    /// soon as it is ready, until both are taken and `quiet` clocks pass
+    /// without output. Returns the lines that came out and the clocks
+    /// `r_unpaired` and `o_unpaired` were high on.
+    pub fn run_sides(&mut self, refs: &[MatchLine], others: &[MatchLine], quiet: u64) -> (Vec<MatchedLine>, u64, u64) {
+        let mut out = Vec::new();
+        let mut current = MatchedLine::default();
+        let (mut rp, mut rk, mut op, mut ok) = (0usize, 0usize, 0usize, 0usize);
+        let (mut r_unpaired, mut o_unpaired, mut last_activity) = (0u64, 0u64, self.cycle);
+        let limit = self.cycle + 10_000 + 2_000 * (refs.len() + others.len()) as u64;
+        while rp < refs.len() || op < others.len() || self.cycle - last_activity <= quiet {
+            assert!(self.cycle < limit, "the matcher stopped producing lines");
+            let r = if rp < refs.len() { side_beat(&refs[rp], rk) } else { SideBeat::default() };
+            let o = if op < others.len() { side_beat(&others[op], ok) } else { SideBeat::default() };
+            let (ur, uo) = self.uut.unpaired();
+            r_unpaired += ur as u64;
+            o_unpaired += uo as u64;
+            let (rt, ot, beat) = self.cycle(r, o);
+            let now = self.cycle - 1;
+            for (taken, beat, p, k) in [(rt, r, &mut rp, &mut rk), (ot, o, &mut op, &mut ok)] {
+                if taken {
+                    last_activity = now;
+                    if beat.last {
+                        *p += 1;
+                        *k = 0;
+                    } else {
+                        *k += 1;
+                    }
+                }
+            }
+            if let Some(b) = beat {
+                last_activity = now;
+                if b.marker {
+                    current.marker = b;
+                    current.marker_cycle = now;
+                    out.push(std::mem::take(&mut current));
+                } else {
+                    current.matches.push(b);
+                }
+            }
+        }
+        (out, r_unpaired, o_unpaired)
     }
 }
 
