@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 use crate::config::Config;
 use crate::formats::SearchArea;
 use crate::hdl::cosim::{io_err, log_of, run_tool, CosimError, Options, WorkDir, CLOCK_PORT, RESET_PORT};
-use crate::hdl::frame::{build_verilator, check_ports, frame_cache_dir, DriverParts, FRAME_BINARY, STATUS_NAMES};
+use crate::hdl::frame::{build_verilator, check_ports, frame_cache_dir, parse_err, parse_summary, DriverParts, FRAME_BINARY, STATUS_NAMES};
 
 /// One beat a camera offers: `idle` clocks with `tvalid` low after the
 /// beat before was taken, and not before clock `at`; then `tvalid` high
@@ -213,10 +213,6 @@ static bool read_script(const char* path, std::vector<Beat>& beats) {{
     )
 }
 
-fn parse_err(what: &str, line: usize, msg: impl Into<String>) -> CosimError {
-    CosimError::Parse { what: what.to_string(), line, msg: msg.into() }
-}
-
 /// The run the driver's files describe.
 fn parse_run(out: &str, user: &str, summary: &str) -> Result<BeatRun, CosimError> {
     let mut run = BeatRun::default();
@@ -237,14 +233,7 @@ fn parse_run(out: &str, user: &str, summary: &str) -> Result<BeatRun, CosimError
             _ => return Err(parse_err(BEATS_USER_FILE, i + 1, format!("expected `camera index clock`, got `{line}`"))),
         }
     }
-    let v: Vec<u64> = summary
-        .split_whitespace()
-        .map(|t| t.parse::<u64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| parse_err(BEATS_SUMMARY_FILE, 1, format!("not decimal numbers: `{}`", summary.trim())))?;
-    if v.len() != 5 + STATUS_NAMES.len() {
-        return Err(parse_err(BEATS_SUMMARY_FILE, 1, format!("{} values, expected {}", v.len(), 5 + STATUS_NAMES.len())));
-    }
+    let v = parse_summary(BEATS_SUMMARY_FILE, summary)?;
     run.cycles = v[0];
     run.stall_cycles = v[1];
     run.hung = v[2] != 0;

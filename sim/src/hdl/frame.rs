@@ -497,8 +497,22 @@ fn clock_limit(width: usize, height: usize, hblank: usize) -> u64 {
     4 * ((width + hblank) * height) as u64 + 2 * QUIET_CLOCKS + 1_000_000
 }
 
-fn parse_err(what: &str, line: usize, msg: impl Into<String>) -> CosimError {
+pub(crate) fn parse_err(what: &str, line: usize, msg: impl Into<String>) -> CosimError {
     CosimError::Parse { what: what.to_string(), line, msg: msg.into() }
+}
+
+/// A driver's summary line (`file`): five decimal numbers of the run, then
+/// the status counters in [`STATUS_NAMES`]' order.
+pub(crate) fn parse_summary(file: &str, summary: &str) -> Result<Vec<u64>, CosimError> {
+    let v: Vec<u64> = summary
+        .split_whitespace()
+        .map(|t| t.parse::<u64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| parse_err(file, 1, format!("not decimal numbers: `{}`", summary.trim())))?;
+    if v.len() != 5 + STATUS_NAMES.len() {
+        return Err(parse_err(file, 1, format!("{} values, expected {}", v.len(), 5 + STATUS_NAMES.len())));
+    }
+    Ok(v)
 }
 
 /// The [`StereoRun`] the testbench's files describe (`width` the lines').
@@ -515,14 +529,7 @@ fn parse_frame(beats: &str, summary: &str, width: usize) -> Result<StereoRun, Co
         let word = u64::from_str_radix(f[1], 16).map_err(|_| parse_err(FRAME_BEATS_FILE, i + 1, format!("tdata `{}` is not hex (X or Z from the simulator?)", f[1])))?;
         run.push_beat(clock, word, f[2] == "1", f[3] == "1", &mut pending);
     }
-    let v: Vec<u64> = summary
-        .split_whitespace()
-        .map(|t| t.parse::<u64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| parse_err(FRAME_SUMMARY_FILE, 1, format!("not decimal numbers: `{}`", summary.trim())))?;
-    if v.len() != 5 + STATUS_NAMES.len() {
-        return Err(parse_err(FRAME_SUMMARY_FILE, 1, format!("{} values, expected {}", v.len(), 5 + STATUS_NAMES.len())));
-    }
+    let v = parse_summary(FRAME_SUMMARY_FILE, summary)?;
     run.cycles = v[0];
     run.stall_cycles = v[1];
     run.pixels_in = v[2];
