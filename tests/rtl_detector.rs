@@ -1039,3 +1039,60 @@ fn in_the_hd_configuration_lines_wider_than_sd_holds_equal_golden_record_for_rec
     let sd_run = run_lines(&mut sd, &refs[..16], |_| false, |_| {}).unwrap_or_else(|e| panic!("{e}"));
     assert!(sd_run.lines.iter().all(|l| l.marker.wide), "sd marks every up-scaled row wide");
 }
+
+// ===========================================================================
+// Faulty cameras: golden's framing (`golden::hardware::framing`)
+// ===========================================================================
+
+/// One camera line of a faulty stream: its pixels, `tuser` on its first
+/// beat, `tlast` on its last.
+fn faulty_line() -> impl Strategy<Value = (Vec<u8>, bool, bool)> {
+    (1usize..=48, any::<u64>(), prop::bool::weighted(0.2), prop::bool::weighted(0.8)).prop_map(|(w, seed, user, last)| {
+        let mut rng = seeded(seed);
+        let mut level = 128i32;
+        let px = (0..w)
+            .map(|_| {
+                level = (level + rng.gen_range(-40..=40)).clamp(0, 255);
+                level as u8
+            })
+            .collect();
+        (px, user, last)
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(CASES))]
+
+    /// Lines of mixed widths, `tlast` missing, `tuser` on any line: the
+    /// detector stores and sends exactly the lines golden's framing cuts
+    /// (the frame's width from its first line, lines cut there and the rest
+    /// dropped to `tlast`, a `tuser` ending a line), each as golden's parity
+    /// mode detects it, its marker's `end` its last stored pixel.
+    #[test]
+    fn prop_a_faulty_stream_is_cut_into_golden_framings_lines_and_each_detected_as_golden_does(lines in vec(faulty_line(), 1..=8)) {
+        use golden::hardware::framing::{frame_lines, StreamBeat};
+        use sim::drive::detector::{run_stream, DetectorSim, PixelBeat};
+        let mut beats = Vec::new();
+        for (y, (px, user, last)) in lines.iter().enumerate() {
+            for (x, &p) in px.iter().enumerate() {
+                beats.push(StreamBeat { pixel: p, user: (*user || y == 0) && x == 0, last: *last && x + 1 == px.len() });
+            }
+        }
+        // The last line ends: without a tlast it would wait for a next beat.
+        if let Some(b) = beats.last_mut() {
+            b.last = true;
+        }
+        let limits = golden::hardware::HardwareLimits::default();
+        let want = frame_lines(&beats, limits.w_max);
+        let pixel_beats: Vec<PixelBeat> = beats.iter().map(|b| PixelBeat { tdata: b.pixel, tvalid: true, tuser: b.user, tlast: b.last, reset: false }).collect();
+        let mut sim = DetectorSim::new();
+        let got = run_stream(&mut sim, &pixel_beats, 4096);
+        prop_assert_eq!(got.len(), want.len(), "lines stored");
+        for (y, (h, g)) in got.iter().zip(&want).enumerate() {
+            prop_assert_eq!((h.marker.end as usize + 1, h.marker.sof, h.marker.wide), (g.pixels.len(), g.sof, g.wide), "line {}: width, sof, cut", y);
+            let gold = golden::hardware::detect_line(&g.pixels, limits);
+            let c = compare_line(h, &LimitedLine { wide: g.wide, ..gold.clone() });
+            prop_assert!(c.mismatches == 0, "{}", describe_difference(y, &g.pixels, h, &gold, &c));
+        }
+    }
+}

@@ -51,20 +51,24 @@
 //!   0 = none; bits 31..16 the depth in mm, 0 = none, [`DEPTH_MAX_MM`] =
 //!   that far or farther), `m_tuser` (the frame's first pixel), `m_tlast`
 //!   (a line's last pixel).
-//!   A line has the width of the reference line (at most [`W_MAX`]).
+//!   Every line of an output frame has the frame's width: that of the
+//!   reference camera's first line of the frame (at most [`W_MAX`]; see
+//!   "Frame width").
 //! - Status, counters that wrap: `records_dropped` (detector beats that
 //!   found a record queue full), `lines_dropped` (lines the row check
 //!   had no room for, its rows coming faster than it checks them, or the
-//!   interpolator, which the limit on lines in flight below rules out:
-//!   their pixels are not sent),
+//!   interpolator, which the limit on lines in flight below rules out,
+//!   and the last row of a frame cut short, which the row check drops when
+//!   the next frame begins: their pixels are not sent),
 //!   `pixels_dropped` (pixels that came to the median while it flushed a
 //!   frame's last rows: the vertical blanking must last the lines
 //!   `declivity budget` gives, `vblank_lines`, about [`MEDIAN_HALF`]),
 //!   `lines_full` (lines with more than `ROWS_PER_CELL·N` ([`N_MAX`] in the
 //!   sensor's [`N_CELLS`] cells) declivities on a side: the first are
 //!   matched),
-//!   `lines_wide` (line pairs with a side wider than [`W_MAX`]: the first
-//!   `W_MAX` pixels are processed), `lines_unpaired` (lines of one camera
+//!   `lines_wide` (line pairs with a side cut: wider than [`W_MAX`], or a
+//!   later line of a frame wider than the frame's first: see "Frame
+//!   width"), `lines_unpaired` (lines of one camera
 //!   dropped because the other camera's line at their place starts a frame
 //!   and they do not: see the matcher's Pairing). Each counts its event two
 //!   clocks after it (the event is registered beside its source).
@@ -116,9 +120,10 @@
 //! (`tuser`) is paired only with the other camera's line that starts a
 //! frame, the other camera's extra lines of the frame before being dropped
 //! unpaired (`lines_unpaired`; the matcher's Pairing). A `tuser` inside a
-//! line ends that line on the beat before (the detector's Faults); the
-//! reference width count restarts on it. Frames cut short, restarted,
-//! out of step or paused: `docs/hardware/datasheet.md`, "Faulty cameras",
+//! line ends that line on the beat before (the detector's Faults). Lines of
+//! other widths, and lines run together by a missing `tlast`, take their
+//! frame's width (see "Frame width"). Frames cut short, restarted, out of
+//! step, paused or of mixed widths: `docs/hardware/datasheet.md`, "Faulty cameras",
 //! and the fault campaign, `sim::hdl::faults`.
 //!
 //! ## Lines in flight
@@ -163,14 +168,25 @@
 //! (ten rows twice as slow to match as their line, then light ones) on
 //! which it holds and no line is lost.
 //!
-//! The width given to the interpolator is the last reference line's
-//! (every line of a frame has one width): it is counted as the line comes
-//! in, long before that line's matches leave the matcher, and reaches the
-//! interpolator three clocks after the line's last beat (the accepted beat
-//! registered, the count kept in a register beside the camera's input, then
-//! copied into one beside the interpolator: each route across the die has a
-//! clock of its own); the line's marker comes out of the detector and the
-//! matcher far later than that.
+//! ## Frame width
+//! A frame's width is the width its reference camera's first line (the one
+//! with `tuser`) stores, at most [`W_MAX`]; every output line of the frame
+//! has it, as vendor video IP keeps a frame rectangular on early and late
+//! ends of line (and as the vertical median needs). Each detector cuts a
+//! later line of its frame at its frame's width (the pixels beyond are taken
+//! and dropped, `lines_wide` counts the pair: a late end of line, or a
+//! `tlast` missing) and stores a shorter one as it is (an early end of
+//! line: its matches are interpolated over the frame's width, the last one
+//! held to the end). The width travels with the line: the reference
+//! detector puts the line's last pixel on its marker's `pos` lane, the
+//! matcher and the row check pass it on their markers (`m_x_ref` there),
+//! and the row's width is registered beside the interpolator (`k_width`,
+//! with the row check's output: [`CHECK_REGISTER_LAG`]). A marker that
+//! starts a frame gives the interpolator its own width and sets the frame's
+//! (`frame_width`); the frame's other rows get that. So lines of two frames
+//! in the pipeline at once each keep their frame's width. (A first row the
+//! row check drops, which only a row check overrun does, passes its start
+//! of frame to the next row, whose width the frame then takes.)
 
 use crate::primitives::block_ram::DP16KD_WIDTH;
 use crate::detector::declivity_detector::DeclivityDetector;
@@ -219,7 +235,7 @@ pub const OUTPUT_REGISTER_LAG: usize = 1;
 pub const INTERP_REGISTER_LAG: usize = 1;
 /// Bits of the count of lines in flight `0 ..= LINES_IN_FLIGHT`.
 const FLIGHT_BITS: usize = LINE_QUEUE_BITS + 1;
-/// Bits of the count of lines that leave the flight on one clock, `0 ..= 4`.
+/// Bits of the count of lines that leave the flight on one clock, `0 ..= 5`.
 const FLIGHT_LEFT_BITS: usize = 3;
 // The interpolator admits every line the limit lets through: at a line's
 // admission the other lines in flight, at most `LINES_IN_FLIGHT - 1`, hold
@@ -342,19 +358,13 @@ pub struct StereoLineProcessor<const N: usize> {
     r_lane0: Signal<Local, Bits<DP16KD_WIDTH>>,
     r_lane1: Signal<Local, Bits<DP16KD_WIDTH>>,
     r_lane2: Signal<Local, Bits<DP16KD_WIDTH>>,
-    // The reference line's width: pixels counted up to W_MAX, kept at its
-    // last pixel (`l_width`, beside the camera's input), and copied a clock
-    // later into `width`, which the interpolator reads at the line's marker.
-    l_count: ResetDff<Bits<WIDTH_BITS>>,
-    l_width: ResetDff<Bits<WIDTH_BITS>>,
-    // The camera's accepted beat and its `tlast`, registered once beside the
-    // register slice: the count and the width load from these, so the
-    // handshake drives two flip-flops, not the 22 of the count and width.
-    l_acc: ResetDff<Bit>,
-    l_acc_last: ResetDff<Bit>,
-    l_acc_user: ResetDff<Bit>,
-    l_base: Signal<Local, Bits<WIDTH_BITS>>,
-    width: ResetDff<Bits<WIDTH_BITS>>,
+    // The frame's width for the interpolator (see "Frame width"): the width
+    // of the row on the row check's marker (its last pixel + 1, registered
+    // with `k_*`), taken on a marker that starts a frame and kept for the
+    // frame's other rows.
+    k_width: ResetDff<Bits<WIDTH_BITS>>,
+    frame_width: ResetDff<Bits<WIDTH_BITS>>,
+    width_now: Signal<Local, Bits<WIDTH_BITS>>,
     n_records_dropped: ResetDff<Bits<STATUS_BITS>>,
     n_lines_dropped: ResetDff<Bits<STATUS_BITS>>,
     n_pixels_dropped: ResetDff<Bits<STATUS_BITS>>,
@@ -375,9 +385,10 @@ pub struct StereoLineProcessor<const N: usize> {
     // the reference queue held (public for the drivers' diagnostics).
     pub in_flight: ResetDff<Bits<FLIGHT_BITS>>,
     flight_now: Signal<Local, Bits<FLIGHT_BITS>>,
-    // The lines that left on the clock before (0–4: one out of the
-    // interpolator, one dropped by it, one by the row check, one reference
-    // line dropped unpaired by the matcher), registered
+    // The lines that left on the clock before (0–5: one out of the
+    // interpolator, one dropped by it, one by the row check for want of
+    // room and one as a short frame's last row, one reference line dropped
+    // unpaired by the matcher), registered
     // beside their sources, and the count less them: a taken marker then
     // only picks `flight_base` or `flight_base + 1`, and the marker's
     // handshake, the hold and three ± 1 are not in series in one clock.
@@ -392,7 +403,6 @@ pub struct StereoLineProcessor<const N: usize> {
     took_last: Signal<Local, Bit>,
     flight_max: Constant<Bits<FLIGHT_BITS>>,
     flight_max_m1: Constant<Bits<FLIGHT_BITS>>,
-    w_max: Constant<Bits<WIDTH_BITS>>,
     sh_level: Constant<Bits<8>>,
     sh_depth: Constant<Bits<8>>,
     sof_mask: Constant<Bits<DP16KD_WIDTH>>,
@@ -454,7 +464,6 @@ impl<const N: usize> StereoLineProcessor<N> {
             r_lane1: Default::default(),
             r_lane2: Default::default(),
             p_row_now: Default::default(),
-            l_count: Default::default(),
             h_m1: Default::default(),
             h_one: Default::default(),
             m_row_last: Default::default(),
@@ -463,12 +472,9 @@ impl<const N: usize> StereoLineProcessor<N> {
             i_d: Default::default(),
             i_sof: Default::default(),
             i_eof: Default::default(),
-            l_acc: Default::default(),
-            l_acc_last: Default::default(),
-            l_acc_user: Default::default(),
-            l_base: Default::default(),
-            l_width: ResetDff::new((W_MAX as u64).into()),
-            width: ResetDff::new((W_MAX as u64).into()),
+            k_width: Default::default(),
+            frame_width: ResetDff::new((W_MAX as u64).into()),
+            width_now: Default::default(),
             n_records_dropped: Default::default(),
             n_lines_dropped: Default::default(),
             n_pixels_dropped: Default::default(),
@@ -504,7 +510,6 @@ impl<const N: usize> StereoLineProcessor<N> {
             took_last: Default::default(),
             flight_max: Constant::new((LINES_IN_FLIGHT as u64).into()),
             flight_max_m1: Constant::new((LINES_IN_FLIGHT as u64 - 1).into()),
-            w_max: Constant::new((W_MAX as u64).into()),
             sh_level: Constant::new((PIXEL_BITS as u64).into()),
             sh_depth: Constant::new((DEPTH_BITS as u64).into()),
             sof_mask: Constant::new((1u64 << SOF_BIT).into()),
@@ -518,7 +523,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, l_count, l_width, l_acc, l_acc_last, l_acc_user, width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, n_lines_unpaired, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, ev_unpaired, in_flight, flight_left, hold_q, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
+        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, k_width, frame_width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, n_lines_unpaired, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, ev_unpaired, in_flight, flight_left, hold_q, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
         self.reset_buffer.reset_in.next = self.reset.val();
         self.m_row.reset.next = self.reset_buffer.reset.val();
         self.p_row.reset.next = self.reset_buffer.reset.val();
@@ -530,12 +535,8 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.i_d.reset.next = self.reset_buffer.reset.val();
         self.i_sof.reset.next = self.reset_buffer.reset.val();
         self.i_eof.reset.next = self.reset_buffer.reset.val();
-        self.l_count.reset.next = self.reset_buffer.reset.val();
-        self.l_width.reset.next = self.reset_buffer.reset.val();
-        self.l_acc.reset.next = self.reset_buffer.reset.val();
-        self.l_acc_last.reset.next = self.reset_buffer.reset.val();
-        self.l_acc_user.reset.next = self.reset_buffer.reset.val();
-        self.width.reset.next = self.reset_buffer.reset.val();
+        self.k_width.reset.next = self.reset_buffer.reset.val();
+        self.frame_width.reset.next = self.reset_buffer.reset.val();
         self.n_records_dropped.reset.next = self.reset_buffer.reset.val();
         self.n_lines_dropped.reset.next = self.reset_buffer.reset.val();
         self.n_pixels_dropped.reset.next = self.reset_buffer.reset.val();
@@ -609,40 +610,15 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.right.s_tuser.next = self.r_skid.m_tuser.val();
         self.right.s_tlast.next = self.r_skid.m_tlast.val();
         self.r_skid.m_tready.next = self.right.s_tready.val();
-        // The reference line's width, counted up to W_MAX from the camera's
-        // accepted beats (registered once: `l_acc`, `l_acc_last`), then
-        // copied into `width` a clock later: the count sits beside the
-        // camera's input, `width` beside the interpolator, and only
-        // register-to-register routes join them.
-        self.l_acc.d.next = self.l_tvalid.val() & self.l_skid.s_tready.val();
-        self.l_acc_last.d.next = self.l_tlast.val();
-        self.l_acc_user.d.next = self.l_tuser.val();
-        self.width.d.next = self.l_width.q.val();
-        // A beat with `tuser` is a line's first pixel (inside a line it ends
-        // the line before: the detector's Faults).
-        self.l_base.next = self.l_count.q.val();
-        if self.l_acc_user.q.val() {
-            self.l_base.next = 0.into();
-        }
-        if self.l_acc.q.val() {
-            self.l_count.d.next = self.l_base.val();
-            if self.l_base.val() < self.w_max.val() {
-                self.l_count.d.next = self.l_base.val() + 1;
-            }
-            if self.l_acc_last.q.val() {
-                self.l_count.d.next = 0.into();
-                self.l_width.d.next = self.l_base.val() + 1;
-                if self.l_base.val() == self.w_max.val() {
-                    self.l_width.d.next = self.w_max.val();
-                }
-            }
-        }
-
         // ---- Detector beats into the record queues (lanes: see the
         // constants above).
         self.l_queue.w_valid.next = self.left.m_valid.val();
         self.l_queue.w_marker.next = self.left.m_last.val();
         self.l_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
+        if self.left.m_last.val() {
+            // The marker's `pos`: the line's last pixel.
+            self.l_lane0.next = bit_cast::<DP16KD_WIDTH, X_BITS>(self.left.m_end.val());
+        }
         self.l_lane1.next = bit_cast::<DP16KD_WIDTH, AMP_BITS>(self.left.m_amp.val());
         self.l_lane2.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left1.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left0.val());
@@ -759,12 +735,20 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.k_x.d.next = self.row_check.c_x_ref.val();
         self.k_d.d.next = self.row_check.c_disp.val();
         self.k_sof.d.next = self.row_check.c_sof.val();
+        self.k_width.d.next = bit_cast::<WIDTH_BITS, POS_BITS>(self.row_check.c_x_ref.val()) + 1;
         self.interpolator.a_valid.next = self.k_valid.q.val();
         self.interpolator.a_last.next = self.k_last.q.val();
         self.interpolator.a_x.next = self.k_x.q.val();
         self.interpolator.a_d.next = self.k_d.q.val();
         self.interpolator.a_sof.next = self.k_sof.q.val();
-        self.interpolator.a_width.next = self.width.q.val();
+        self.width_now.next = self.frame_width.q.val();
+        if self.k_sof.q.val() {
+            self.width_now.next = self.k_width.q.val();
+        }
+        if self.k_valid.q.val() & self.k_last.q.val() {
+            self.frame_width.d.next = self.width_now.val();
+        }
+        self.interpolator.a_width.next = self.width_now.val();
 
         // ---- Pixels through the median (the frame's last row marked from
         // the row count) and the depth stage.
@@ -821,6 +805,9 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         if self.row_check.overflow.val() {
             self.flight_left_now.next = self.flight_left_now.val() + 1;
         }
+        if self.row_check.cut.val() {
+            self.flight_left_now.next = self.flight_left_now.val() + 1;
+        }
         if self.matcher.r_unpaired.val() {
             self.flight_left_now.next = self.flight_left_now.val() + 1;
         }
@@ -837,7 +824,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
 
         // ---- Status: each event registered, then counted.
         self.ev_records.d.next = self.l_queue.dropped.val() | self.r_queue.dropped.val();
-        self.ev_lines.d.next = self.interpolator.overflow.val() | self.row_check.overflow.val();
+        self.ev_lines.d.next = self.interpolator.overflow.val() | self.row_check.overflow.val() | self.row_check.cut.val();
         self.ev_pixels.d.next = self.median.overflow.val();
         self.ev_full.d.next = self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_full.val();
         self.ev_wide.d.next = self.matcher.m_valid.val() & self.matcher.m_last.val() & self.matcher.m_wide.val();

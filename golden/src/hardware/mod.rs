@@ -27,11 +27,16 @@
 //! The amplitude, bounds and neighbour levels of a declivity are golden's
 //! integers ([`crate::declivity`]), which the tracker computes the same way.
 //!
+//! Before it, [`framing`] cuts a camera's stream into the lines the detector
+//! stores, faults included (a frame's width, cut lines, a `tuser` inside a
+//! line).
+//!
 //! After the matcher, [`row_check`], [`interpolate`] and [`depth`] take the
 //! row check, the interpolator and the depth stage in their fixed-point
 //! formats.
 
 pub mod depth;
+pub mod framing;
 pub mod interpolate;
 pub mod position;
 pub mod row_check;

@@ -28,7 +28,8 @@
 //!   with [`POS_FRAC_BITS`] fraction bits, eq. 3), `m_left0..2`
 //!   (`I(x_i - k)`), `m_right0..2` (`I(x_{i+1} + k)`), `m_dt` (the line's
 //!   `d_t`, [`DT_FRAC_BITS`] fraction bits). The marker carries `m_dt`,
-//!   `m_count` (records of the line), `m_wide`, `m_full` and `m_sof`.
+//!   `m_count` (records of the line), `m_wide`, `m_full`, `m_sof` and, in
+//!   `m_end`, the line's last stored pixel (its stored width − 1).
 //!   Records come left to right, then the marker; lines in input order.
 //!
 //! ## Timing
@@ -45,14 +46,28 @@
 //! marker, minus one. `s_tvalid` low inside a line only delays it.
 //!
 //! ## Overflow
-//! - A line longer than [`W_MAX`]: its first `W_MAX` pixels are processed,
-//!   the rest are accepted and dropped, and the marker's `m_wide` is set.
+//! - A line longer than [`W_MAX`] is cut: its first `W_MAX` pixels are
+//!   stored and the line ends there (it is processed from then on, as if
+//!   that pixel had `tlast`), the marker's `m_wide` is set, and its further
+//!   beats are taken (`s_tready` high) and dropped until its `tlast`, or
+//!   until a `tuser`, whose beat starts the next line. A line after a
+//!   frame's first is cut the same way at the width its frame's first line
+//!   stored (see Faults).
 //! - More than [`N_MAX`] characteristic declivities: the first `N_MAX` are
 //!   sent, the rest dropped, and `m_full` is set.
 //!
 //! ## Faults
-//! - A `tlast` missing: the line runs on into the next one, as one line
-//!   (wider than [`W_MAX`] if the two are: see Overflow).
+//! - Lines of other widths in a frame: the frame's first line (the one
+//!   with `tuser`) sets the frame's width, the pixels it stores; a later
+//!   line of the frame wider than that is cut at it (see Overflow: a late
+//!   end of line), and a shorter line is stored as it is (an early end of
+//!   line; the line processor's output still has the frame's width). Lines
+//!   before a camera's first `tuser` are cut at [`W_MAX`] only.
+//! - A `tlast` missing: the line ends at the frame's width (at [`W_MAX`]
+//!   for a frame's first line, which then runs on into the next) and the
+//!   beats after it are dropped up to the next `tlast` or `tuser`: a line
+//!   of the frame is lost, and the frame's last line, which has no line
+//!   after it, is processed on time.
 //! - `s_tuser` on a beat that is not a line's first (a camera that restarts
 //!   its frame inside a line, or whose line before lost its `tlast`): the
 //!   line ends on the beat before, as if it had `tlast` (its width the
@@ -92,28 +107,32 @@ pub const RESET_RECOVERY: usize = CLEAR_CLOCKS;
 
 /// The clock at which the first pixel of each line is accepted when lines of
 /// `widths` pixels are offered back to back from clock 0 (`tvalid` always
-/// high), engines idle at the start. The recurrence of the three engines,
-/// with `T` = [`THRESHOLD_LATENCY`], `L_n` the clock of line n's last pixel
-/// and `W'_n = min(W_n, W_MAX)` its stored width:
+/// high, no `tuser`: every line is cut at `W_MAX` alone), engines idle at
+/// the start. The recurrence of the three engines, with `T` =
+/// [`THRESHOLD_LATENCY`], `S_n` the clock of line n's first pixel,
+/// `W'_n = min(W_n, W_MAX)` its stored width and `L_n = S_n + W'_n - 1` the
+/// clock of its last stored pixel (a wider line's further pixels are taken
+/// one a clock, to `S_n + W_n - 1`, and dropped):
 /// - the threshold engine starts line n at `B_n = max(L_n + 1, B_(n-1) + T + 1)`;
 /// - the reader decides to start it at `D_n = max(B_n + T + 1, D_(n-1) + W'_(n-1))`
 ///   (the clock of line n - 1's last read address) and reads from `D_n + 1`;
-/// - line n + 2 (same bank) is accepted from `D_n + 2`, and from `L_(n+1) + 1`.
+/// - line n + 1 is accepted from `S_n + W_n`, and line n + 2 (same bank)
+///   from `D_n + 2`.
 pub fn line_starts(widths: &[usize]) -> Vec<u64> {
     let t = THRESHOLD_LATENCY as u64;
     let mut starts: Vec<u64> = Vec::with_capacity(widths.len());
-    let mut last_pixel: Vec<u64> = Vec::with_capacity(widths.len());
+    let mut next_start: Vec<u64> = Vec::with_capacity(widths.len());
     let mut reads: Vec<u64> = Vec::with_capacity(widths.len());
     let (mut b_prev, mut d_prev, mut w_prev): (Option<u64>, Option<u64>, u64) = (None, None, 0);
     for (n, &w) in widths.iter().enumerate() {
         let w = w.max(1) as u64;
-        let mut s = if n == 0 { 0 } else { last_pixel[n - 1] + 1 };
+        let mut s = if n == 0 { 0 } else { next_start[n - 1] };
         if n >= 2 {
             s = s.max(reads[n - 2] + 2);
         }
         starts.push(s);
-        let l = s + w - 1;
-        last_pixel.push(l);
+        let l = s + w.min(W_MAX as u64) - 1;
+        next_start.push(s + w);
         let b = b_prev.map_or(l + 1, |bp| (l + 1).max(bp + t + 1));
         let d = d_prev.map_or(b + t + 1, |dp| (b + t + 1).max(dp + w_prev));
         reads.push(d);
@@ -135,8 +154,9 @@ pub const fn marker_latency(width: usize) -> usize {
 }
 
 /// [`marker_latency`] of a camera line `width` pixels wide: the detector
-/// stores its first `W_MAX` pixels (a wider line is flagged), and a line
-/// has one pixel at least.
+/// stores its first `W_MAX` pixels (a wider line is cut and flagged, its
+/// latency counted from its `W_MAX`-th pixel), and a line has one pixel at
+/// least.
 pub const fn camera_marker_latency(width: usize) -> usize {
     let stored = if width > W_MAX { W_MAX } else if width == 0 { 1 } else { width };
     marker_latency(stored)
@@ -194,10 +214,23 @@ pub struct DeclivityDetector {
     // A: input.
     wb: ResetDff<Bit>,
     wx: ResetDff<Bits<LINE_BUF_ADDR_BITS>>,
+    // The last pixel a line may store: `W_MAX - 1` for a line that starts
+    // a frame (and before the first), then that line's last for the rest of
+    // its frame (see Faults).
+    x_limit: ResetDff<Bits<X_BITS>>,
+    // A line was cut at `x_limit`: its further beats are taken and dropped
+    // until its `tlast` (or a `tuser`, which starts the next line).
+    discard: ResetDff<Bit>,
+    // The accepted beat is the line's last stored: at `x_limit`, or `tlast`.
+    at_limit: Signal<Local, Bit>,
+    ends: Signal<Local, Bit>,
+    // The accepted beat's line starts a frame.
+    sof_now: Signal<Local, Bit>,
+    // The width a line that ends now stores.
+    end_width: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
     in_line: ResetDff<Bit>,
     prev_pix: ResetDff<Bits<PIXEL_BITS>>,
     line_sof: ResetDff<Bit>,
-    line_wide: ResetDff<Bit>,
     // B: threshold.
     mb: ResetDff<Bit>,
     // C: reader.
@@ -230,7 +263,6 @@ pub struct DeclivityDetector {
     // A start of frame inside a line: the line ends before this beat.
     early: Signal<Local, Bit>,
     x_now: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
-    stored: Signal<Local, Bit>,
     diff: Signal<Local, Bits<PIXEL_BITS>>,
     scan_state: Signal<Local, Bits<2>>,
     scan_width: Signal<Local, Bits<LINE_BUF_ADDR_BITS>>,
@@ -242,7 +274,7 @@ pub struct DeclivityDetector {
     rx_next: Signal<Local, Bits<X_BITS>>,
     rx_inc: Signal<Local, Bits<X_BITS>>,
     // Constants.
-    w_max: Constant<Bits<LINE_BUF_ADDR_BITS>>,
+    x_max: Constant<Bits<X_BITS>>,
     bank_free: Constant<Bits<2>>,
     bank_full: Constant<Bits<2>>,
     bank_ready: Constant<Bits<2>>,
@@ -294,10 +326,15 @@ impl Default for DeclivityDetector {
             dt1: Default::default(),
             wb: Default::default(),
             wx: Default::default(),
+            x_limit: ResetDff::new(((W_MAX - 1) as u64).into()),
+            discard: Default::default(),
+            at_limit: Default::default(),
+            ends: Default::default(),
+            sof_now: Default::default(),
+            end_width: Default::default(),
             in_line: Default::default(),
             prev_pix: Default::default(),
             line_sof: Default::default(),
-            line_wide: Default::default(),
             mb: Default::default(),
             rb: Default::default(),
             reading: Default::default(),
@@ -324,7 +361,6 @@ impl Default for DeclivityDetector {
             accept: Default::default(),
             early: Default::default(),
             x_now: Default::default(),
-            stored: Default::default(),
             diff: Default::default(),
             scan_state: Default::default(),
             scan_width: Default::default(),
@@ -335,7 +371,7 @@ impl Default for DeclivityDetector {
             read_last_x: Default::default(),
             rx_next: Default::default(),
             rx_inc: Default::default(),
-            w_max: Constant::new((W_MAX as u64).into()),
+            x_max: Constant::new(((W_MAX - 1) as u64).into()),
             bank_free: Constant::new(BANK_FREE.into()),
             bank_full: Constant::new(BANK_FULL.into()),
             bank_ready: Constant::new(BANK_READY.into()),
@@ -356,8 +392,8 @@ impl Logic for DeclivityDetector {
         self.divider.clock.next = self.clock.val();
         self.divider.reset.next = self.reset.val();
         dff_setup!(
-            self, clock, state0, state1, width0, width1, wide0, wide1, sof0, sof1, dt0, dt1, wb, wx, in_line,
-            prev_pix, line_sof, line_wide, mb, rb, reading, r_bank, rx, r_last_x, r_dt, r_thr, r_wide, r_sof,
+            self, clock, x_limit, discard, state0, state1, width0, width1, wide0, wide1, sof0, sof1, dt0, dt1, wb, wx, in_line,
+            prev_pix, line_sof, mb, rb, reading, r_bank, rx, r_last_x, r_dt, r_thr, r_wide, r_sof,
             free_pending, free_bank, r_at_end, d_valid, d_bank, d_first, d_last, d_x, d_dt, d_thr, d_wide, d_sof
         );
         self.state0.reset.next = self.reset.val();
@@ -375,7 +411,6 @@ impl Logic for DeclivityDetector {
         self.in_line.reset.next = self.reset.val();
         self.prev_pix.reset.next = self.reset.val();
         self.line_sof.reset.next = self.reset.val();
-        self.line_wide.reset.next = self.reset.val();
         self.mb.reset.next = self.reset.val();
         self.rb.reset.next = self.reset.val();
         self.reading.reset.next = self.reset.val();
@@ -394,6 +429,8 @@ impl Logic for DeclivityDetector {
         self.d_first.reset.next = self.reset.val();
         self.d_last.reset.next = self.reset.val();
         self.d_x.reset.next = self.reset.val();
+        self.x_limit.reset.next = self.reset.val();
+        self.discard.reset.next = self.reset.val();
         self.d_dt.reset.next = self.reset.val();
         self.d_thr.reset.next = self.reset.val();
         self.d_wide.reset.next = self.reset.val();
@@ -407,26 +444,46 @@ impl Logic for DeclivityDetector {
         // A beat with `tuser` inside a line is not taken: the line ends on
         // the beat before (as if that beat had `tlast`), and the beat is
         // taken on a later clock as the first pixel of the next line.
+        // After a cut, beats are taken and dropped (whatever the banks)
+        // until `tlast`, or a `tuser`, which starts a line.
         self.early.next = self.s_tvalid.val() & self.s_tuser.val() & self.in_line.q.val();
-        self.s_tready.next = (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val() & !self.early.val();
-        self.accept.next = self.s_tvalid.val() & (self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val() & !self.early.val();
+        self.s_tready.next = ((self.write_state.val() == self.bank_free.val()) & !self.threshold.clearing.val() & !self.early.val())
+            | (self.discard.q.val() & !self.s_tuser.val());
+        self.accept.next = self.s_tvalid.val()
+            & (self.write_state.val() == self.bank_free.val())
+            & !self.threshold.clearing.val()
+            & !self.early.val()
+            & !(self.discard.q.val() & !self.s_tuser.val());
+        if self.s_tvalid.val() & self.discard.q.val() & !self.s_tuser.val() & self.s_tlast.val() {
+            self.discard.d.next = false;
+        }
         self.x_now.next = 0.into();
         if self.in_line.q.val() {
             self.x_now.next = self.wx.q.val();
         }
-        self.stored.next = self.x_now.val() < self.w_max.val();
+        // (`x_now` never passes `x_limit`: the line ends there, and
+        // `x_limit` changes only between lines; an equality, no carry
+        // chain. A frame's first line is limited by `W_MAX` alone.)
+        self.at_limit.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val()) == self.x_limit.q.val();
+        if !self.in_line.q.val() & self.s_tuser.val() {
+            self.at_limit.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val()) == self.x_max.val();
+        }
+        self.ends.next = self.s_tlast.val() | self.at_limit.val();
+        self.sof_now.next = self.s_tuser.val();
+        if self.in_line.q.val() {
+            self.sof_now.next = self.line_sof.q.val();
+        }
         self.diff.next = self.s_tdata.val() - self.prev_pix.q.val();
         if self.prev_pix.q.val() > self.s_tdata.val() {
             self.diff.next = self.prev_pix.q.val() - self.s_tdata.val();
         }
-        // (x < W_MAX where it is stored.)
         self.line_buf0.write_address.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val());
         self.line_buf1.write_address.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val());
         self.line_buf0.write_data.next = self.s_tdata.val();
         self.line_buf1.write_data.next = self.s_tdata.val();
-        self.line_buf0.write_enable.next = self.accept.val() & self.stored.val() & !self.wb.q.val();
-        self.line_buf1.write_enable.next = self.accept.val() & self.stored.val() & self.wb.q.val();
-        self.threshold.inc_valid.next = self.accept.val() & self.stored.val() & self.in_line.q.val();
+        self.line_buf0.write_enable.next = self.accept.val() & !self.wb.q.val();
+        self.line_buf1.write_enable.next = self.accept.val() & self.wb.q.val();
+        self.threshold.inc_valid.next = self.accept.val() & self.in_line.q.val();
         self.threshold.inc_bank.next = self.wb.q.val();
         self.threshold.inc_bin.next = self.diff.val();
         if self.early.val() {
@@ -434,18 +491,14 @@ impl Logic for DeclivityDetector {
         }
         if self.accept.val() {
             self.prev_pix.d.next = self.s_tdata.val();
-            self.in_line.d.next = !self.s_tlast.val();
-            if self.stored.val() {
-                self.wx.d.next = self.x_now.val() + 1;
-            } else {
-                self.wx.d.next = self.x_now.val();
-            }
+            self.in_line.d.next = !self.ends.val();
+            self.discard.d.next = !self.s_tlast.val() & self.at_limit.val();
+            self.wx.d.next = self.x_now.val() + 1;
             if !self.in_line.q.val() {
                 self.line_sof.d.next = self.s_tuser.val();
-                self.line_wide.d.next = false;
-            }
-            if !self.stored.val() {
-                self.line_wide.d.next = true;
+                if self.s_tuser.val() {
+                    self.x_limit.d.next = self.x_max.val();
+                }
             }
         }
 
@@ -528,32 +581,29 @@ impl Logic for DeclivityDetector {
             (self.scan_state.val() == self.bank_full.val()) & !self.threshold.busy.val() & !self.threshold.done.val();
 
         // ---- Bank state changes (each targets a bank in a different state).
-        if self.accept.val() & self.s_tlast.val() {
+        // A frame's first line sets the frame's last pixel at its end (its
+        // last stored, or, cut short, the one before the next `tuser`).
+        self.end_width.next = self.x_now.val() + 1;
+        if self.accept.val() & self.ends.val() & self.sof_now.val() {
+            self.x_limit.d.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val());
+        }
+        if self.early.val() & self.line_sof.q.val() {
+            self.x_limit.d.next = bit_cast::<X_BITS, LINE_BUF_ADDR_BITS>(self.x_now.val() - 1);
+        }
+        // (A line is cut, `wide`, when its last stored pixel is not its
+        // `tlast`.)
+        if self.accept.val() & self.ends.val() {
             self.wb.d.next = !self.wb.q.val();
             if self.wb.q.val() {
                 self.state1.d.next = self.bank_full.val();
-                self.width1.d.next = self.x_now.val() + 1;
-                self.wide1.d.next = self.line_wide.q.val();
-                self.sof1.d.next = self.s_tuser.val();
-                if self.in_line.q.val() {
-                    self.sof1.d.next = self.line_sof.q.val();
-                }
-                if !self.stored.val() {
-                    self.width1.d.next = self.x_now.val();
-                    self.wide1.d.next = true;
-                }
+                self.width1.d.next = self.end_width.val();
+                self.wide1.d.next = !self.s_tlast.val();
+                self.sof1.d.next = self.sof_now.val();
             } else {
                 self.state0.d.next = self.bank_full.val();
-                self.width0.d.next = self.x_now.val() + 1;
-                self.wide0.d.next = self.line_wide.q.val();
-                self.sof0.d.next = self.s_tuser.val();
-                if self.in_line.q.val() {
-                    self.sof0.d.next = self.line_sof.q.val();
-                }
-                if !self.stored.val() {
-                    self.width0.d.next = self.x_now.val();
-                    self.wide0.d.next = true;
-                }
+                self.width0.d.next = self.end_width.val();
+                self.wide0.d.next = !self.s_tlast.val();
+                self.sof0.d.next = self.sof_now.val();
             }
         }
         // A line ended early (its `x_now` pixels stored, all of them taken
@@ -563,12 +613,12 @@ impl Logic for DeclivityDetector {
             if self.wb.q.val() {
                 self.state1.d.next = self.bank_full.val();
                 self.width1.d.next = self.x_now.val();
-                self.wide1.d.next = self.line_wide.q.val();
+                self.wide1.d.next = false;
                 self.sof1.d.next = self.line_sof.q.val();
             } else {
                 self.state0.d.next = self.bank_full.val();
                 self.width0.d.next = self.x_now.val();
-                self.wide0.d.next = self.line_wide.q.val();
+                self.wide0.d.next = false;
                 self.sof0.d.next = self.line_sof.q.val();
             }
         }

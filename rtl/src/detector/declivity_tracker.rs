@@ -20,7 +20,8 @@
 //!   `item_divisor` (`Σ g²`) and four tag lanes laid out as [`TagLayout`]
 //!   says: a declivity record (start, end, amplitude, the 3+3 neighbour grey
 //!   levels, `d_t`) or, after the line's last record, the line's marker
-//!   (count, `d_t`, flags).
+//!   (count, `d_t`, flags, and in the end field the line's last pixel: its
+//!   stored width − 1).
 //!
 //! ## Timing
 //! A pixel reaches the centre of a 7-pixel window [`TRACKER_CENTER`] + 1
@@ -57,7 +58,7 @@ pub(crate) struct TagLayout;
 
 impl TagLayout {
     /// Lane 0: `start | end << X_BITS | amplitude << 2·X_BITS`, and the
-    /// marker flag above them.
+    /// marker flag above them; a marker's `end` is its line's last pixel.
     pub(crate) const END_SHIFT: usize = X_BITS;
     pub(crate) const AMP_SHIFT: usize = 2 * X_BITS;
     pub(crate) const MARKER_SHIFT: usize = 2 * X_BITS + AMP_BITS;
@@ -139,6 +140,8 @@ pub(crate) struct DeclivityTracker {
     mk_wide: ResetDff<Bit>,
     mk_sof: ResetDff<Bit>,
     mk_dt: ResetDff<Bits<DT_BITS>>,
+    /// The line's last pixel (its stored width − 1), for the marker.
+    mk_end: ResetDff<Bits<X_BITS>>,
     // The item register.
     o_valid: ResetDff<Bit>,
     o_dividend: ResetDff<Bits<DIVIDEND_BITS>>,
@@ -240,6 +243,7 @@ impl Default for DeclivityTracker {
             mk_wide: Default::default(),
             mk_sof: Default::default(),
             mk_dt: Default::default(),
+            mk_end: Default::default(),
             o_valid: Default::default(),
             o_dividend: Default::default(),
             o_divisor: Default::default(),
@@ -290,7 +294,7 @@ impl Logic for DeclivityTracker {
         self.window.reset.next = self.reset.val();
         dff_setup!(
             self, clock, g2, g3, g4, gsq3, gsq4, w4, nz4, up4, char4, at_thr3, at_thr4, run_thr, seen, rising, start, start_level, left0, left1, left2, s0, s1,
-            end_reg, upd1, upd2, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, o_valid, o_dividend,
+            end_reg, upd1, upd2, count, full, mk_pending, mk_count, mk_full, mk_wide, mk_sof, mk_dt, mk_end, o_valid, o_dividend,
             o_divisor, o_tag0, o_tag1, o_tag2, o_tag3
         );
         self.g2.reset.next = self.reset.val();
@@ -325,6 +329,7 @@ impl Logic for DeclivityTracker {
         self.mk_wide.reset.next = self.reset.val();
         self.mk_sof.reset.next = self.reset.val();
         self.mk_dt.reset.next = self.reset.val();
+        self.mk_end.reset.next = self.reset.val();
         self.o_valid.reset.next = self.reset.val();
         self.o_dividend.reset.next = self.reset.val();
         self.o_divisor.reset.next = self.reset.val();
@@ -493,6 +498,7 @@ impl Logic for DeclivityTracker {
             self.mk_wide.d.next = self.window.wide4.val();
             self.mk_sof.d.next = self.window.sof4.val();
             self.mk_dt.d.next = self.window.dt4.val();
+            self.mk_end.d.next = self.window.x4.val();
         }
 
         // ---- The item: a kept record, else a pending marker. The fields
@@ -515,7 +521,7 @@ impl Logic for DeclivityTracker {
         if self.mk_pending.q.val() {
             self.o_dividend.d.next = 0.into();
             self.o_divisor.d.next = 1.into();
-            self.o_tag0.d.next = bit_cast::<32, 1>(true.into()) << self.marker_shift.val();
+            self.o_tag0.d.next = (bit_cast::<32, 1>(true.into()) << self.marker_shift.val()) | (bit_cast::<32, X_BITS>(self.mk_end.q.val()) << self.end_shift.val());
             self.o_tag1.d.next = bit_cast::<32, COUNT_BITS>(self.mk_count.q.val());
             self.o_tag2.d.next = bit_cast::<32, 1>(self.mk_wide.q.val().into())
                 | (bit_cast::<32, 1>(self.mk_full.q.val().into()) << 1)

@@ -23,8 +23,9 @@
 //! - `clock`; `reset`, synchronous and active high.
 //! - In, per side (`r_` reference = left, `o_` other = right), named as the
 //!   detector's outputs: `valid`, `last` (the line's marker), `pos`, `amp`,
-//!   `left0..2`, `right0..2`; on the marker `dt`, `wide`, `full` and `sof`
-//!   (the line starts a frame). Out: `r_ready`, `o_ready`: records and markers are
+//!   `left0..2`, `right0..2`; on the marker `dt`, `wide`, `full`, `sof`
+//!   (the line starts a frame) and, on the reference side, `pos` the line's
+//!   last pixel (an integer, no fraction bits). Out: `r_ready`, `o_ready`: records and markers are
 //!   taken only while ready (a side is not ready from its marker until the
 //!   pair is handed to the engine, nor while a complete pair waits). A
 //!   side's records beyond `4·N` (four per cell; [`N_MAX`] in the sensor's
@@ -39,7 +40,8 @@
 //!   `m_x_ref` (`X_i`), `m_disp` (`X_i - X_j`, [`POS_FRAC_BITS`] fraction
 //!   bits); `m_valid` with `m_last` high ends the line: `m_count` (matches),
 //!   `m_n`, `m_m` (declivities of each side), `m_wide`, `m_full` (either
-//!   side), `m_sof`.
+//!   side), `m_sof`, and `m_x_ref` the reference marker's `pos` (the line's
+//!   last pixel, for the line processor's frame width).
 //! - `r_unpaired`, `o_unpaired`: high for a clock when a reference line, or
 //!   an other line, was dropped unpaired (see Pairing).
 //!
@@ -323,6 +325,7 @@ pub struct DeclivityMatcher<const N: usize> {
     o_flags_wide: ResetDff<Bit>,
     o_flags_full: ResetDff<Bit>,
     r_sof_reg: ResetDff<Bit>,
+    r_lastx: ResetDff<Bits<X_BITS>>,
     o_sof_reg: ResetDff<Bit>,
     // Both markers in, one line starting a frame and the other not; the
     // line dropped (registered).
@@ -339,6 +342,7 @@ pub struct DeclivityMatcher<const N: usize> {
     pend_wide: ResetDff<Bit>,
     pend_full: ResetDff<Bit>,
     pend_sof: ResetDff<Bit>,
+    pend_lastx: ResetDff<Bits<X_BITS>>,
     // Engine.
     eng: ResetDff<Bits<2>>,
     ebank: ResetDff<Bit>,
@@ -358,6 +362,7 @@ pub struct DeclivityMatcher<const N: usize> {
     t_wide: ResetDff<Bit>,
     t_full: ResetDff<Bit>,
     t_sof: ResetDff<Bit>,
+    t_lastx: ResetDff<Bits<X_BITS>>,
     tq: ResetDff<Bit>,
     tq_n: ResetDff<Bits<COUNT_BITS>>,
     tq_m: ResetDff<Bits<COUNT_BITS>>,
@@ -377,6 +382,7 @@ pub struct DeclivityMatcher<const N: usize> {
     tq_wide: ResetDff<Bit>,
     tq_full: ResetDff<Bit>,
     tq_sof: ResetDff<Bit>,
+    tq_lastx: ResetDff<Bits<X_BITS>>,
     // The position copies' read addresses (the traceback's pairs).
     p_addr_r: ResetDff<Bits<COPY_ADDR_BITS>>,
     p_addr_o: ResetDff<Bits<COPY_ADDR_BITS>>,
@@ -399,6 +405,7 @@ pub struct DeclivityMatcher<const N: usize> {
     e_wide: ResetDff<Bit>,
     e_full: ResetDff<Bit>,
     e_sof: ResetDff<Bit>,
+    e_lastx: ResetDff<Bits<X_BITS>>,
     e_fold: ResetDff<Bit>,
     // The taken line's rows have four clocks per node (more than 2·N
     // reference declivities), and its last phase.
@@ -450,6 +457,7 @@ pub struct DeclivityMatcher<const N: usize> {
     w_wide: ResetDff<Bit>,
     w_full: ResetDff<Bit>,
     w_sof: ResetDff<Bit>,
+    w_lastx: ResetDff<Bits<X_BITS>>,
     out_valid: ResetDff<Bit>,
     out_last: ResetDff<Bit>,
     out_ref: ResetDff<Bits<INDEX_BITS>>,
@@ -647,6 +655,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             o_flags_wide: Default::default(),
             o_flags_full: Default::default(),
             r_sof_reg: Default::default(),
+            r_lastx: Default::default(),
             o_sof_reg: Default::default(),
             mismatch: Default::default(),
             r_drop_q: Default::default(),
@@ -660,6 +669,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             pend_wide: Default::default(),
             pend_full: Default::default(),
             pend_sof: Default::default(),
+            pend_lastx: Default::default(),
             eng: Default::default(),
             ebank: Default::default(),
             epbank: Default::default(),
@@ -673,6 +683,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             t_wide: Default::default(),
             t_full: Default::default(),
             t_sof: Default::default(),
+            t_lastx: Default::default(),
             tq: Default::default(),
             tq_n: Default::default(),
             tq_m: Default::default(),
@@ -689,6 +700,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             tq_wide: Default::default(),
             tq_full: Default::default(),
             tq_sof: Default::default(),
+            tq_lastx: Default::default(),
             p_addr_r: Default::default(),
             p_addr_o: Default::default(),
             en: Default::default(),
@@ -705,6 +717,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             e_wide: Default::default(),
             e_full: Default::default(),
             e_sof: Default::default(),
+            e_lastx: Default::default(),
             e_fold: Default::default(),
             e_p4: Default::default(),
             e_klast: Default::default(),
@@ -750,6 +763,7 @@ impl<const N: usize> DeclivityMatcher<N> {
             w_wide: Default::default(),
             w_full: Default::default(),
             w_sof: Default::default(),
+            w_lastx: Default::default(),
             out_valid: Default::default(),
             out_last: Default::default(),
             out_ref: Default::default(),
@@ -891,7 +905,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, e_wi0, e_wj0, e_diag0, e_empty, tq_wi0, tq_wj0, tq_diag0, tq_empty, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, lim1, lim2, lim3, cw_diag_q, cw_phase_q, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
-            out_sof
+            out_sof, r_lastx, pend_lastx, t_lastx, tq_lastx, e_lastx, w_lastx
         );
         self.r_sof_in.reset.next = self.reset.val();
         self.o_sof_in.reset.next = self.reset.val();
@@ -911,6 +925,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.o_flags_wide.reset.next = self.reset.val();
         self.o_flags_full.reset.next = self.reset.val();
         self.r_sof_reg.reset.next = self.reset.val();
+        self.r_lastx.reset.next = self.reset.val();
         self.pend.reset.next = self.reset.val();
         self.pend_bank.reset.next = self.reset.val();
         self.pend_pbank.reset.next = self.reset.val();
@@ -920,6 +935,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.pend_wide.reset.next = self.reset.val();
         self.pend_full.reset.next = self.reset.val();
         self.pend_sof.reset.next = self.reset.val();
+        self.pend_lastx.reset.next = self.reset.val();
         self.eng.reset.next = self.reset.val();
         self.ebank.reset.next = self.reset.val();
         self.epbank.reset.next = self.reset.val();
@@ -932,6 +948,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.t_wide.reset.next = self.reset.val();
         self.t_full.reset.next = self.reset.val();
         self.t_sof.reset.next = self.reset.val();
+        self.t_lastx.reset.next = self.reset.val();
         self.tq.reset.next = self.reset.val();
         self.tq_n.reset.next = self.reset.val();
         self.tq_m.reset.next = self.reset.val();
@@ -948,6 +965,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.tq_wide.reset.next = self.reset.val();
         self.tq_full.reset.next = self.reset.val();
         self.tq_sof.reset.next = self.reset.val();
+        self.tq_lastx.reset.next = self.reset.val();
         self.p_addr_r.reset.next = self.reset.val();
         self.p_addr_o.reset.next = self.reset.val();
         self.en.reset.next = self.reset.val();
@@ -977,6 +995,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.e_wide.reset.next = self.reset.val();
         self.e_full.reset.next = self.reset.val();
         self.e_sof.reset.next = self.reset.val();
+        self.e_lastx.reset.next = self.reset.val();
         self.e_fold.reset.next = self.reset.val();
         self.e_p4.reset.next = self.reset.val();
         self.e_klast.reset.next = self.reset.val();
@@ -1022,6 +1041,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.w_wide.reset.next = self.reset.val();
         self.w_full.reset.next = self.reset.val();
         self.w_sof.reset.next = self.reset.val();
+        self.w_lastx.reset.next = self.reset.val();
         self.out_valid.reset.next = self.reset.val();
         self.out_last.reset.next = self.reset.val();
         self.out_ref.reset.next = self.reset.val();
@@ -1133,6 +1153,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.r_flags_wide.d.next = self.r_in.q_wide.val();
             self.r_flags_full.d.next = self.r_flags_full.q.val() | self.r_in.q_full.val();
             self.r_sof_reg.d.next = self.r_sof_in.q.val();
+            self.r_lastx.d.next = bit_cast::<X_BITS, POS_BITS>(self.r_in.q_pos.val());
         }
         if self.o_in.q_valid.val() & self.o_in.q_last.val() {
             self.o_done.d.next = true;
@@ -1231,6 +1252,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.pend_wide.d.next = self.r_flags_wide.q.val() | self.o_flags_wide.q.val();
             self.pend_full.d.next = self.r_flags_full.q.val() | self.o_flags_full.q.val();
             self.pend_sof.d.next = self.r_sof_reg.q.val();
+            self.pend_lastx.d.next = self.r_lastx.q.val();
             self.lbank.d.next = !self.lbank.q.val();
             self.lpbank.d.next = self.lpbank.q.val() ^ self.lbank.q.val();
             self.r_done.d.next = false;
@@ -1290,6 +1312,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.e_wide.d.next = self.pend_wide.q.val();
             self.e_full.d.next = self.pend_full.q.val();
             self.e_sof.d.next = self.pend_sof.q.val();
+            self.e_lastx.d.next = self.pend_lastx.q.val();
         }
         // Sweep: clock sc reads reference sc, which the next clock
         // broadcasts, and column j of phase k where sc = p·j + (2N + 1)·k
@@ -1417,6 +1440,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.t_wide.d.next = self.e_wide.q.val();
             self.t_full.d.next = self.e_full.q.val();
             self.t_sof.d.next = self.e_sof.q.val();
+            self.t_lastx.d.next = self.e_lastx.q.val();
             if self.tb_from_q.val() {
                 self.tq.d.next = false;
                 self.t_n.d.next = self.tq_n.q.val();
@@ -1426,6 +1450,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
                 self.t_wide.d.next = self.tq_wide.q.val();
                 self.t_full.d.next = self.tq_full.q.val();
                 self.t_sof.d.next = self.tq_sof.q.val();
+                self.t_lastx.d.next = self.tq_lastx.q.val();
             }
         }
         if self.traceback.out_last.val() {
@@ -1444,6 +1469,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.tq_wide.d.next = self.e_wide.q.val();
             self.tq_full.d.next = self.e_full.q.val();
             self.tq_sof.d.next = self.e_sof.q.val();
+            self.tq_lastx.d.next = self.e_lastx.q.val();
         }
         self.sweep_done.d.next = false;
         if self.eng.q.val() == self.eng_sweep.val() {
@@ -1583,6 +1609,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.w_wide.d.next = self.t_wide.q.val();
             self.w_full.d.next = self.t_full.q.val();
             self.w_sof.d.next = self.t_sof.q.val();
+            self.w_lastx.d.next = self.t_lastx.q.val();
         }
         self.out_valid.d.next = self.w_valid.q.val() | self.w_last.q.val();
         self.out_last.d.next = self.w_last.q.val();
@@ -1599,6 +1626,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.out_wide.d.next = self.w_wide.q.val();
             self.out_full.d.next = self.w_full.q.val();
             self.out_sof.d.next = self.w_sof.q.val();
+            self.out_x_ref.d.next = bit_cast::<POS_BITS, X_BITS>(self.w_lastx.q.val());
         }
         self.m_valid.next = self.out_valid.q.val();
         self.m_last.next = self.out_last.q.val();

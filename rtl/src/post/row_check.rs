@@ -54,11 +54,11 @@
 //!   within a row, at most [`N_MAX`] per row (later ones are not stored);
 //!   `m_valid` with `m_last` high ends the row: `m_sof` (it starts a
 //!   frame), `m_eof` (it ends the frame; required on every frame's last
-//!   row). Matches at most one per clock, rows back to back or with gaps.
+//!   row), `m_x_ref` (the row's last pixel, an integer). Matches at most one per clock, rows back to back or with gaps.
 //! - Out, the same stream one row later, no back-pressure: `c_valid`,
 //!   `c_last`; on a kept match `c_x_ref`, `c_disp`; on the marker `c_sof`,
-//!   `c_eof` (the row's flags) and `c_count` (matches kept); all zero while
-//!   `c_valid` is low.
+//!   `c_eof` (the row's flags), `c_x_ref` (its `m_x_ref`) and `c_count`
+//!   (matches kept); all zero while `c_valid` is low.
 //! - `overflow`: high for a clock, on the marker's clock of a row that
 //!   found all four banks in use when it started (its first match or its
 //!   marker): that row is dropped whole (its matches are not stored, it
@@ -66,6 +66,12 @@
 //!   as neighbours; its `m_sof` goes to the next row stored, its `m_eof`
 //!   to the last row stored, so that frames still start and end). `crowded`: high for a clock with a match decided
 //!   without the whole of a neighbour's window (see above).
+//! - `cut`: high for a clock when the last row of a frame cut short is
+//!   dropped: a row that does not end its frame (`m_eof` low) and whose
+//!   next row starts a frame. Such a row can be checked only when the next
+//!   frame has begun; it is dropped (checked as a row without matches, its
+//!   matches and marker not sent) so that the next frame's rows do not
+//!   wait behind its pixels.
 //!
 //! ## Timing
 //! The engine starts row `y` (its start clock `s`) [`ROW_START_LAG`]
@@ -192,6 +198,7 @@ pub struct RowCheck {
     pub c_eof: Signal<Out, Bit>,
     pub c_count: Signal<Out, Bits<COUNT_BITS>>,
     pub overflow: Signal<Out, Bit>,
+    pub cut: Signal<Out, Bit>,
     pub crowded: Signal<Out, Bit>,
     // ---- The windows of the rows above and below (see the module doc
     // and `crate::post::neighbour_window`), and the counts they start with.
@@ -217,15 +224,19 @@ pub struct RowCheck {
     nofree: ResetDff<Bit>,
     cnt0: ResetDff<Bits<COUNT_BITS>>,
     sof0: ResetDff<Bit>,
+    lx0: ResetDff<Bits<X_BITS>>,
     eof0: ResetDff<Bit>,
     cnt1: ResetDff<Bits<COUNT_BITS>>,
     sof1: ResetDff<Bit>,
+    lx1: ResetDff<Bits<X_BITS>>,
     eof1: ResetDff<Bit>,
     cnt2: ResetDff<Bits<COUNT_BITS>>,
     sof2: ResetDff<Bit>,
+    lx2: ResetDff<Bits<X_BITS>>,
     eof2: ResetDff<Bit>,
     cnt3: ResetDff<Bits<COUNT_BITS>>,
     sof3: ResetDff<Bit>,
+    lx3: ResetDff<Bits<X_BITS>>,
     eof3: ResetDff<Bit>,
     // ---- Engine: the row checked (or next), whether the row before it is
     // still needed as its row above, the row's matches, flags, decisions
@@ -236,6 +247,9 @@ pub struct RowCheck {
     busy: ResetDff<Bit>,
     n_cur: ResetDff<Bits<COUNT_BITS>>,
     sof_cur: ResetDff<Bit>,
+    cut_cur: ResetDff<Bit>,
+    cut_q: ResetDff<Bit>,
+    lx_cur: ResetDff<Bits<X_BITS>>,
     eof_cur: ResetDff<Bit>,
     dec: ResetDff<Bits<COUNT_BITS>>,
     dec1: ResetDff<Bits<COUNT_BITS>>,
@@ -295,6 +309,9 @@ pub struct RowCheck {
     cnt_up: Signal<Local, Bits<COUNT_BITS>>,
     cnt_dn: Signal<Local, Bits<COUNT_BITS>>,
     sof_el: Signal<Local, Bit>,
+    sof_dn: Signal<Local, Bit>,
+    cut_el: Signal<Local, Bit>,
+    lx_el: Signal<Local, Bits<X_BITS>>,
     eof_el: Signal<Local, Bit>,
     start: Signal<Local, Bit>,
     keep: Signal<Local, Bit>,
@@ -356,6 +373,7 @@ impl RowCheck {
             c_eof: Default::default(),
             c_count: Default::default(),
             overflow: Default::default(),
+            cut: Default::default(),
             crowded: Default::default(),
             above: Default::default(),
             below: Default::default(),
@@ -374,15 +392,19 @@ impl RowCheck {
             nofree: Default::default(),
             cnt0: Default::default(),
             sof0: Default::default(),
+            lx0: Default::default(),
             eof0: Default::default(),
             cnt1: Default::default(),
             sof1: Default::default(),
+            lx1: Default::default(),
             eof1: Default::default(),
             cnt2: Default::default(),
             sof2: Default::default(),
+            lx2: Default::default(),
             eof2: Default::default(),
             cnt3: Default::default(),
             sof3: Default::default(),
+            lx3: Default::default(),
             eof3: Default::default(),
             el: Default::default(),
             start_q: Default::default(),
@@ -390,6 +412,9 @@ impl RowCheck {
             busy: Default::default(),
             n_cur: Default::default(),
             sof_cur: Default::default(),
+            cut_cur: Default::default(),
+            cut_q: Default::default(),
+            lx_cur: Default::default(),
             eof_cur: Default::default(),
             dec: Default::default(),
             dec1: Default::default(),
@@ -438,6 +463,9 @@ impl RowCheck {
             cnt_up: Default::default(),
             cnt_dn: Default::default(),
             sof_el: Default::default(),
+            sof_dn: Default::default(),
+            cut_el: Default::default(),
+            lx_el: Default::default(),
             eof_el: Default::default(),
             start: Default::default(),
             keep: Default::default(),
@@ -475,7 +503,7 @@ impl RowCheck {
 impl Logic for RowCheck {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, a_stuck, b_stuck, in_line, dropping, widx, wl, sof_pending, nofree, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, el, start_q, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, dec1, kept, crd, crd1, crd2, cwr, pvalid, pidx, pn, px, pd, dvalid, both_ready, qx, qd, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
+        dff_setup!(self, clock, a_stuck, b_stuck, in_line, dropping, widx, wl, sof_pending, nofree, cnt0, sof0, eof0, cnt1, sof1, eof1, cnt2, sof2, eof2, cnt3, sof3, eof3, lx0, lx1, lx2, lx3, lx_cur, cut_cur, cut_q, el, start_q, prev_needed, busy, n_cur, sof_cur, eof_cur, dec, dec1, kept, crd, crd1, crd2, cwr, pvalid, pidx, pn, px, pd, dvalid, both_ready, qx, qd, o_valid, o_last, o_x, o_d, o_sof, o_eof, o_count, overflow_q, crowded_q);
         self.a_stuck.reset.next = self.reset.val();
         self.b_stuck.reset.next = self.reset.val();
         self.in_line.reset.next = self.reset.val();
@@ -486,15 +514,19 @@ impl Logic for RowCheck {
         self.nofree.reset.next = self.reset.val();
         self.cnt0.reset.next = self.reset.val();
         self.sof0.reset.next = self.reset.val();
+        self.lx0.reset.next = self.reset.val();
         self.eof0.reset.next = self.reset.val();
         self.cnt1.reset.next = self.reset.val();
         self.sof1.reset.next = self.reset.val();
+        self.lx1.reset.next = self.reset.val();
         self.eof1.reset.next = self.reset.val();
         self.cnt2.reset.next = self.reset.val();
         self.sof2.reset.next = self.reset.val();
+        self.lx2.reset.next = self.reset.val();
         self.eof2.reset.next = self.reset.val();
         self.cnt3.reset.next = self.reset.val();
         self.sof3.reset.next = self.reset.val();
+        self.lx3.reset.next = self.reset.val();
         self.eof3.reset.next = self.reset.val();
         self.el.reset.next = self.reset.val();
         self.start_q.reset.next = self.reset.val();
@@ -502,6 +534,9 @@ impl Logic for RowCheck {
         self.busy.reset.next = self.reset.val();
         self.n_cur.reset.next = self.reset.val();
         self.sof_cur.reset.next = self.reset.val();
+        self.cut_cur.reset.next = self.reset.val();
+        self.cut_q.reset.next = self.reset.val();
+        self.lx_cur.reset.next = self.reset.val();
         self.eof_cur.reset.next = self.reset.val();
         self.dec.reset.next = self.reset.val();
         self.dec1.reset.next = self.reset.val();
@@ -581,6 +616,7 @@ impl Logic for RowCheck {
         if self.take_marker.val() & (self.wbank.val() == self.bank0.val()) {
             self.cnt0.d.next = self.widx.q.val();
             self.sof0.d.next = self.m_sof.val() | self.sof_pending.q.val();
+            self.lx0.d.next = bit_cast::<X_BITS, POS_BITS>(self.m_x_ref.val());
             self.eof0.d.next = self.m_eof.val();
         }
         if self.drop_eof.val() & (self.lbank.val() == self.bank1.val()) {
@@ -589,6 +625,7 @@ impl Logic for RowCheck {
         if self.take_marker.val() & (self.wbank.val() == self.bank1.val()) {
             self.cnt1.d.next = self.widx.q.val();
             self.sof1.d.next = self.m_sof.val() | self.sof_pending.q.val();
+            self.lx1.d.next = bit_cast::<X_BITS, POS_BITS>(self.m_x_ref.val());
             self.eof1.d.next = self.m_eof.val();
         }
         if self.drop_eof.val() & (self.lbank.val() == self.bank2.val()) {
@@ -597,6 +634,7 @@ impl Logic for RowCheck {
         if self.take_marker.val() & (self.wbank.val() == self.bank2.val()) {
             self.cnt2.d.next = self.widx.q.val();
             self.sof2.d.next = self.m_sof.val() | self.sof_pending.q.val();
+            self.lx2.d.next = bit_cast::<X_BITS, POS_BITS>(self.m_x_ref.val());
             self.eof2.d.next = self.m_eof.val();
         }
         if self.drop_eof.val() & (self.lbank.val() == self.bank3.val()) {
@@ -605,6 +643,7 @@ impl Logic for RowCheck {
         if self.take_marker.val() & (self.wbank.val() == self.bank3.val()) {
             self.cnt3.d.next = self.widx.q.val();
             self.sof3.d.next = self.m_sof.val() | self.sof_pending.q.val();
+            self.lx3.d.next = bit_cast::<X_BITS, POS_BITS>(self.m_x_ref.val());
             self.eof3.d.next = self.m_eof.val();
         }
 
@@ -653,6 +692,26 @@ impl Logic for RowCheck {
         if self.bank_cur.val() == self.bank3.val() {
             self.sof_el.next = self.sof3.q.val();
         }
+        self.sof_dn.next = self.sof0.q.val();
+        if self.bank_dn.val() == self.bank1.val() {
+            self.sof_dn.next = self.sof1.q.val();
+        }
+        if self.bank_dn.val() == self.bank2.val() {
+            self.sof_dn.next = self.sof2.q.val();
+        }
+        if self.bank_dn.val() == self.bank3.val() {
+            self.sof_dn.next = self.sof3.q.val();
+        }
+        self.lx_el.next = self.lx0.q.val();
+        if self.bank_cur.val() == self.bank1.val() {
+            self.lx_el.next = self.lx1.q.val();
+        }
+        if self.bank_cur.val() == self.bank2.val() {
+            self.lx_el.next = self.lx2.q.val();
+        }
+        if self.bank_cur.val() == self.bank3.val() {
+            self.lx_el.next = self.lx3.q.val();
+        }
         self.eof_el.next = self.eof0.q.val();
         if self.bank_cur.val() == self.bank1.val() {
             self.eof_el.next = self.eof1.q.val();
@@ -663,6 +722,10 @@ impl Logic for RowCheck {
         if self.bank_cur.val() == self.bank3.val() {
             self.eof_el.next = self.eof3.q.val();
         }
+        // The row is the last of a frame cut short: the row below starts a
+        // frame and this one does not end its own. It is dropped (checked as
+        // a row without matches, and not sent).
+        self.cut_el.next = (self.pend.val() >= self.two.val()) & self.sof_dn.val() & !self.eof_el.val();
         // Ready: the row below has arrived, or this row ends its frame; the
         // start is registered (it resets most of the engine).
         self.start_q.d.next = !self.busy.q.val() & !self.start_q.q.val() & ((self.pend.val() >= self.two.val()) | (self.pend.val().any() & self.eof_el.val()));
@@ -818,7 +881,12 @@ impl Logic for RowCheck {
         if self.start.val() {
             self.busy.d.next = true;
             self.n_cur.d.next = self.cnt_cur.val();
+            if self.cut_el.val() {
+                self.n_cur.d.next = 0.into();
+            }
+            self.cut_cur.d.next = self.cut_el.val();
             self.sof_cur.d.next = self.sof_el.val();
+            self.lx_cur.d.next = self.lx_el.val();
             self.eof_cur.d.next = self.eof_el.val();
             self.dec.d.next = 0.into();
             self.dec1.d.next = 1.into();
@@ -873,19 +941,21 @@ impl Logic for RowCheck {
         // Outputs (zero while not valid).
         // (A compared match that is kept is decided: `decide & keep` is
         // `dvalid & keep`.)
-        self.o_valid.d.next = (self.dvalid.q.val() & self.keep.val()) | self.finish.val();
-        self.o_last.d.next = self.finish.val();
+        self.o_valid.d.next = (self.dvalid.q.val() & self.keep.val()) | (self.finish.val() & !self.cut_cur.q.val());
+        self.o_last.d.next = self.finish.val() & !self.cut_cur.q.val();
+        self.cut_q.d.next = self.finish.val() & self.cut_cur.q.val();
         self.o_x.d.next = 0.into();
         self.o_d.d.next = 0.into();
         if self.dvalid.q.val() & self.keep.val() {
             self.o_x.d.next = self.qx.q.val();
             self.o_d.d.next = self.qd.q.val();
         }
-        self.o_sof.d.next = self.finish.val() & self.sof_cur.q.val();
-        self.o_eof.d.next = self.finish.val() & self.eof_cur.q.val();
+        self.o_sof.d.next = self.finish.val() & self.sof_cur.q.val() & !self.cut_cur.q.val();
+        self.o_eof.d.next = self.finish.val() & self.eof_cur.q.val() & !self.cut_cur.q.val();
         self.o_count.d.next = 0.into();
-        if self.finish.val() {
+        if self.finish.val() & !self.cut_cur.q.val() {
             self.o_count.d.next = self.kept.q.val();
+            self.o_x.d.next = bit_cast::<POS_BITS, X_BITS>(self.lx_cur.q.val());
         }
         self.c_valid.next = self.o_valid.q.val();
         self.c_last.next = self.o_last.q.val();
@@ -895,6 +965,7 @@ impl Logic for RowCheck {
         self.c_eof.next = self.o_eof.q.val();
         self.c_count.next = self.o_count.q.val();
         self.overflow.next = self.overflow_q.q.val();
+        self.cut.next = self.cut_q.q.val();
         self.crowded.next = self.crowded_q.q.val();
     }
 }

@@ -537,6 +537,35 @@ pub(crate) fn as_features(lines: &[HwLine]) -> Vec<golden::line::LineFeatures> {
         .collect()
 }
 
+/// Streams `beats` through `sim` as a camera that may break the rules
+/// would (each beat offered until taken, `tvalid` high throughout; its
+/// `tuser` and `tlast` as given), then runs until no line's marker has come
+/// for `quiet` clocks: the lines whose markers came, in order.
+pub fn run_stream<D: DetectorDut>(sim: &mut DetectorSim<D>, beats: &[PixelBeat], quiet: u64) -> Vec<HwLine> {
+    let mut lines = Vec::new();
+    let mut current = HwLine::default();
+    let (mut k, mut idle) = (0usize, 0u64);
+    while k < beats.len() || idle <= quiet {
+        let beat = beats.get(k).map_or(PixelBeat::default(), |b| PixelBeat { tvalid: true, ..*b });
+        let cycle = sim.cycle;
+        let (accepted, out) = sim.cycle(beat);
+        k += accepted as usize;
+        idle += 1;
+        if let Some(out) = out {
+            if out.marker {
+                current.marker = out;
+                current.marker_cycle = cycle;
+                lines.push(std::mem::take(&mut current));
+                idle = 0;
+            } else {
+                current.records.push(out);
+                current.record_cycles.push(cycle);
+            }
+        }
+    }
+    lines
+}
+
 /// The beats of `lines` streamed as one frame (`tuser` on the first pixel,
 /// `tlast` on each line's last), `idle` clocks of `tvalid` low after each
 /// line, and `tvalid` low wherever `gap()` says so.

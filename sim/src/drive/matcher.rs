@@ -181,6 +181,10 @@ pub struct MatchLine {
     pub wide: bool,
     pub full: bool,
     pub sof: bool,
+    /// The line's last stored pixel (its stored width − 1), which the
+    /// marker carries in `pos` (the reference side's reaches the output
+    /// marker's `x_ref`).
+    pub last_x: u32,
 }
 
 /// One output beat: a match, or a line's marker.
@@ -411,6 +415,7 @@ fn side_beat(line: &MatchLine, k: usize) -> SideBeat {
         None => SideBeat {
             valid: true,
             last: true,
+            record: MatchRecord { pos: line.last_x, ..MatchRecord::default() },
             dt: line.dt,
             wide: line.wide,
             full: line.full,
@@ -610,7 +615,7 @@ pub fn image_lines_in(left: &golden::GreyImage, right: &golden::GreyImage, confi
             let f = |img: &golden::GreyImage| {
                 let d = golden::hardware::detect_line(img.row(y), limits);
                 let features = LineFeatures { sigma: d.dt / golden::noise::THRESHOLD_FACTOR, dt: d.dt, declivities: d.declivities };
-                MatchLine { wide: img.width() > sizes.w_max, ..quantize_line(&features, sizes.n_max) }
+                MatchLine { wide: img.width() > sizes.w_max, last_x: (img.width().min(sizes.w_max) - 1) as u32, ..quantize_line(&features, sizes.n_max) }
             };
             let (mut l, mut r) = (f(left), f(right));
             (l.sof, r.sof) = (y == 0, y == 0);

@@ -17,7 +17,10 @@
 //!
 //! Each faulty frame (one class, or two or three mixed) is followed by a
 //! clean frame, one of a few, both cameras in step after a vertical gap of
-//! [`CampaignSpec::gap_lines`] line periods. The frames are crops of real
+//! [`CampaignSpec::gap_lines`] line periods (counted from the faulty frame's
+//! last beat, or from when its output has left if that is later: every
+//! output line has its frame's width, so a frame whose first line is wider
+//! than the others' line period takes longer to leave than to come in). The frames are crops of real
 //! pairs given by the caller and generated textures. The invariants checked
 //! over the whole run:
 //!
@@ -27,7 +30,8 @@
 //!   and no line left without its `m_tlast`;
 //! - **aligned lines**: inside an output frame (from one `m_tuser` to the
 //!   next) every line has one width, and it is the width of an input
-//!   frame's first reference line (at most `W_MAX`);
+//!   frame's first reference line as the detector stores it (at most
+//!   `W_MAX`, run on into the next line when its `tlast` is missing);
 //! - **clean frames exact**: each clean frame gives, beat for beat and clock
 //!   for clock from its first pixel, what a fresh run of that frame alone
 //!   gives (the core idle since configuration), with nothing else on the
@@ -112,6 +116,10 @@ pub struct CampaignReport {
     pub injected: BTreeMap<&'static str, usize>,
     pub clean_frames: usize,
     pub clean_exact: usize,
+    /// Clean frames sent right after a faulty frame whose last line ended
+    /// only at their `tuser` (no vertical blanking before them), and not
+    /// checked: the clean frame after each is.
+    pub clean_unchecked: usize,
     /// Of those, the frames that came out [`LATE_START_MAX`] clocks later or
     /// less than a fresh run's (the line before ended only on their first
     /// pixel's `tuser`, which the detector then takes a clock later).
@@ -134,6 +142,12 @@ pub struct CampaignReport {
 /// frame's `tuser` (the line before had no `tlast`), the first pixel
 /// waiting in the register slice.
 pub const LATE_START_MAX: u64 = 1;
+
+/// Rows of a faulty frame's width, besides its own, that the campaign
+/// waits for its output to leave before the clean frame: the median's last
+/// [`rtl::params::MEDIAN_HALF`] rows flushed, and the
+/// pipeline's latency (a row or two).
+const DRAIN_EXTRA_ROWS: usize = 8;
 
 /// The invariants' names in reports.
 pub const INVARIANTS: [&str; 4] = ["hang", "malformed_line", "misaligned_line", "clean_frame_inexact"];
@@ -337,6 +351,49 @@ fn append(script: &mut Vec<Beat>, lines: &[Line], at: u64) -> u64 {
     end
 }
 
+/// The width of the frame that starts with `lines[0]` (a line with
+/// `tuser`), as the detector stores it: its first line's pixels up to
+/// `W_MAX`, run on into the next lines while `tlast` is missing (up to a
+/// `tuser`).
+fn frame_width(lines: &[Line], w_max: usize) -> usize {
+    let mut w = 0;
+    for (k, line) in lines.iter().enumerate() {
+        if k > 0 && line.user {
+            break;
+        }
+        w += line.px.len();
+        if w >= w_max || line.last {
+            break;
+        }
+    }
+    w.min(w_max)
+}
+
+/// Whether the frame `lines` (one camera's) ends only at the next frame's
+/// `tuser`: its last line has no `tlast` and stops short of the width its
+/// frame's first line set, so the detector cannot end it sooner.
+fn unended(lines: &[Line], w_max: usize) -> bool {
+    let Some(last) = lines.last() else { return false };
+    if last.last {
+        return false;
+    }
+    let k = lines.iter().rposition(|l| l.user).unwrap_or(0);
+    let limit = if k + 1 == lines.len() { w_max } else { frame_width(&lines[k..], w_max) };
+    last.px.len() < limit
+}
+
+/// A clean frame to check: its fresh run, where it starts in each script
+/// and on which clock, and the faulty frame before it.
+#[derive(Debug, Clone)]
+struct Check {
+    reference: usize,
+    left_index: usize,
+    right_index: usize,
+    at: u64,
+    faulty: usize,
+    classes: Vec<Fault>,
+}
+
 /// A clean frame's output from a fresh run: beats with clocks from its
 /// first pixel.
 #[derive(Debug, Clone)]
@@ -390,9 +447,7 @@ pub fn run_campaign(spec: &CampaignSpec, sources: &[(GreyImage, GreyImage)], des
     let mut frame_widths = std::collections::BTreeSet::new();
     let w_max = spec.config.sizes().w_max;
     frame_widths.insert(spec.width.min(w_max));
-    // (the clean frame's reference, its first beat's index in each script,
-    // its scheduled clock, the faulty frame before it and its classes)
-    let mut checks: Vec<(usize, usize, usize, u64, usize, Vec<Fault>)> = Vec::new();
+    let mut checks: Vec<Check> = Vec::new();
     let mut t = start;
     for n in 0..spec.frames {
         let (l, r) = source_frame(&mut rng, spec, sources);
@@ -417,16 +472,32 @@ pub fn run_campaign(spec: &CampaignSpec, sources: &[(GreyImage, GreyImage)], des
             inject(&mut rng, *fault, &mut f, spec);
             *report.injected.entry(fault.name()).or_default() += 1;
         }
-        for line in f.left.iter().filter(|l| l.user) {
-            frame_widths.insert(line.px.len().min(w_max));
+        let widths: Vec<usize> = (0..f.left.len()).filter(|&k| f.left[k].user).map(|k| frame_width(&f.left[k..], w_max)).collect();
+        frame_widths.extend(widths.iter().copied());
+        // The faulty frame's output leaves one pixel a clock, each line of
+        // its frame's width: a frame whose first line is wider than the
+        // others takes longer to leave than to come in (its rows, and the
+        // median's last rows flushed, with room to spare for the latency:
+        // `DRAIN_EXTRA_ROWS`).
+        let widest = widths.iter().copied().max().unwrap_or(0);
+        let drain = if widest > spec.width { t + (f.left.len() + DRAIN_EXTRA_ROWS) as u64 * (widest + spec.hblank as usize) as u64 } else { 0 };
+        let end = append(&mut ls, &f.left, t).max(append(&mut rs, &f.right, t)).max(drain);
+        t = end + gap;
+        // A frame whose last line has no end but the next `tuser` runs into
+        // the next frame: that one is sent but not checked (it has no
+        // vertical blanking before it), and a second clean frame follows.
+        let unended = unended(&f.left, w_max) || unended(&f.right, w_max);
+        for checked in if unended { vec![false, true] } else { vec![true] } {
+            let c = rng.range(0, refs.len() as u64 - 1) as usize;
+            let (cl, cr) = &cleans[c];
+            if checked {
+                checks.push(Check { reference: c, left_index: ls.len(), right_index: rs.len(), at: t, faulty: n, classes: chosen.clone() });
+            } else {
+                report.clean_unchecked += 1;
+            }
+            let end = append(&mut ls, &clean_lines(cl, spec.hblank), t).max(append(&mut rs, &clean_lines(cr, spec.hblank), t));
+            t = end + gap;
         }
-        let end = append(&mut ls, &f.left, t).max(append(&mut rs, &f.right, t));
-        t = end + gap;
-        let c = rng.range(0, refs.len() as u64 - 1) as usize;
-        let (cl, cr) = &cleans[c];
-        checks.push((c, ls.len(), rs.len(), t, n, chosen));
-        let end = append(&mut ls, &clean_lines(cl, spec.hblank), t).max(append(&mut rs, &clean_lines(cr, spec.hblank), t));
-        t = end + gap;
         if (n + 1) % 100 == 0 {
             progress(&format!("generated {} of {} faulty frames", n + 1, spec.frames));
         }
@@ -475,7 +546,7 @@ pub fn run_campaign(spec: &CampaignSpec, sources: &[(GreyImage, GreyImage)], des
         v.push(Violation { invariant: "malformed_line", frame: None, detail: format!("the output ends inside a line of {len} beats") });
     }
     // The clean frames.
-    for (c, li, ri, at, n, chosen) in &checks {
+    for Check { reference: c, left_index: li, right_index: ri, at, faulty: n, classes: chosen } in &checks {
         let (tl, tr) = (first_take(&run, 0, *li), first_take(&run, 1, *ri));
         let classes = chosen.iter().map(|f| f.name()).collect::<Vec<_>>().join("+");
         let mut fail = |detail: String| v.push(Violation { invariant: "clean_frame_inexact", frame: Some(*n), detail: format!("after faulty frame {n} ({classes}): {detail}") });
@@ -508,8 +579,8 @@ pub fn run_campaign(spec: &CampaignSpec, sources: &[(GreyImage, GreyImage)], des
     }
     for x in &v {
         *report.violated.entry(x.invariant).or_default() += 1;
-        if let Some((_, _, _, _, _, chosen)) = x.frame.and_then(|n| checks.get(n)) {
-            for f in chosen {
+        if let Some(check) = x.frame.and_then(|n| checks.iter().find(|k| k.faulty == n)) {
+            for f in &check.classes {
                 *report.violated_after.entry(f.name()).or_default() += 1;
             }
         }
