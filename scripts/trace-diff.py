@@ -2,13 +2,16 @@
 """Compares two co-simulation traces (`# cosim trace v1`, vectors/README.md) clock by clock.
 
     python3 scripts/trace-diff.py OLD NEW [--ignore-input NAME ...] [--new-port NAME ...]
+                                          [--only-where PORT:FLAG ...]
 
 Expands the `*N` repeats, drops the named input columns of either trace (each must be 0 on
 every clock of the trace that has it) and the new ports of NEW (inputs or outputs that OLD
 lacks; it prints on how many clocks each is not 0), and reports the ports and clocks that
-differ. It exits 0 when both traces have the same ports, clocks and values, 1 when they differ.
+differ. `--only-where PORT:FLAG` lets PORT differ, but only on clocks where the port FLAG (of
+the same side, in both traces) is not 0; it prints on how many clocks PORT changed. It exits 0 when both traces have the same ports, clocks and values, 1 when they differ.
 Used to show that a re-blessed vector changed only by a new input held at 0 (the `reset`
-port), or only by new ports (the matcher's `o_sof`, `r_unpaired`, `o_unpaired`).
+port), or only by new ports (the matcher's `o_sof`, `r_unpaired`, `o_unpaired`), or only in a
+field on a line's marker (the detector's `m_end` where `m_last` is set).
 """
 import argparse
 import sys
@@ -60,6 +63,7 @@ def main():
     ap.add_argument("new")
     ap.add_argument("--ignore-input", action="append", default=[], metavar="NAME")
     ap.add_argument("--new-port", action="append", default=[], metavar="NAME")
+    ap.add_argument("--only-where", action="append", default=[], metavar="PORT:FLAG")
     a = ap.parse_args()
     (oi, oo, oc), (ni, no, nc) = read(a.old), read(a.new)
     oi, oc = drop(a.old, oi, oc, a.ignore_input)
@@ -68,11 +72,27 @@ def main():
     if (oi, oo) != (ni, no):
         print(f"ports differ: {oi} | {oo} against {ni} | {no}")
         return 1
+    for spec in a.only_where:
+        port, flag = spec.split(":")
+        side = 0 if port in [n for n, _ in ni] else 1
+        names = [n for n, _ in (ni if side == 0 else no)]
+        kp, kf = names.index(port), names.index(flag)
+        changed = outside = 0
+        for x, y in zip(oc, nc):
+            if x[side][kp] != y[side][kp]:
+                changed += 1
+                if int(x[side][kf], 16) == 0 or int(y[side][kf], 16) == 0:
+                    outside += 1
+                x[side][kp] = y[side][kp]
+        print(f"{a.new}: {port} changed on {changed} clocks, {outside} of them where {flag} is 0")
+        if outside:
+            return 1
+    ignored = ", ".join(a.ignore_input + a.new_port + [w.replace(":", " where ") for w in a.only_where]) or "nothing"
     diff = [k for k, (x, y) in enumerate(zip(oc, nc)) if x != y]
     if len(oc) != len(nc) or diff:
         print(f"{len(oc)} against {len(nc)} clocks; {len(diff)} differ, first {diff[:5]}")
         return 1
-    print(f"{a.new}: {len(nc)} clocks, {len(ni)} inputs and {len(no)} outputs, every clock equal (ignoring {', '.join(a.ignore_input + a.new_port) or 'nothing'})")
+    print(f"{a.new}: {len(nc)} clocks, {len(ni)} inputs and {len(no)} outputs, every clock equal (ignoring {ignored})")
     return 0
 
 

@@ -44,7 +44,8 @@ fn row(pair: &str, y: usize) -> Vec<u8> {
 }
 
 /// Widths 1, 2, 3, flat, 0/255 extremes, more than N_MAX declivities, wider
-/// than W_MAX, random walks with tvalid gaps, and real rows.
+/// than W_MAX, random walks with tvalid gaps, and real rows, each line a
+/// frame of its own.
 fn corner_trace(design: &str) -> Trace {
     let mut rng = VectorRng(0x5eed_0001);
     let mut zigzag: Vec<u8> = vec![150; 40];
@@ -65,9 +66,12 @@ fn corner_trace(design: &str) -> Trace {
     ];
     let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
     // Each line followed by enough idle clocks that the input never stalls,
-    // and one pixel in eight with tvalid low.
+    // and one pixel in eight with tvalid low. Each line starts a frame (its
+    // own width: a later line of a frame is cut at the first one's).
     let mut gaps = VectorRng(0x5eed_0002);
-    let beats = frame_beats(&refs, MIN_LINE_PERIOD, || gaps.next() % 8 == 0);
+    // (After a wide line, as many idle clocks as its width: the reader is
+    // that long on it, and the lines behind it wait for its bank.)
+    let beats: Vec<_> = refs.iter().flat_map(|line| frame_beats(&[line], MIN_LINE_PERIOD.max(line.len()), || gaps.next() % 8 == 0)).collect();
     detector_trace(design, &beats).expect("records")
 }
 
@@ -112,6 +116,14 @@ fn committed(name: &str, fresh: &Trace) -> Trace {
     cosim::committed_trace(&vectors().join(name), fresh).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// Clocks on which a beat was offered (`s_tvalid`) and not taken: the
+/// trace offers each beat on one clock only, so such a beat is lost.
+fn refused_beats(t: &Trace) -> usize {
+    let v = t.inputs.iter().position(|p| p.name == "s_tvalid").expect("s_tvalid");
+    let r = t.outputs.iter().position(|p| p.name == "s_tready").expect("s_tready");
+    t.cycles.iter().filter(|c| c.inputs[v] == 1 && c.outputs[r] == 0).count()
+}
+
 fn valid_beats(t: &Trace) -> usize {
     let i = t.outputs.iter().position(|p| p.name == "m_valid").expect("m_valid");
     t.cycles.iter().filter(|c| c.outputs[i] == 1).count()
@@ -127,6 +139,7 @@ fn cosim_detector_vectors_are_current_and_carry_records() {
     // Every line's marker and a fair number of records, so the comparison
     // below is not about an idle bus.
     assert!(valid_beats(&corner) > 60, "{}", valid_beats(&corner));
+    assert_eq!(refused_beats(&corner), 0, "the corner cases' lines are offered when the detector takes them");
     assert!(valid_beats(&real) > 300, "{}", valid_beats(&real));
 }
 
