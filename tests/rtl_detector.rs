@@ -35,7 +35,7 @@ use rand_distr::{Distribution, Normal};
 use rtl::detector::declivity_detector::{marker_latency, MIN_LINE_PERIOD};
 use rtl::params::{DT_FRAC_BITS, N_MAX, W_MAX};
 use sim::drive::detector::{
-    compare_line, golden_lines, run_lines, DetectorRun, DetectorSim, HwLine, LineComparison, RecordBeat,
+    compare_line, golden_lines, run_lines, run_lines_as_frames, DetectorRun, DetectorSim, HwLine, LineComparison, RecordBeat,
 };
 use std::cell::RefCell;
 use std::time::Instant;
@@ -51,15 +51,16 @@ fn random_gaps(p: f64, seed: u64) -> impl FnMut(u64) -> bool {
     move |_| p > 0.0 && rng.gen_bool(p)
 }
 
-/// Streams `lines` through a fresh detector and golden; checks that every
-/// line came out, and returns the run, golden's lines and the comparisons.
+/// Streams `lines` through a fresh detector (each line a frame of its own:
+/// generated lines have any widths) and golden; checks that every line came
+/// out, and returns the run, golden's lines and the comparisons.
 fn stream_and_compare(
     lines: &[Vec<u8>],
     gap: impl FnMut(u64) -> bool,
 ) -> Result<(DetectorRun, Vec<LimitedLine>, Vec<LineComparison>), TestCaseError> {
     let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
     let mut sim = DetectorSim::new();
-    let run = run_lines(&mut sim, &refs, gap, |_| {}).map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let run = run_lines_as_frames(&mut sim, &refs, gap, |_| {}).map_err(|e| TestCaseError::fail(e.to_string()))?;
     prop_assert_eq!(run.lines.len(), lines.len(), "one marker per line");
     let gold = golden_lines(&refs);
     let cmp = run.lines.iter().zip(&gold).map(|(h, g)| compare_line(h, g)).collect();
@@ -130,9 +131,10 @@ struct TimedRun {
     stalls_inside_lines: u64,
 }
 
-/// [`run_lines`] with its clocks arranged per line (a hang fails the test).
+/// [`run_lines_as_frames`] with its clocks arranged per line (a hang fails
+/// the test).
 fn run_timed(sim: &mut DetectorSim, lines: &[&[u8]], gap: impl FnMut(u64) -> bool) -> TimedRun {
-    let run = run_lines(sim, lines, gap, |_| {}).unwrap_or_else(|e| panic!("{e}"));
+    let run = run_lines_as_frames(sim, lines, gap, |_| {}).unwrap_or_else(|e| panic!("{e}"));
     TimedRun {
         stalls_between_lines: run.stall_cycles - run.stalls_inside_lines,
         stalls_inside_lines: run.stalls_inside_lines,
@@ -678,7 +680,7 @@ fn wide_and_full_lines_set_the_flags_keep_golden_truncated_records_and_the_strea
             if g.full {
                 assert_eq!(h.records.len(), N_MAX, "{label}: a full line sends N_MAX records");
             }
-            assert_eq!(h.marker.sof, y == 0, "{label}: sof of line {y}");
+            assert!(h.marker.sof, "{label}: line {y} starts a frame of its own (stream_and_compare)");
         }
     }
 }
@@ -832,7 +834,7 @@ fn every_row_of_both_views_of_the_eight_real_pairs_matches_golden_at_one_pixel_p
 // ===========================================================================
 
 #[test]
-fn marker_leaves_marker_latency_of_the_stored_width_after_the_last_pixel_on_idle_engines() {
+fn marker_leaves_marker_latency_of_the_stored_width_after_the_last_stored_pixel_on_idle_engines() {
     let mut rng = seeded(0x1a7e);
     let mut sim = DetectorSim::new();
     let widths = [1usize, 2, 3, 50, 279, 280, 384, 1023, W_MAX, W_MAX + 1, 1500];
@@ -843,7 +845,9 @@ fn marker_leaves_marker_latency_of_the_stored_width_after_the_last_pixel_on_idle
             // engines are free when the next line comes.
             let mut g = random_gaps(if gappy { 0.4 } else { 0.0 }, w as u64);
             let run = run_lines(&mut sim, &[line.as_slice()], &mut g, |_| {}).unwrap();
-            let got = run.lines[0].marker_cycle - run.last_pixel_cycle[0];
+            // (A line wider than W_MAX is cut, and processed, at its
+            // W_MAX-th pixel.)
+            let got = run.lines[0].marker_cycle - run.last_stored_cycle[0];
             let stored = w.min(W_MAX);
             assert_eq!(got as usize, marker_latency(stored), "width {w} (stored {stored}), tvalid gaps {gappy}");
             // The records are right too.
@@ -1023,7 +1027,7 @@ fn in_the_hd_configuration_lines_wider_than_sd_holds_equal_golden_record_for_rec
     }
     let refs: Vec<&[u8]> = lines.iter().map(|l| l.as_slice()).collect();
     let mut sim = DetectorSim::<HdDetector>::build();
-    let run = run_lines(&mut sim, &refs, random_gaps(0.05, 35), |_| {}).unwrap_or_else(|e| panic!("{e}"));
+    let run = run_lines_as_frames(&mut sim, &refs, random_gaps(0.05, 35), |_| {}).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(run.lines.len(), lines.len(), "one marker per line");
     let gold = golden_lines_in(&refs, Config::Hd);
     let mut records = 0;

@@ -85,19 +85,22 @@ PORT_GROUPS = [
                     "sink takes a beat on every clock it is offered.",
         "m_tdata": "Depth and disparity of the pixel (bit map below).",
         "m_tuser": "Start of frame: the frame's first pixel.",
-        "m_tlast": "End of line: the line's last pixel. A line has the reference line's width.",
+        "m_tlast": "End of line: the line's last pixel. Every line of a frame has the frame's width: "
+                   "that of the reference camera's first line of the frame.",
     }),
     ("Status: counters that wrap (each counts its event two clocks after it)", {
         "records_dropped": "Detector beats (records) that found a record queue full.",
         "lines_dropped": "Lines the row check had no room for (rows arriving faster than it "
                          "checks them), or the interpolator (ruled out by the limit on lines in "
-                         "flight); their pixels are not sent.",
+                         "flight), and the last row of a frame cut short (dropped when the next "
+                         "frame begins); their pixels are not sent.",
         "pixels_dropped": "Pixels that reached the vertical median while it flushed a frame's "
                           "last four rows (vertical blanking too short).",
         "lines_full": "Line pairs with more than `N_MAX` characteristic declivities on a side: "
                       "the first `N_MAX` are matched.",
-        "lines_wide": "Line pairs with a side wider than `W_MAX`: the first `W_MAX` pixels "
-                      "are processed.",
+        "lines_wide": "Line pairs with a side cut: wider than `W_MAX`, or a later line of a "
+                      "frame wider than the frame's first (a late end of line, or a `tlast` "
+                      "missing); the first pixels are processed, the rest dropped to `tlast`.",
         "lines_unpaired": "Lines of one camera dropped unpaired: the other camera's line at "
                           "their place starts a frame and they do not (the frame before had "
                           "more lines on their camera).",

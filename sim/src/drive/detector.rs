@@ -263,6 +263,10 @@ pub struct DetectorRun {
     pub first_pixel_cycle: Vec<u64>,
     /// Clock at which each line's last pixel was accepted.
     pub last_pixel_cycle: Vec<u64>,
+    /// Clock at which each line's last stored pixel was accepted: its
+    /// `W_MAX`-th in a wider line, where the line is cut (for lines that
+    /// start frames, or of the first line's width at most).
+    pub last_stored_cycle: Vec<u64>,
 }
 
 impl DetectorRun {
@@ -285,13 +289,36 @@ pub struct DetectorHang {
     pub lines: usize,
 }
 
-/// Streams `lines` through `sim` back to back (the first pixel carries
-/// `tuser`), with `tvalid` low on the clocks `c` where `gap(c)` says so, and
-/// collects each line's records with their clocks; `progress` is called with
-/// the number of lines done.
+/// Streams `lines` through `sim` back to back as one frame (the first pixel
+/// carries `tuser`), with `tvalid` low on the clocks `c` where `gap(c)` says
+/// so, and collects each line's records with their clocks; `progress` is
+/// called with the number of lines done. (A later line of the frame wider
+/// than the first is cut at the first's width: [`run_lines_as_frames`]
+/// streams lines of any widths.)
 pub fn run_lines<D: DetectorDut>(
     sim: &mut DetectorSim<D>,
     lines: &[&[u8]],
+    gap: impl FnMut(u64) -> bool,
+    progress: impl FnMut(usize),
+) -> Result<DetectorRun, DetectorHang> {
+    stream_lines(sim, lines, false, gap, progress)
+}
+
+/// [`run_lines`] with every line a frame of its own (`tuser` on each line's
+/// first pixel), so that lines of any widths up to `W_MAX` are stored whole.
+pub fn run_lines_as_frames<D: DetectorDut>(
+    sim: &mut DetectorSim<D>,
+    lines: &[&[u8]],
+    gap: impl FnMut(u64) -> bool,
+    progress: impl FnMut(usize),
+) -> Result<DetectorRun, DetectorHang> {
+    stream_lines(sim, lines, true, gap, progress)
+}
+
+fn stream_lines<D: DetectorDut>(
+    sim: &mut DetectorSim<D>,
+    lines: &[&[u8]],
+    each_a_frame: bool,
     mut gap: impl FnMut(u64) -> bool,
     mut progress: impl FnMut(usize),
 ) -> Result<DetectorRun, DetectorHang> {
@@ -307,7 +334,7 @@ pub fn run_lines<D: DetectorDut>(
         let mut beat = PixelBeat::default();
         if li < lines.len() && !gap(sim.cycle) {
             let line = lines[li];
-            beat = PixelBeat { tdata: line[xi], tvalid: true, tuser: li == 0 && xi == 0, tlast: xi + 1 == line.len(), reset: false };
+            beat = PixelBeat { tdata: line[xi], tvalid: true, tuser: (li == 0 || each_a_frame) && xi == 0, tlast: xi + 1 == line.len(), reset: false };
         }
         let cycle = sim.cycle;
         let (accepted, out) = sim.cycle(beat);
@@ -322,6 +349,9 @@ pub fn run_lines<D: DetectorDut>(
             }
             last_accept = cycle;
             run.pixels += 1;
+            if xi + 1 == lines[li].len().min(D::CONFIG.sizes().w_max) {
+                run.last_stored_cycle.push(cycle);
+            }
             xi += 1;
             if xi == lines[li].len() {
                 run.last_pixel_cycle.push(cycle);
@@ -475,7 +505,7 @@ pub struct DetectReport {
     /// Lines longer than `W_MAX` / with more than `N_MAX` declivities.
     pub wide_lines: usize,
     pub full_lines: usize,
-    /// Clocks from the first line's last pixel to its marker.
+    /// Clocks from the first line's last stored pixel to its marker.
     pub first_line_latency: u64,
     pub sim_cycles_per_s: f64,
 }
@@ -511,7 +541,7 @@ pub(crate) fn detect_image<D: DetectorDut>(
         max_dt_err_lsb: 0.0,
         wide_lines: run.lines.iter().filter(|l| l.marker.wide).count(),
         full_lines: run.lines.iter().filter(|l| l.marker.full).count(),
-        first_line_latency: run.lines.first().map_or(0, |l| l.marker_cycle - run.last_pixel_cycle[0]),
+        first_line_latency: run.lines.first().map_or(0, |l| l.marker_cycle - run.last_stored_cycle[0]),
         sim_cycles_per_s: run.cycles as f64 / secs.max(1e-9),
     };
     for (h, g) in run.lines.iter().zip(&gold) {
