@@ -262,6 +262,34 @@ fn two_frames_back_to_back_do_not_mix_rows() {
     assert!(run.rows.iter().all(|r| r.count == 0 && r.sof && r.eof));
 }
 
+/// A frame cut short (its last row has no `m_eof`, the next row starts a
+/// frame): that last row can be checked only once the next frame has
+/// begun, so it is dropped (`cut`), never leaves, and the next frame is
+/// checked as if alone; every row's marker carries its last pixel through.
+#[test]
+fn a_frame_cut_short_loses_its_last_row_the_next_frame_is_checked_alone_and_markers_carry_the_last_pixel() {
+    let a = vec![row(20, 5, 2 * PX, 10), row(20, 5, 2 * PX, 30), row(20, 5, 2 * PX, 50)];
+    let b = vec![row(20, 5, 2 * PX, 50), row(20, 5, 2 * PX, 70), row(20, 5, 2 * PX, 70)];
+    let period = safe_period(&a, 0).max(safe_period(&b, 0));
+    let mut rows: Vec<TimedRow> = frame_rows(&a, period, 0).into_iter().chain(frame_rows(&b, period, 0)).collect();
+    rows[2].eof = false; // frame a cut short: its last row never ends it
+    for (y, r) in rows.iter_mut().enumerate() {
+        r.last_x = 100 + y as u64;
+    }
+    let mut sim = RowCheckSim::new();
+    let run = sim.run_timed(&rows);
+    assert_eq!((run.cut, sim.overflows), (1, 0), "one row cut, none dropped for want of room");
+    assert_eq!(run.rows.len(), 5, "a's last row does not leave");
+    let last_x: Vec<u64> = run.rows.iter().map(|r| r.last_x).collect();
+    assert_eq!(last_x, vec![100, 101, 103, 104, 105], "each row's marker carries its own last pixel");
+    let flags: Vec<(bool, bool)> = run.rows.iter().map(|r| (r.sof, r.eof)).collect();
+    assert_eq!(flags, vec![(true, false), (false, false), (true, false), (false, false), (false, true)]);
+    let kept: Vec<Vec<FixedMatch>> = run.rows.iter().map(|r| r.kept.clone()).collect();
+    let (ga, gb) = (golden_kept(&a), golden_kept(&b));
+    assert_eq!(kept[..2], ga[..2], "a's rows 0 and 1 as golden checks them in a");
+    assert_eq!(kept[2..], gb[..], "b as golden checks it alone");
+}
+
 /// Rows arriving faster than they are checked: a row that finds every
 /// bank in use is dropped whole with `overflow`, never leaves, and the
 /// rows left are checked against each other (the frame's last row among
@@ -405,7 +433,7 @@ fn row_check_verilog_replays_the_rust_model_under_icarus_and_verilator() {
             let x0 = (r >> 32) % (4 * PX);
             let matches = (0..n as u64).map(|i| (x0 + i * step, d0 * PX + (rng.next() % (3 * PX)))).collect();
             let period = [400, 0, [0usize, 40, 150, 400][((r >> 40) % 4) as usize]][f.min(2)];
-            rows.push(TimedRow { matches, sof: y == 0, eof: y + 1 == h, period, gap });
+            rows.push(TimedRow { matches, sof: y == 0, eof: y + 1 == h, period, gap, last_x: 0 });
         }
     }
     let (mut beats, _) = row_beats(&rows);

@@ -29,6 +29,9 @@ pub struct TimedRow {
     pub period: usize,
     /// Idle clocks after each match (`m_valid` low).
     pub gap: usize,
+    /// The row's last pixel, on its marker's `m_x_ref` (the line
+    /// processor's frame width).
+    pub last_x: u64,
 }
 
 /// A row as the row check sent it.
@@ -43,6 +46,8 @@ pub struct CheckedRow {
     /// `c_sof`, `c_eof` on the marker.
     pub sof: bool,
     pub eof: bool,
+    /// `c_x_ref` on the marker: the row's last pixel.
+    pub last_x: u64,
     /// Clock of the marker on `c_*`.
     pub marker_cycle: u64,
 }
@@ -56,6 +61,8 @@ pub struct RowRun {
     /// Indices of the offered rows that were dropped (`overflow` on the
     /// clock after their marker).
     pub dropped: Vec<usize>,
+    /// Rows dropped as the last of a frame cut short (`cut`).
+    pub cut: usize,
 }
 
 /// The row check under direct drive.
@@ -67,6 +74,8 @@ pub struct RowCheckSim {
     pub overflows: u64,
     /// Clocks on which `crowded` was high.
     pub crowded: u64,
+    /// Clocks on which `cut` was high (a short frame's last row dropped).
+    pub cuts: u64,
 }
 
 /// One clock's input beat (the row check's `m_*` ports).
@@ -93,7 +102,7 @@ pub fn row_beats(rows: &[TimedRow]) -> (Vec<Beat>, Vec<usize>) {
             beats.extend(std::iter::repeat_n(Beat::default(), r.gap));
         }
         marker_at.push(beats.len());
-        beats.push(Beat { valid: true, last: true, sof: r.sof, eof: r.eof, ..Beat::default() });
+        beats.push(Beat { valid: true, last: true, sof: r.sof, eof: r.eof, x: r.last_x, ..Beat::default() });
         let end = first + r.period;
         if beats.len() < end {
             beats.resize(end, Beat::default());
@@ -123,7 +132,7 @@ impl RowCheckSim {
     pub fn new() -> Self {
         let mut uut = Box::new(RowCheck::new());
         uut.connect_all();
-        RowCheckSim { uut, cycle: 0, overflows: 0, crowded: 0 }
+        RowCheckSim { uut, cycle: 0, overflows: 0, crowded: 0, cuts: 0 }
     }
 
     fn clock(&mut self, b: Beat) -> Option<Out> {
@@ -146,6 +155,7 @@ impl RowCheckSim {
         });
         self.overflows += u.overflow.val() as u64;
         self.crowded += u.crowded.val() as u64;
+        self.cuts += u.cut.val() as u64;
         u.clock.next = true.into();
         assert!(simulate(u, 100), "the row check's logic did not settle");
         self.cycle += 1;
@@ -172,12 +182,13 @@ impl RowCheckSim {
         let (beats, marker_at) = row_beats(rows);
         let start = self.cycle;
         let dropped_before = self.overflows;
+        let cuts_before = self.cuts;
         let n: usize = rows.iter().map(|r| r.matches.len()).sum();
         let limit = start + beats.len() as u64 + 8 * (n + rows.len()) as u64 + 64 * rows.len() as u64 + 64;
-        let mut out = RowRun { rows: Vec::new(), markers: marker_at.iter().map(|&m| start + m as u64).collect(), dropped: Vec::new() };
+        let mut out = RowRun { rows: Vec::new(), markers: marker_at.iter().map(|&m| start + m as u64).collect(), dropped: Vec::new(), cut: 0 };
         let mut cur = CheckedRow::default();
         let mut k = 0usize;
-        while self.cycle < limit && out.rows.len() + ((self.overflows - dropped_before) as usize) < rows.len() {
+        while self.cycle < limit && out.rows.len() + ((self.overflows - dropped_before + self.cuts - cuts_before) as usize) < rows.len() {
             let b = beats.get(k).copied().unwrap_or_default();
             k += 1;
             let now = self.cycle;
@@ -193,6 +204,7 @@ impl RowCheckSim {
                     cur.count = o.count;
                     cur.sof = o.sof;
                     cur.eof = o.eof;
+                    cur.last_x = o.x;
                     cur.marker_cycle = now;
                     out.rows.push(std::mem::take(&mut cur));
                 } else {
@@ -201,6 +213,7 @@ impl RowCheckSim {
                 }
             }
         }
+        out.cut = (self.cuts - cuts_before) as usize;
         // Every offered beat is in, even after the last row came out.
         while k < beats.len() {
             let b = beats[k];
@@ -218,7 +231,7 @@ pub fn frame_rows(frame: &[Vec<FixedMatch>], period: usize, gap: usize) -> Vec<T
     frame
         .iter()
         .enumerate()
-        .map(|(y, m)| TimedRow { matches: m.clone(), sof: y == 0, eof: y + 1 == h, period, gap })
+        .map(|(y, m)| TimedRow { matches: m.clone(), sof: y == 0, eof: y + 1 == h, period, gap, last_x: 0 })
         .collect()
 }
 
