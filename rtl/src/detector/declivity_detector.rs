@@ -41,7 +41,8 @@
 //! stalls of shorter or mixed lines (`s_tready` low between lines, never
 //! inside one). Latency: the marker of
 //! a line of `W` stored pixels leaves [`marker_latency`]`(W)` clocks after
-//! its last pixel is accepted, when the engines are free; a record of a
+//! its last stored pixel is accepted (the line's last, or where it is cut), when
+//! the engines are free; a record of a
 //! declivity that closes at pixel `x` leaves `W - 1 - x` clocks before the
 //! marker, minus one. `s_tvalid` low inside a line only delays it.
 //!
