@@ -146,6 +146,21 @@ pub struct HwLine {
 }
 
 impl HwLine {
+    /// Adds the output beat `out` of clock `cycle` to `current`, the line
+    /// being collected; on its marker, returns the finished line (and
+    /// `current` starts afresh).
+    fn collect(current: &mut HwLine, out: RecordBeat, cycle: u64) -> Option<HwLine> {
+        if out.marker {
+            current.marker = out;
+            current.marker_cycle = cycle;
+            Some(std::mem::take(current))
+        } else {
+            current.records.push(out);
+            current.record_cycles.push(cycle);
+            None
+        }
+    }
+
     /// `d_t` in grey levels.
     pub fn dt(&self) -> f64 {
         self.marker.dt as f64 / (1u64 << DT_FRAC_BITS) as f64
@@ -360,17 +375,10 @@ fn stream_lines<D: DetectorDut>(
             }
         }
         idle += 1;
-        if let Some(out) = out {
-            if out.marker {
-                current.marker = out;
-                current.marker_cycle = cycle;
-                run.lines.push(std::mem::take(&mut current));
-                progress(run.lines.len());
-                idle = 0;
-            } else {
-                current.records.push(out);
-                current.record_cycles.push(cycle);
-            }
+        if let Some(line) = out.and_then(|out| HwLine::collect(&mut current, out, cycle)) {
+            run.lines.push(line);
+            progress(run.lines.len());
+            idle = 0;
         }
         if idle > max_idle {
             return Err(DetectorHang { idle, line: run.lines.len(), lines: lines.len() });
@@ -581,16 +589,9 @@ pub fn run_stream<D: DetectorDut>(sim: &mut DetectorSim<D>, beats: &[PixelBeat],
         let (accepted, out) = sim.cycle(beat);
         k += accepted as usize;
         idle += 1;
-        if let Some(out) = out {
-            if out.marker {
-                current.marker = out;
-                current.marker_cycle = cycle;
-                lines.push(std::mem::take(&mut current));
-                idle = 0;
-            } else {
-                current.records.push(out);
-                current.record_cycles.push(cycle);
-            }
+        if let Some(line) = out.and_then(|out| HwLine::collect(&mut current, out, cycle)) {
+            lines.push(line);
+            idle = 0;
         }
     }
     lines
