@@ -35,7 +35,7 @@ use rtl::matcher::declivity_matcher::{
     line_cycles, line_period, schedule, sweep_cycles, EngineLine, GainRule, OUTPUT_LAG, TAKE_AFTER_MARKER,
 };
 use rtl::matcher::traceback::traceback_cycles;
-use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, W_MAX};
+use rtl::params::{N_CELLS, N_MAX, POS_FRAC_BITS, ROWS_PER_CELL, SOF_SKEW_MAX, STAMP_BITS, STAMP_SHIFT, W_MAX};
 use sim::drive::matcher::{
     agreement, check_line, golden_match, golden_match_in, image_lines, match_image, Agreement, MatchLine, MatchRecord,
     MatchedLine, MatcherSim,
@@ -578,6 +578,76 @@ fn a_line_more_on_either_side_is_dropped_unpaired_and_the_next_frame_is_paired_f
             assert!(!want.nodes.is_empty(), "{what}, pair {k}: the rows match");
             assert_eq!(g.pairs(), want.nodes, "{what}, pair {k}: matched with its own partner");
             assert_eq!(g.marker.sof, k == 0 || k == a.len(), "{what}, pair {k}: the frame's first line starts the frame");
+        }
+    }
+}
+
+/// Frame starts are paired by time (the matcher's Pairing): a line that
+/// starts a frame on one side only (its camera restarted the frame and the
+/// other camera's restart line was lost) meets the other side's next frame
+/// start. Their stamps more than `SOF_SKEW_MAX` clocks apart (in ticks of
+/// `2^STAMP_SHIFT`), the older is dropped and flagged on its side, and the
+/// next frame is paired from its first line, each pair as golden matches
+/// it. Two frame starts exactly `SOF_SKEW_MAX` apart (either side the
+/// later) are paired and nothing is dropped. The stamps are compared
+/// modulo `2^STAMP_BITS`: the same holds across the wrap. Tsukuba rows: a
+/// restart line, then a frame of three rows.
+#[test]
+fn a_frame_start_more_than_the_skew_bound_older_than_the_other_cameras_is_dropped_and_one_within_it_paired() {
+    let data = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join("tsukuba")).expect("the pair loads");
+    let all = image_lines(&data.left, &data.right);
+    let dispmax = 16 * PX;
+    let skew_ticks = (SOF_SKEW_MAX >> STAMP_SHIFT) as u32;
+    let wrap = 1u32 << STAMP_BITS;
+    let restart = all[120].clone();
+    for on_reference in [false, true] {
+        for base in [1000u32, wrap - 3] {
+            for apart in [skew_ticks, skew_ticks + 1] {
+                let side = if on_reference { "reference" } else { "other" };
+                let stamp = |ticks: u32| (base + ticks) % wrap;
+                // The frame, its lines stamped `apart` ticks after `base` on
+                // both sides, or, within the bound, on the `side` only.
+                let within = apart <= skew_ticks;
+                let frame: Vec<(MatchLine, MatchLine)> = all[140..143]
+                    .iter()
+                    .enumerate()
+                    .map(|(k, (l, r))| {
+                        let (tl, tr) = match (within, on_reference) {
+                            (false, _) => (stamp(apart + 5 * k as u32), stamp(apart + 5 * k as u32)),
+                            (true, true) => (stamp(apart + 5 * k as u32), stamp(5 * k as u32)),
+                            (true, false) => (stamp(5 * k as u32), stamp(apart + 5 * k as u32)),
+                        };
+                        (MatchLine { sof: k == 0, stamp: tl, ..l.clone() }, MatchLine { sof: k == 0, stamp: tr, ..r.clone() })
+                    })
+                    .collect();
+                let mut refs: Vec<MatchLine> = Vec::new();
+                let mut others: Vec<MatchLine> = Vec::new();
+                let what = if within {
+                    format!("the {side} side's frame start {apart} ticks after the other's, from stamp {base}")
+                } else {
+                    if on_reference {
+                        refs.push(MatchLine { sof: true, stamp: stamp(0), ..restart.0.clone() });
+                    } else {
+                        others.push(MatchLine { sof: true, stamp: stamp(0), ..restart.1.clone() });
+                    }
+                    format!("a restart on the {side} side at stamp {base}, both cameras' next frame {apart} ticks later")
+                };
+                refs.extend(frame.iter().map(|p| p.0.clone()));
+                others.extend(frame.iter().map(|p| p.1.clone()));
+                let mut sim = MatcherSim::<CELLS>::new(GainRule::Robust, dispmax);
+                let (got, r_unpaired, o_unpaired) = sim.run_sides(&refs, &others, 2_000);
+                let dropped = match (within, on_reference) {
+                    (true, _) => (0, 0),
+                    (false, true) => (1, 0),
+                    (false, false) => (0, 1),
+                };
+                assert_eq!((r_unpaired, o_unpaired), dropped, "{what}: (reference, other) lines dropped");
+                assert_eq!(got.len(), frame.len(), "{what}: one line out per pair of the frame");
+                for (k, ((l, r), g)) in frame.iter().zip(&got).enumerate() {
+                    assert_eq!(g.pairs(), golden_match(l, r, dispmax, GainRule::Robust).nodes, "{what}, pair {k}: matched with its own partner");
+                    assert_eq!(g.marker.sof, k == 0, "{what}, pair {k}");
+                }
+            }
         }
     }
 }

@@ -135,6 +135,23 @@ pub(crate) const GAIN_BITS: usize = max_usize(GAIN_MAX_BITS, DIST_BITS + GAIN_FR
 pub(crate) const PATH_BITS: usize = GAIN_MAX_BITS + INDEX_BITS;
 /// Bits of `G(i, j) = g + P(i-1, j-1)` (two's complement).
 pub(crate) const SCORE_BITS: usize = PATH_BITS + 1;
+/// A line's marker carries to the matcher the clock it left its detector
+/// on, in ticks of `2^STAMP_SHIFT` clocks: the matcher pairs two frame
+/// starts only when they are close in time (its Pairing).
+pub const STAMP_SHIFT: usize = 6;
+/// Bits of the time stamp: it wraps every `2^(STAMP_BITS + STAMP_SHIFT)`
+/// clocks (4 M, 34 ms at 125 MHz, two frames at 60 Hz), and two stamps are
+/// compared modulo that.
+pub const STAMP_BITS: usize = 16;
+/// `SOF_SKEW_MAX`: two frame starts whose markers left their detectors at
+/// most this many clocks apart (two lines of `W_MAX`) are paired; more than
+/// `SOF_SKEW_MAX + 2^STAMP_SHIFT` apart, the older is dropped (in between,
+/// either, by the ticks they fall in).
+pub const SOF_SKEW_MAX: usize = 2 * W_MAX;
+/// [`SOF_SKEW_MAX`] in ticks.
+pub(crate) const SKEW_TICKS: usize = SOF_SKEW_MAX >> STAMP_SHIFT;
+const _: () = assert!(SKEW_TICKS << STAMP_SHIFT == SOF_SKEW_MAX && 2 * SKEW_TICKS < 1 << STAMP_BITS);
+
 /// Bits of the search bound `dispmax` of eq. 6, in the position format
 /// ([`POS_FRAC_BITS`] fraction bits); larger bounds are clamped to the
 /// largest, which no disparity inside a line reaches.

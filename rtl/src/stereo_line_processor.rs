@@ -70,7 +70,8 @@
 //!   later line of a frame wider than the frame's first: see "Frame
 //!   width"), `lines_unpaired` (lines of one camera
 //!   dropped because the other camera's line at their place starts a frame
-//!   and they do not: see the matcher's Pairing). Each counts its event two
+//!   and they do not, or both do more than [`SOF_SKEW_MAX`] clocks apart
+//!   and theirs is the older: see the matcher's Pairing). Each counts its event two
 //!   clocks after it (the event is registered beside its source).
 //!
 //! ## Timing
@@ -119,7 +120,11 @@
 //! Lines are paired in order within a frame: a line that starts a frame
 //! (`tuser`) is paired only with the other camera's line that starts a
 //! frame, the other camera's extra lines of the frame before being dropped
-//! unpaired (`lines_unpaired`; the matcher's Pairing). A `tuser` inside a
+//! unpaired (`lines_unpaired`; the matcher's Pairing), and only when the
+//! two lines' markers left their detectors at most [`SOF_SKEW_MAX`] clocks
+//! apart (each marker carries a time stamp, the upper [`STAMP_BITS`] bits
+//! of a clock count, through the record queue's lane 3); further apart,
+//! the older is dropped unpaired. A `tuser` inside a
 //! line ends that line on the beat before (the detector's Faults). Lines of
 //! other widths, and lines run together by a missing `tlast`, take their
 //! frame's width (see "Frame width"). Frames cut short, restarted, out of
@@ -262,8 +267,11 @@ const FULL_BIT: usize = POS_BITS + 2;
 /// Lane 1: `amp`, then the marker bit.
 const MARKER_BIT: usize = AMP_BITS;
 /// Lanes 2–4: two grey levels each (`left0, left1`, `left2, right0`,
-/// `right1, right2`); on a marker, lane 2 carries `d_t`.
-const _: () = assert!(FULL_BIT < DP16KD_WIDTH && MARKER_BIT < DP16KD_WIDTH && DT_BITS <= DP16KD_WIDTH && 2 * PIXEL_BITS <= DP16KD_WIDTH);
+/// `right1, right2`); on a marker, lane 2 carries `d_t` and lane 3 the
+/// time stamp (the matcher's Pairing).
+const _: () = assert!(FULL_BIT < DP16KD_WIDTH && MARKER_BIT < DP16KD_WIDTH && DT_BITS <= DP16KD_WIDTH && 2 * PIXEL_BITS <= DP16KD_WIDTH && STAMP_BITS <= DP16KD_WIDTH);
+/// Bits of the clock count whose upper [`STAMP_BITS`] are the time stamp.
+const CLOCK_COUNT_BITS: usize = STAMP_BITS + STAMP_SHIFT;
 
 
 #[derive(LogicBlock)]
@@ -400,11 +408,16 @@ pub struct StereoLineProcessor<const N: usize> {
     // from comparisons of `flight_base` by the taken marker, so that the
     // count's comparison is not behind the marker's handshake.
     hold_q: ResetDff<Bit>,
+    // Clocks since configuration or reset, wrapping; the markers' time
+    // stamp is its upper bits.
+    clock_count: ResetDff<Bits<CLOCK_COUNT_BITS>>,
+    stamp: Signal<Local, Bits<STAMP_BITS>>,
     took_last: Signal<Local, Bit>,
     flight_max: Constant<Bits<FLIGHT_BITS>>,
     flight_max_m1: Constant<Bits<FLIGHT_BITS>>,
     sh_level: Constant<Bits<8>>,
     sh_depth: Constant<Bits<8>>,
+    sh_stamp: Constant<Bits<8>>,
     sof_mask: Constant<Bits<DP16KD_WIDTH>>,
     wide_mask: Constant<Bits<DP16KD_WIDTH>>,
     full_mask: Constant<Bits<DP16KD_WIDTH>>,
@@ -507,11 +520,14 @@ impl<const N: usize> StereoLineProcessor<N> {
             flight_left_now: Default::default(),
             hold: Default::default(),
             hold_q: Default::default(),
+            clock_count: Default::default(),
+            stamp: Default::default(),
             took_last: Default::default(),
             flight_max: Constant::new((LINES_IN_FLIGHT as u64).into()),
             flight_max_m1: Constant::new((LINES_IN_FLIGHT as u64 - 1).into()),
             sh_level: Constant::new((PIXEL_BITS as u64).into()),
             sh_depth: Constant::new((DEPTH_BITS as u64).into()),
+            sh_stamp: Constant::new((STAMP_SHIFT as u64).into()),
             sof_mask: Constant::new((1u64 << SOF_BIT).into()),
             wide_mask: Constant::new((1u64 << WIDE_BIT).into()),
             full_mask: Constant::new((1u64 << FULL_BIT).into()),
@@ -523,7 +539,7 @@ impl<const N: usize> StereoLineProcessor<N> {
 impl<const N: usize> Logic for StereoLineProcessor<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, k_width, frame_width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, n_lines_unpaired, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, ev_unpaired, in_flight, flight_left, hold_q, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
+        dff_setup!(self, clock, m_row, p_row, h_m1, h_one, m_row_last, i_valid, i_last, i_d, i_sof, i_eof, k_width, frame_width, n_records_dropped, n_lines_dropped, n_pixels_dropped, n_lines_full, n_lines_wide, n_lines_unpaired, ev_records, ev_lines, ev_pixels, ev_full, ev_wide, ev_unpaired, in_flight, flight_left, hold_q, clock_count, k_valid, k_last, k_x, k_d, k_sof, v_valid, v_last, v_d, v_sof, out_valid, out_data, out_user, out_last);
         self.reset_buffer.reset_in.next = self.reset.val();
         self.m_row.reset.next = self.reset_buffer.reset.val();
         self.p_row.reset.next = self.reset_buffer.reset.val();
@@ -552,6 +568,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.in_flight.reset.next = self.reset_buffer.reset.val();
         self.flight_left.reset.next = self.reset_buffer.reset.val();
         self.hold_q.reset.next = self.reset_buffer.reset.val();
+        self.clock_count.reset.next = self.reset_buffer.reset.val();
         self.k_valid.reset.next = self.reset_buffer.reset.val();
         self.k_last.reset.next = self.reset_buffer.reset.val();
         self.k_x.reset.next = self.reset_buffer.reset.val();
@@ -612,6 +629,8 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.r_skid.m_tready.next = self.right.s_tready.val();
         // ---- Detector beats into the record queues (lanes: see the
         // constants above).
+        self.clock_count.d.next = self.clock_count.q.val() + 1;
+        self.stamp.next = self.clock_count.q.val().get_bits::<STAMP_BITS>(self.sh_stamp.val().index());
         self.l_queue.w_valid.next = self.left.m_valid.val();
         self.l_queue.w_marker.next = self.left.m_last.val();
         self.l_lane0.next = bit_cast::<DP16KD_WIDTH, POS_BITS>(self.left.m_pos.val());
@@ -640,6 +659,9 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.l_queue.w_lane2.next = self.l_lane2.val();
         self.l_queue.w_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left2.val());
+        if self.left.m_last.val() {
+            self.l_queue.w_lane3.next = bit_cast::<DP16KD_WIDTH, STAMP_BITS>(self.stamp.val());
+        }
         self.l_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right1.val());
         self.r_queue.w_valid.next = self.right.m_valid.val();
@@ -666,6 +688,9 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.r_queue.w_lane2.next = self.r_lane2.val();
         self.r_queue.w_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left2.val());
+        if self.right.m_last.val() {
+            self.r_queue.w_lane3.next = bit_cast::<DP16KD_WIDTH, STAMP_BITS>(self.stamp.val());
+        }
         self.r_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right1.val());
 
@@ -680,6 +705,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.matcher.r_last.next = (self.l_queue.r_lane1.val() & self.marker_mask.val()).any();
         self.matcher.r_pos.next = bit_cast::<POS_BITS, DP16KD_WIDTH>(self.l_queue.r_lane0.val());
         self.matcher.r_sof.next = (self.l_queue.r_lane0.val() & self.sof_mask.val()).any();
+        self.matcher.r_stamp.next = bit_cast::<STAMP_BITS, DP16KD_WIDTH>(self.l_queue.r_lane3.val());
         self.matcher.r_wide.next = (self.l_queue.r_lane0.val() & self.wide_mask.val()).any();
         self.matcher.r_full.next = (self.l_queue.r_lane0.val() & self.full_mask.val()).any();
         self.matcher.r_amp.next = bit_cast::<AMP_BITS, DP16KD_WIDTH>(self.l_queue.r_lane1.val());
@@ -697,6 +723,7 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.matcher.o_wide.next = (self.r_queue.r_lane0.val() & self.wide_mask.val()).any();
         self.matcher.o_full.next = (self.r_queue.r_lane0.val() & self.full_mask.val()).any();
         self.matcher.o_sof.next = (self.r_queue.r_lane0.val() & self.sof_mask.val()).any();
+        self.matcher.o_stamp.next = bit_cast::<STAMP_BITS, DP16KD_WIDTH>(self.r_queue.r_lane3.val());
         self.matcher.o_amp.next = bit_cast::<AMP_BITS, DP16KD_WIDTH>(self.r_queue.r_lane1.val());
         self.matcher.o_dt.next = bit_cast::<DT_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());
         self.matcher.o_left0.next = bit_cast::<PIXEL_BITS, DP16KD_WIDTH>(self.r_queue.r_lane2.val());

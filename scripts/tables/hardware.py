@@ -301,11 +301,11 @@ def hw_configurations():
         rows.append([
             f"`{h['config']}`", _n(h["w_max"]), h["n_max"], f"{h['cells']} × {h['rows_per_cell']}",
             h["pos_bits"], h["dispmax_bits"], f"{h['height_bits']} (up to {_n((1 << h['height_bits']) - 1)} rows)",
-            _n(r["memory_bits"]), r["dp16kd_instances"], _n(r["reference_row_dpr16x4"]),
+            _n(h["sof_skew_max"]), _n(r["memory_bits"]), r["dp16kd_instances"], _n(r["reference_row_dpr16x4"]),
         ])
     return markdown(["`--config`", "`W_MAX`, px", "`N_MAX`", "gain cells × rows", "disparity and position bits (`m_tdata`, 4 fraction)",
-                     "`dispmax` bits", "`height` bits", "memory bits", "DP16KD instantiated", "TRELLIS_DPR16X4"],
-                    rows, ["---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"])
+                     "`dispmax` bits", "`height` bits", "`SOF_SKEW_MAX`, clk", "memory bits", "DP16KD instantiated", "TRELLIS_DPR16X4"],
+                    rows, ["---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"])
 
 
 @table("hw-budget-stages")

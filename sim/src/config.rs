@@ -38,6 +38,9 @@ pub struct Sizes {
     pub dispmax_bits: usize,
     /// Bits of the `height` port (the frame's rows).
     pub height_bits: usize,
+    /// The most clocks apart two frame starts are paired (the matcher's
+    /// Pairing).
+    pub sof_skew_max: usize,
 }
 
 /// The sizes of the configuration crate `$k`.
@@ -52,6 +55,7 @@ macro_rules! sizes_of {
             pos_bits: $k::params::POS_BITS,
             dispmax_bits: $k::params::DISPMAX_BITS,
             height_bits: $k::stereo_line_processor::HEIGHT_BITS,
+            sof_skew_max: $k::params::SOF_SKEW_MAX,
         }
     };
 }

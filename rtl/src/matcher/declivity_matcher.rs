@@ -24,8 +24,10 @@
 //! - In, per side (`r_` reference = left, `o_` other = right), named as the
 //!   detector's outputs: `valid`, `last` (the line's marker), `pos`, `amp`,
 //!   `left0..2`, `right0..2`; on the marker `dt`, `wide`, `full`, `sof`
-//!   (the line starts a frame) and, on the reference side, `pos` the line's
-//!   last pixel (an integer, no fraction bits). Out: `r_ready`, `o_ready`: records and markers are
+//!   (the line starts a frame), `stamp` (when the marker left its detector,
+//!   in ticks of `2^`[`STAMP_SHIFT`] clocks, [`STAMP_BITS`] bits, wrapping)
+//!   and, on the reference side, `pos` the line's last pixel (an integer,
+//!   no fraction bits). Out: `r_ready`, `o_ready`: records and markers are
 //!   taken only while ready (a side is not ready from its marker until the
 //!   pair is handed to the engine, nor while a complete pair waits). A
 //!   side's records beyond `4·N` (four per cell; [`N_MAX`] in the sensor's
@@ -55,9 +57,20 @@
 //! have entered the waiting slot: see Timing) and its side loads its next
 //! line, into the same bank.
 //! So a frame with unequal line counts loses its extra lines, and the next
-//! frame is paired from its first line on. Lines paired (both or neither
-//! starting a frame) go on as before, on the same clocks: well-formed
-//! streams are not affected.
+//! frame is paired from its first line on.
+//!
+//! Two lines that both start a frame are paired only when their markers'
+//! stamps are at most `SOF_SKEW_MAX >> STAMP_SHIFT` ticks apart, modulo
+//! `2^STAMP_BITS` (the line processor stamps each marker as it leaves
+//! its detector: markers at most [`SOF_SKEW_MAX`] clocks apart are paired,
+//! more than `SOF_SKEW_MAX + 2^STAMP_SHIFT` apart are not).
+//! Further apart, the older has lost its partner (its camera restarted a
+//! frame and the other camera's restart line was lost) and is dropped the
+//! same way; the younger then meets the older side's next line. Without
+//! this the two cameras' frames would stay paired a frame apart from then
+//! on. Lines paired (both or neither starting a frame, within the skew)
+//! go on as before, on the same clocks: well-formed streams are not
+//! affected.
 //!
 //! ## Timing
 //! With the engine idle, a pair whose second marker is taken at clock `t`
@@ -266,6 +279,7 @@ pub struct DeclivityMatcher<const N: usize> {
     pub r_wide: Signal<In, Bit>,
     pub r_full: Signal<In, Bit>,
     pub r_sof: Signal<In, Bit>,
+    pub r_stamp: Signal<In, Bits<STAMP_BITS>>,
     pub r_ready: Signal<Out, Bit>,
     pub o_valid: Signal<In, Bit>,
     pub o_last: Signal<In, Bit>,
@@ -281,6 +295,7 @@ pub struct DeclivityMatcher<const N: usize> {
     pub o_wide: Signal<In, Bit>,
     pub o_full: Signal<In, Bit>,
     pub o_sof: Signal<In, Bit>,
+    pub o_stamp: Signal<In, Bits<STAMP_BITS>>,
     pub o_ready: Signal<Out, Bit>,
     pub dispmin: Signal<In, Bits<DISPMAX_BITS>>,
     pub dispmax: Signal<In, Bits<DISPMAX_BITS>>,
@@ -307,6 +322,8 @@ pub struct DeclivityMatcher<const N: usize> {
     o_in: RecordInput,
     r_sof_in: ResetDff<Bit>,
     o_sof_in: ResetDff<Bit>,
+    r_stamp_in: ResetDff<Bits<STAMP_BITS>>,
+    o_stamp_in: ResetDff<Bits<STAMP_BITS>>,
     // Record memories, two banks each (bank bit on top of the index).
     r_mem: RecordMemory,
     o_mem: RecordMemory,
@@ -327,9 +344,18 @@ pub struct DeclivityMatcher<const N: usize> {
     r_sof_reg: ResetDff<Bit>,
     r_lastx: ResetDff<Bits<X_BITS>>,
     o_sof_reg: ResetDff<Bit>,
-    // Both markers in, one line starting a frame and the other not; the
-    // line dropped (registered).
+    r_stamp_reg: ResetDff<Bits<STAMP_BITS>>,
+    o_stamp_reg: ResetDff<Bits<STAMP_BITS>>,
+    // Both markers in and not a pair: one line starting a frame and the
+    // other not, or both starting one too far apart in time (`far`, the
+    // reference's the older when `r_older`); the line dropped (`r_drop`,
+    // `o_drop`, then registered).
+    stamp_diff: Signal<Local, Bits<STAMP_BITS>>,
+    far: Signal<Local, Bit>,
+    r_older: Signal<Local, Bit>,
     mismatch: Signal<Local, Bit>,
+    r_drop: Signal<Local, Bit>,
+    o_drop: Signal<Local, Bit>,
     r_drop_q: ResetDff<Bit>,
     o_drop_q: ResetDff<Bit>,
     // The waiting pair.
@@ -544,6 +570,9 @@ pub struct DeclivityMatcher<const N: usize> {
     copy_bank_size: Constant<Bits<COPY_ADDR_BITS>>,
     copy_bank2_size: Constant<Bits<COPY_ADDR_BITS>>,
     n_max: Constant<Bits<COUNT_BITS>>,
+    skew_ticks: Constant<Bits<STAMP_BITS>>,
+    skew_ticks_neg: Constant<Bits<STAMP_BITS>>,
+    stamp_msb: Constant<Bits<8>>,
     eng_idle: Constant<Bits<2>>,
     eng_sweep: Constant<Bits<2>>,
     sweep_tail: Constant<Bits<SWEEP_BITS>>,
@@ -602,7 +631,9 @@ impl<const N: usize> DeclivityMatcher<N> {
             r_wide: Default::default(),
             r_full: Default::default(),
             r_sof: Default::default(),
+            r_stamp: Default::default(),
             o_sof: Default::default(),
+            o_stamp: Default::default(),
             r_ready: Default::default(),
             o_valid: Default::default(),
             o_last: Default::default(),
@@ -639,6 +670,8 @@ impl<const N: usize> DeclivityMatcher<N> {
             r_in: Default::default(),
             o_in: Default::default(),
             r_sof_in: Default::default(),
+            o_stamp_in: Default::default(),
+            r_stamp_in: Default::default(),
             o_sof_in: Default::default(),
             r_mem: Default::default(),
             o_mem: Default::default(),
@@ -657,7 +690,14 @@ impl<const N: usize> DeclivityMatcher<N> {
             r_sof_reg: Default::default(),
             r_lastx: Default::default(),
             o_sof_reg: Default::default(),
+            r_stamp_reg: Default::default(),
+            o_stamp_reg: Default::default(),
+            stamp_diff: Default::default(),
+            far: Default::default(),
+            r_older: Default::default(),
             mismatch: Default::default(),
+            r_drop: Default::default(),
+            o_drop: Default::default(),
             r_drop_q: Default::default(),
             o_drop_q: Default::default(),
             pend: Default::default(),
@@ -840,6 +880,9 @@ impl<const N: usize> DeclivityMatcher<N> {
             copy_bank_size: Constant::new((N_MAX as u64).into()),
             copy_bank2_size: Constant::new((2 * N_MAX as u64).into()),
             n_max: Constant::new(((ROWS_PER_CELL * N) as u64).into()),
+            skew_ticks: Constant::new((SKEW_TICKS as u64).into()),
+            skew_ticks_neg: Constant::new((((1u64 << STAMP_BITS) - SKEW_TICKS as u64)).into()),
+            stamp_msb: Constant::new(((STAMP_BITS - 1) as u64).into()),
             eng_idle: Constant::new(((ENG_IDLE) as u64).into()),
             eng_sweep: Constant::new(((ENG_SWEEP) as u64).into()),
             sweep_tail: Constant::new(((ENGINE_LAG - 5) as u64).into()),
@@ -905,8 +948,12 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             pend_full, pend_sof, eng, ebank, epbank, tb_begun, tb_ended, t_n, t_m, t_bank, t_pbank, t_wide, t_full, t_sof, tq, tq_n, tq_m, e_wi0, e_wj0, e_diag0, e_empty, tq_wi0, tq_wj0, tq_diag0, tq_empty, tq_bank, tq_pbank, tq_wide, tq_full, tq_sof, p_addr_r, p_addr_o, en, em, sc, sweep_end_m1, sweep_done, lim1, lim2, lim3, cw_diag_q, cw_phase_q, n_p4, n_klast, n_part, r_count_m1, pend_end_m1, pend_fold, pend_p4, pend_klast, take_q, e_dt_sum, below2_reg, dm1_reg, f1_reg, f3_reg, e_wide, e_full,
             e_sof, e_fold, e_p4, e_klast, ld_valid_d, ld_index_d, c_valid_d, c_phase_d, c_valid_e, ld_valid_e, ld_index_e, c_valid_e2, c_phase_e2, r_addr_q, o_addr_q, q2_valid, q2_last, q2_i, q2_j, q2_count, ld_first, ld_phase, c_phase_e, ld_pos_q, ld_levs_q, ld_rising_q, c_valid_q, c_phase_q, c_pos_q, c_levs_q, c_rising_q, q_valid, q_last, q_i, q_j, q_count, w_valid, w_last, w_i, w_j, w_count, w_n, w_m, w_wide, w_full, w_sof, out_valid,
             out_last, out_ref, out_other, out_x_ref, out_disp, out_count, out_n, out_m, out_wide, out_full,
-            out_sof, r_lastx, pend_lastx, t_lastx, tq_lastx, e_lastx, w_lastx
+            out_sof, r_lastx, pend_lastx, t_lastx, tq_lastx, e_lastx, w_lastx, r_stamp_in, o_stamp_in, r_stamp_reg, o_stamp_reg
         );
+        self.r_stamp_in.reset.next = self.reset.val();
+        self.o_stamp_in.reset.next = self.reset.val();
+        self.r_stamp_reg.reset.next = self.reset.val();
+        self.o_stamp_reg.reset.next = self.reset.val();
         self.r_sof_in.reset.next = self.reset.val();
         self.o_sof_in.reset.next = self.reset.val();
         self.o_sof_reg.reset.next = self.reset.val();
@@ -1080,6 +1127,8 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
         self.r_in.full.next = self.r_full.val();
         self.r_sof_in.d.next = self.r_sof.val();
         self.o_sof_in.d.next = self.o_sof.val();
+        self.r_stamp_in.d.next = self.r_stamp.val();
+        self.o_stamp_in.d.next = self.o_stamp.val();
 
         self.o_in.clock.next = self.clock.val();
         self.o_in.reset.next = self.reset.val();
@@ -1153,6 +1202,7 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.r_flags_wide.d.next = self.r_in.q_wide.val();
             self.r_flags_full.d.next = self.r_flags_full.q.val() | self.r_in.q_full.val();
             self.r_sof_reg.d.next = self.r_sof_in.q.val();
+            self.r_stamp_reg.d.next = self.r_stamp_in.q.val();
             self.r_lastx.d.next = bit_cast::<X_BITS, POS_BITS>(self.r_in.q_pos.val());
         }
         if self.o_in.q_valid.val() & self.o_in.q_last.val() {
@@ -1161,24 +1211,34 @@ impl<const N: usize> Logic for DeclivityMatcher<N> {
             self.o_flags_wide.d.next = self.o_in.q_wide.val();
             self.o_flags_full.d.next = self.o_flags_full.q.val() | self.o_in.q_full.val();
             self.o_sof_reg.d.next = self.o_sof_in.q.val();
+            self.o_stamp_reg.d.next = self.o_stamp_in.q.val();
         }
         // Both markers in, one line starting a frame and the other not: the
         // other belongs to the frame before (its camera sent more lines than
-        // this one's); it is dropped, and its side loads its next line
+        // this one's). Both starting a frame, their stamps more than
+        // SKEW_TICKS apart (modulo 2^STAMP_BITS): the older has lost its
+        // partner. The line is dropped, and its side loads its next line
         // into the same bank (see "Pairing").
-        self.mismatch.next = self.r_done.q.val() & self.o_done.q.val() & (self.r_sof_reg.q.val() ^ self.o_sof_reg.q.val());
-        self.r_drop_q.d.next = self.mismatch.val() & !self.r_sof_reg.q.val();
-        self.o_drop_q.d.next = self.mismatch.val() & self.r_sof_reg.q.val();
-        if self.mismatch.val() {
-            if self.r_sof_reg.q.val() {
-                self.o_done.d.next = false;
-                self.o_count.d.next = 0.into();
-                self.o_flags_full.d.next = false;
-            } else {
-                self.r_done.d.next = false;
-                self.r_count.d.next = 0.into();
-                self.r_flags_full.d.next = false;
-            }
+        self.stamp_diff.next = self.r_stamp_reg.q.val() - self.o_stamp_reg.q.val();
+        self.r_older.next = self.stamp_diff.val().get_bit(self.stamp_msb.val().index());
+        self.far.next = self.r_sof_reg.q.val()
+            & self.o_sof_reg.q.val()
+            & (self.stamp_diff.val() > self.skew_ticks.val())
+            & (self.stamp_diff.val() < self.skew_ticks_neg.val());
+        self.mismatch.next = self.r_done.q.val() & self.o_done.q.val() & ((self.r_sof_reg.q.val() ^ self.o_sof_reg.q.val()) | self.far.val());
+        self.r_drop.next = self.mismatch.val() & (!self.r_sof_reg.q.val() | (self.far.val() & self.r_older.val()));
+        self.o_drop.next = self.mismatch.val() & (!self.o_sof_reg.q.val() | (self.far.val() & !self.r_older.val()));
+        self.r_drop_q.d.next = self.r_drop.val();
+        self.o_drop_q.d.next = self.o_drop.val();
+        if self.o_drop.val() {
+            self.o_done.d.next = false;
+            self.o_count.d.next = 0.into();
+            self.o_flags_full.d.next = false;
+        }
+        if self.r_drop.val() {
+            self.r_done.d.next = false;
+            self.r_count.d.next = 0.into();
+            self.r_flags_full.d.next = false;
         }
         // Both markers in, both lines starting a frame or neither, and the
         // slot free: the pair waits for the engine.

@@ -95,6 +95,7 @@ macro_rules! matcher_dut {
                 u.r_wide.next = r.wide;
                 u.r_full.next = r.full;
                 u.r_sof.next = r.sof;
+                u.r_stamp.next = (r.stamp as u64).into();
                 u.o_valid.next = o.valid;
                 u.o_last.next = o.last;
                 u.o_pos.next = (o.record.pos as u64).into();
@@ -109,6 +110,7 @@ macro_rules! matcher_dut {
                 u.o_wide.next = o.wide;
                 u.o_full.next = o.full;
                 u.o_sof.next = o.sof;
+                u.o_stamp.next = (o.stamp as u64).into();
             }
             fn rise(&mut self) {
                 self.clock.next = true.into();
@@ -185,6 +187,10 @@ pub struct MatchLine {
     /// marker carries in `pos` (the reference side's reaches the output
     /// marker's `x_ref`).
     pub last_x: u32,
+    /// The time stamp the marker carries (`r_stamp`, `o_stamp`: ticks of
+    /// `2^STAMP_SHIFT` clocks); two lines that start a frame are paired
+    /// only when their stamps are close (the matcher's Pairing).
+    pub stamp: u32,
 }
 
 /// One output beat: a match, or a line's marker.
@@ -233,6 +239,7 @@ pub struct SideBeat {
     pub wide: bool,
     pub full: bool,
     pub sof: bool,
+    pub stamp: u32,
 }
 
 /// The matcher under direct drive, with `N` cells: `sd`'s by default,
@@ -420,6 +427,7 @@ fn side_beat(line: &MatchLine, k: usize) -> SideBeat {
             wide: line.wide,
             full: line.full,
             sof: line.sof,
+            stamp: line.stamp,
             ..SideBeat::default()
         },
     }

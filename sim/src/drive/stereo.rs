@@ -564,6 +564,7 @@ pub fn blocks_one_after_the_other<const N: usize>(
         full: l.marker.full,
         sof: l.marker.sof,
         last_x: l.marker.end,
+        stamp: 0,
     };
     let (l, r) = (detect(left), detect(right));
     let pairs: Vec<(MatchLine, MatchLine)> = l.iter().zip(&r).map(|(a, b)| (as_match_line(a), as_match_line(b))).collect();
