@@ -3,11 +3,11 @@
 # and docs/ (method, results, verification): writes docs/data/*.json[l] (docs/data/README.md
 # lists them). Then run scripts/doc-tables.py.
 #
-# Usage: scripts/doc-data.sh [STEP...]    STEP: accuracy bench robustness rtl hd detect budget (default: all)
+# Usage: scripts/doc-data.sh [STEP...]    STEP: accuracy bench robustness rtl hd detect budget faults (default: all)
 #        DECLIVITY=path/to/declivity       the binary (default target/release/declivity)
 #
 # Runs one thing at a time, under nice. The bench needs numpy and opencv-python-headless
-# (installed if missing); rtl needs Verilator; detect takes about ten seconds a pair.
+# (installed if missing); rtl and faults need Verilator (faults: about 10 minutes); detect takes about ten seconds a pair.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${DECLIVITY:-target/release/declivity}
@@ -15,7 +15,7 @@ DATA=data/stereo
 OUT=docs/data
 MODES="paper relative one-sided consistent edges median edge-flag robust contour"
 PAIRS="tsukuba venus sawtooth map cones teddy art motorcycle"
-STEPS=${*:-accuracy bench robustness rtl hd detect budget}
+STEPS=${*:-accuracy bench robustness rtl hd detect budget faults}
 run() { nice -n 10 "$@"; }
 mkdir -p "$OUT"
 
@@ -172,6 +172,13 @@ PY
       run "$BIN" rtl detect "$DATA/$p/left_gray.png" --json --out "$work/$p"
     done > "$OUT/rtl-detect.jsonl"
     rm -rf "$work"
+    ;;
+  faults)
+    # The fault campaign on sd's Verilog, 1 000 faulty frames per group of classes (the
+    # datasheet's Verification).
+    run "$BIN" rtl faults --frames 1000 --classes short_frame,sof_mid_frame,out_of_step,idle_clocks --json > "$OUT/faults-four.json"
+    run "$BIN" rtl faults --frames 1000 --classes mixed_widths,missing_tlast --json > "$OUT/faults-widths.json"
+    run "$BIN" rtl faults --frames 1000 --json > "$OUT/faults-all.json"
     ;;
   *) echo "unknown step $step" >&2; exit 2 ;;
   esac

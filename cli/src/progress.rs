@@ -55,6 +55,14 @@ impl Progress {
         self.bar.set_position(done as u64);
     }
 
+    /// A new phase of the work: the spinner's message, or a line of its own.
+    pub(crate) fn phase(&self, phase: &str) {
+        self.bar.set_message(format!("{}: {phase}", self.message));
+        if self.lines {
+            eprintln!("{}: {phase}", self.message);
+        }
+    }
+
     pub(crate) fn inc(&self) {
         self.bar.inc(1);
     }

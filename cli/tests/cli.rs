@@ -258,6 +258,7 @@ fn every_subcommand_explains_itself_in_help() {
         &["eval", "--help"],
         &["rtl", "detect", "--help"],
         &["rtl", "match", "--help"],
+        &["rtl", "faults", "--help"],
         &["verilog", "--help"],
         &["synth", "--help"],
     ] {
@@ -609,4 +610,38 @@ fn rtl_depth_rejects_a_waveform_outside_the_rows_or_from_verilator() {
         assert!(!o.status.success(), "{args:?} must fail");
         assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
     }
+}
+
+/// `rtl faults` refuses what it cannot run before it simulates: an unknown
+/// class, frames wider than `W_MAX`, a vertical gap within the skew at which
+/// the core pairs frame starts, an unreadable pair folder; and a short
+/// campaign reports, in JSON, every class it injected and no invariant
+/// broken (the full one: the datasheet's Verification).
+#[test]
+fn rtl_faults_refuses_bad_campaigns_and_a_short_one_keeps_every_invariant() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let cases: [(&[&str], &str); 5] = [
+        (&["rtl", "faults", "--classes", "short_frame,late_frame"], "no class of fault `late_frame`"),
+        (&["rtl", "faults", "--width", "1025"], "1 to 1024 px wide"),
+        (&["rtl", "faults", "--height", "1"], "2 to 2047 rows"),
+        (&["rtl", "faults", "--gap-lines", "6"], "SOF_SKEW_MAX = 2048"),
+        (&["rtl", "faults", "--pairs", "nowhere"], "nowhere"),
+    ];
+    for (args, needle) in cases {
+        let o = declivity(args, p);
+        let (_, err) = text(&o);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    }
+    let o = declivity(&["rtl", "faults", "--frames", "12", "--seed", "3", "--json"], p);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one JSON object");
+    assert_eq!(v["faulty_frames"], 12);
+    let injected = v["injected"].as_object().expect("injected per class");
+    assert!(!injected.is_empty() && injected.values().all(|n| n.as_u64().unwrap_or(0) > 0), "{injected:?}");
+    assert_eq!(v["violations"].as_array().map(Vec::len), Some(0), "{out}");
+    assert_eq!(v["clean_exact"], v["clean_frames"], "{out}");
+    assert!(v["clean_frames"].as_u64().unwrap_or(0) >= 12, "{out}");
 }

@@ -103,7 +103,8 @@ PORT_GROUPS = [
                       "missing); the first pixels are processed, the rest dropped to `tlast`.",
         "lines_unpaired": "Lines of one camera dropped unpaired: the other camera's line at "
                           "their place starts a frame and they do not (the frame before had "
-                          "more lines on their camera).",
+                          "more lines on their camera), or both start one more than "
+                          "`SOF_SKEW_MAX` clocks apart and theirs is the older.",
     }),
 ]
 
@@ -529,3 +530,29 @@ if __name__ == "__main__":
         print(json.dumps(doc, indent=1))
     else:
         sys.exit(__doc__)
+
+
+@table("hw-faults")
+def hw_faults():
+    """The fault campaign, 1 000 faulty frames per class group, on `sd`'s Verilog."""
+    # docs/data/faults-*.json: declivity rtl faults --frames 1000 [--classes ...] --json
+    # (scripts/doc-data.sh faults)
+    rows = []
+    for name in ["faults-four.json", "faults-widths.json", "faults-all.json"]:
+        f = load_jsonl(name)[0]
+        injected = ", ".join(f"{k} {_n(v)}" for k, v in sorted(f["injected"].items()))
+        status = dict(f["status"])
+        violated = f["violated"]
+        rows.append([
+            "all six" if len(f["classes"]) == 6 else ", ".join(f"`{c}`" for c in f["classes"]),
+            _n(f["faulty_frames"]), injected,
+            f"{_n(f['clean_exact'])} of {_n(f['clean_frames'])}", _n(f["clean_unchecked"]),
+            _n(violated.get("hang", 0)), _n(violated.get("malformed_line", 0)),
+            _n(violated.get("misaligned_line", 0)), _n(violated.get("clean_frame_inexact", 0)),
+            _n(status["lines_unpaired"]), _n(status["lines_wide"]), _n(status["lines_dropped"]),
+            f"{f['sim_seconds']:.0f}",
+        ])
+    return markdown(["classes", "faulty frames", "injected (frames with the class)", "clean frames exact",
+                     "unchecked", "hangs", "malformed lines", "misaligned lines", "inexact clean frames",
+                     "`lines_unpaired`", "`lines_wide`", "`lines_dropped`", "Verilator, s"],
+                    rows, ["---", "--:", "---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"])

@@ -54,4 +54,8 @@ pub enum SimError {
     /// A search bound the matcher does not take.
     #[error(transparent)]
     Dispmax(#[from] crate::formats::DispmaxError),
+    /// A check of the design found it wrong (the fault campaign's
+    /// invariants broken).
+    #[error("{0}")]
+    Check(String),
 }

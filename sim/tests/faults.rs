@@ -8,16 +8,6 @@
 use sim::hdl::cosim::Options;
 use sim::hdl::faults::{run_campaign, CampaignReport, CampaignSpec, Fault};
 
-fn sources() -> Vec<(golden::GreyImage, golden::GreyImage)> {
-    ["cones", "teddy", "venus", "tsukuba"]
-        .iter()
-        .map(|name| {
-            let d = sim::eval::io::load_pair_dir(&sim::eval::io::stereo_data_dir().join(name)).expect("the pair loads");
-            (d.left, d.right)
-        })
-        .collect()
-}
-
 fn env(name: &str, default: u64) -> u64 {
     std::env::var(name).ok().and_then(|s| s.parse().ok()).unwrap_or(default)
 }
@@ -36,7 +26,7 @@ fn campaign(frames: u64, classes: Vec<Fault>) -> CampaignReport {
         area: sim::formats::SearchArea::below(sim::formats::dispmax_lsb(40.0, config).expect("dispmax")),
     };
     let design = sim::hdl::verilog::generate_with(config, sim::hdl::verilog::Top::Stereo, rtl::params::N_CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("the design");
-    let report = run_campaign(&spec, &sources(), &design, &Options::default(), &mut |p| eprintln!("{p}")).unwrap_or_else(|e| panic!("{e}"));
+    let report = run_campaign(&spec, &sim::hdl::faults::default_sources().expect("the pairs load"), &design, &Options::default(), &mut |p| eprintln!("{p}")).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("injected {:?}", report.injected);
     eprintln!("{} output lines, {} clocks in {:.1} s, hung {}, status {:?}", report.output_lines, report.cycles, report.sim_seconds, report.hung, report.status);
     eprintln!(

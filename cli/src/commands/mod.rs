@@ -4,6 +4,7 @@
 pub mod budget;
 pub mod depth;
 pub mod eval;
+pub mod faults;
 pub mod rtl;
 pub mod synth;
 pub mod verilog;

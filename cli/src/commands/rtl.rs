@@ -1,4 +1,4 @@
-//! `declivity rtl detect|match|depth`: the hardware, clock by clock, on
+//! `declivity rtl detect|match|depth|faults`: the hardware, clock by clock, on
 //! your images, compared with golden.
 
 use std::ops::Range;
@@ -24,6 +24,8 @@ pub(crate) enum RtlCommand {
     Match(MatchArgs),
     #[command(about = "Run a stereo pair through the whole rtl line processor, clock by clock.", long_about = depth_about())]
     Depth(DepthArgs),
+    #[command(about = "Inject camera faults into the line processor's Verilog under Verilator and check its behaviour.", long_about = super::faults::faults_about())]
+    Faults(super::faults::FaultsArgs),
 }
 
 fn detect_about() -> String {
@@ -218,6 +220,7 @@ pub(crate) fn run(c: RtlCommand) -> Result<(), SimError> {
         RtlCommand::Detect(a) => detect(a),
         RtlCommand::Match(a) => match_pair(a),
         RtlCommand::Depth(a) => depth(a),
+        RtlCommand::Faults(a) => super::faults::run(a),
     }
 }
 

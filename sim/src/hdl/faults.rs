@@ -99,7 +99,7 @@ pub struct CampaignSpec {
 }
 
 /// One invariant broken, with where.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
 pub struct Violation {
     pub invariant: &'static str,
     /// The faulty frame before it (its index and classes), if any.
@@ -108,7 +108,7 @@ pub struct Violation {
 }
 
 /// What the campaign injected and found.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize)]
 pub struct CampaignReport {
     pub faulty_frames: usize,
     /// Faulty frames with each class (a mixed frame counts in each of its
@@ -412,14 +412,64 @@ fn quiet_clocks(spec: &CampaignSpec) -> u64 {
     4 * (spec.width as u64 + spec.hblank as u64).max(MIN_LINE_PERIOD as u64) + 4096
 }
 
+/// The pairs of `data/stereo` the campaign crops real frames from by
+/// default.
+pub const DEFAULT_SOURCES: [&str; 4] = ["cones", "teddy", "venus", "tsukuba"];
+
+/// The [`DEFAULT_SOURCES`] pairs, loaded.
+pub fn default_sources() -> Result<Vec<(GreyImage, GreyImage)>, crate::SimError> {
+    DEFAULT_SOURCES
+        .iter()
+        .map(|name| crate::eval::io::load_pair_dir(&crate::eval::io::stereo_data_dir().join(name)).map(|d| (d.left, d.right)))
+        .collect()
+}
+
+/// The clocks between two frames' starts beyond which the core drops the
+/// older unpaired ([`rtl::params::SOF_SKEW_MAX`] and a tick of the stamp).
+fn sof_skew_limit(config: Config) -> u64 {
+    const _: () = assert!(rtl_hd::params::STAMP_SHIFT == rtl::params::STAMP_SHIFT);
+    (config.sizes().sof_skew_max + (1 << rtl::params::STAMP_SHIFT)) as u64
+}
+
+/// `spec` as the campaign can run it: frames of 1 to `W_MAX` pixels, 2 or
+/// more rows within the `height` port, and a vertical gap between frames
+/// longer than the skew within which the core pairs two cameras' frame
+/// starts (a frame restarted on one camera only must be told from the
+/// next frame).
+pub fn check_spec(spec: &CampaignSpec) -> Result<(), CosimError> {
+    let sizes = spec.config.sizes();
+    if spec.width == 0 || spec.width > sizes.w_max || spec.height < 2 || spec.height >= 1 << sizes.height_bits {
+        return Err(CosimError::Port(format!(
+            "campaign frames of {}×{}: the {} line processor takes 1 to {} px wide and 2 to {} rows",
+            spec.width,
+            spec.height,
+            spec.config,
+            sizes.w_max,
+            (1usize << sizes.height_bits) - 1
+        )));
+    }
+    if spec.frames == 0 {
+        return Err(CosimError::Port("a campaign of 0 faulty frames".into()));
+    }
+    let period = (spec.width as u64 + spec.hblank as u64).max(MIN_LINE_PERIOD as u64);
+    let gap = spec.gap_lines as u64 * period;
+    let limit = sof_skew_limit(spec.config);
+    if gap <= limit {
+        return Err(CosimError::Port(format!(
+            "a vertical gap of {} line periods of {period} clocks ({gap} clocks): more than {limit} are needed, so that a frame started on one camera only \
+             is told from the next frame (SOF_SKEW_MAX = {} clocks and a tick of the stamp)",
+            spec.gap_lines, sizes.sof_skew_max
+        )));
+    }
+    Ok(())
+}
+
 /// Runs the campaign on `design` (the Verilog of `spec.config`'s line
 /// processor), the real frames cropped from `sources` (pairs of one size
 /// each; any may be too small, generated frames then stand in).
 /// `progress` is called with the phase's name and its fraction done.
 pub fn run_campaign(spec: &CampaignSpec, sources: &[(GreyImage, GreyImage)], design: &str, opts: &Options, progress: &mut dyn FnMut(&str)) -> Result<CampaignReport, CosimError> {
-    if spec.width == 0 || spec.width > spec.config.sizes().w_max || spec.height < 2 {
-        return Err(CosimError::Port(format!("campaign frames of {}×{}: 1 to {} px wide and 2 rows or more", spec.width, spec.height, spec.config.sizes().w_max)));
-    }
+    check_spec(spec)?;
     let mut rng = VectorRng(spec.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let classes: Vec<Fault> = if spec.classes.is_empty() { Fault::ALL.to_vec() } else { spec.classes.clone() };
     let period = (spec.width as u64 + spec.hblank as u64).max(MIN_LINE_PERIOD as u64);
