@@ -355,7 +355,7 @@ pub struct StereoLineProcessor<const N: usize> {
     out_data: ResetDff<Bits<OUT_BITS>>,
     out_user: ResetDff<Bit>,
     out_last: ResetDff<Bit>,
-    // The queues' lanes 0-2, built here and then given to each queue in
+    // The queues' lanes 0-3, built here and then given to each queue in
     // one assignment: a port assigned twice in one evaluation changes twice,
     // and under Icarus the queue's logic and this block then wake each
     // other without end (an event loop, though the logic has no
@@ -363,9 +363,11 @@ pub struct StereoLineProcessor<const N: usize> {
     l_lane0: Signal<Local, Bits<DP16KD_WIDTH>>,
     l_lane1: Signal<Local, Bits<DP16KD_WIDTH>>,
     l_lane2: Signal<Local, Bits<DP16KD_WIDTH>>,
+    l_lane3: Signal<Local, Bits<DP16KD_WIDTH>>,
     r_lane0: Signal<Local, Bits<DP16KD_WIDTH>>,
     r_lane1: Signal<Local, Bits<DP16KD_WIDTH>>,
     r_lane2: Signal<Local, Bits<DP16KD_WIDTH>>,
+    r_lane3: Signal<Local, Bits<DP16KD_WIDTH>>,
     // The frame's width for the interpolator (see "Frame width"): the width
     // of the row on the row check's marker (its last pixel + 1, registered
     // with `k_*`), taken on a marker that starts a frame and kept for the
@@ -473,9 +475,11 @@ impl<const N: usize> StereoLineProcessor<N> {
             l_lane0: Default::default(),
             l_lane1: Default::default(),
             l_lane2: Default::default(),
+            l_lane3: Default::default(),
             r_lane0: Default::default(),
             r_lane1: Default::default(),
             r_lane2: Default::default(),
+            r_lane3: Default::default(),
             p_row_now: Default::default(),
             h_m1: Default::default(),
             h_one: Default::default(),
@@ -657,11 +661,12 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.l_queue.w_lane0.next = self.l_lane0.val();
         self.l_queue.w_lane1.next = self.l_lane1.val();
         self.l_queue.w_lane2.next = self.l_lane2.val();
-        self.l_queue.w_lane3.next =
+        self.l_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_left2.val());
         if self.left.m_last.val() {
-            self.l_queue.w_lane3.next = bit_cast::<DP16KD_WIDTH, STAMP_BITS>(self.stamp.val());
+            self.l_lane3.next = bit_cast::<DP16KD_WIDTH, STAMP_BITS>(self.stamp.val());
         }
+        self.l_queue.w_lane3.next = self.l_lane3.val();
         self.l_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.left.m_right1.val());
         self.r_queue.w_valid.next = self.right.m_valid.val();
@@ -686,11 +691,12 @@ impl<const N: usize> Logic for StereoLineProcessor<N> {
         self.r_queue.w_lane0.next = self.r_lane0.val();
         self.r_queue.w_lane1.next = self.r_lane1.val();
         self.r_queue.w_lane2.next = self.r_lane2.val();
-        self.r_queue.w_lane3.next =
+        self.r_lane3.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right0.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_left2.val());
         if self.right.m_last.val() {
-            self.r_queue.w_lane3.next = bit_cast::<DP16KD_WIDTH, STAMP_BITS>(self.stamp.val());
+            self.r_lane3.next = bit_cast::<DP16KD_WIDTH, STAMP_BITS>(self.stamp.val());
         }
+        self.r_queue.w_lane3.next = self.r_lane3.val();
         self.r_queue.w_lane4.next =
             (bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right2.val()) << self.sh_level.val()) | bit_cast::<DP16KD_WIDTH, PIXEL_BITS>(self.right.m_right1.val());
 
