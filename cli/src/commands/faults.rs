@@ -37,8 +37,9 @@ before) and sim_seconds. Exits with status 1 when an invariant is broken.",
 
 #[derive(Args, Debug)]
 pub(crate) struct FaultsArgs {
-    /// Faulty frames, each followed by a clean frame that is checked.
-    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    /// Faulty frames, each followed by a clean frame that is checked (at most 10 000: the
+    /// campaign holds its whole script in memory, about 8 000 beats a frame).
+    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     frames: u32,
     /// Seed of the campaign (its frames, faults and where they fall).
     #[arg(long, default_value_t = 1)]
