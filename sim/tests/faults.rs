@@ -26,7 +26,7 @@ fn campaign(frames: u64, classes: Vec<Fault>) -> CampaignReport {
         area: sim::formats::SearchArea::below(sim::formats::dispmax_lsb(40.0, config).expect("dispmax")),
     };
     let design = sim::hdl::verilog::generate_with(config, sim::hdl::verilog::Top::Stereo, rtl::params::N_CELLS, rtl::matcher::declivity_matcher::GainRule::Robust).expect("the design");
-    let report = run_campaign(&spec, &sim::hdl::faults::default_sources().expect("the pairs load"), &design, &Options::default(), &mut |p| eprintln!("{p}")).unwrap_or_else(|e| panic!("{e}"));
+    let report = run_campaign(&spec, &sim::eval::io::load_image_pairs(&sim::eval::io::stereo_pair_dirs(&sim::hdl::faults::DEFAULT_SOURCES)).expect("the pairs load"), &design, &Options::default(), &mut |p| eprintln!("{p}")).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("injected {:?}", report.injected);
     eprintln!("{} output lines, {} clocks in {:.1} s, hung {}, status {:?}", report.output_lines, report.cycles, report.sim_seconds, report.hung, report.status);
     eprintln!(

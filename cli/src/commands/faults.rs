@@ -12,7 +12,6 @@ use crate::args::{config_help, CliConfig};
 use crate::progress::Progress;
 
 pub(crate) fn faults_about() -> String {
-    let classes: Vec<&str> = Fault::ALL.iter().map(|f| f.name()).collect();
     format!(
         "Play frames from two cameras that break the stream's rules into the line processor's generated \
 Verilog under Verilator, and check what it does against the datasheet's \"Faulty cameras\". Each faulty \
@@ -28,7 +27,7 @@ hblank, gap_lines, dispmax) and the report: faulty_frames, injected (faulty fram
 clean_frames, clean_exact, clean_unchecked, clean_late, output_lines, cycles, hung, status (the status \
 counters at the end), violations, violated (per invariant), violated_after (per class of the faulty frame \
 before) and sim_seconds. Exits with status 1 when an invariant is broken.",
-        classes = classes.join(", "),
+        classes = Fault::all_names(),
         sources = DEFAULT_SOURCES.join(", "),
         invariants = INVARIANTS.join(", "),
         skew = crate::args::per_config(|s| s.sof_skew_max),
@@ -75,8 +74,7 @@ pub(crate) struct FaultsArgs {
 
 fn parse_fault(s: &str) -> Result<Fault, String> {
     Fault::ALL.into_iter().find(|f| f.name() == s).ok_or_else(|| {
-        let names: Vec<&str> = Fault::ALL.iter().map(|f| f.name()).collect();
-        format!("no class of fault `{s}`: one of {}", names.join(", "))
+format!("no class of fault `{s}`: one of {}", Fault::all_names())
     })
 }
 
@@ -110,25 +108,18 @@ pub(crate) fn run(a: FaultsArgs) -> Result<(), SimError> {
         area: sim::formats::SearchArea::below(sim::formats::dispmax_lsb(a.dispmax, config)?),
     };
     check_spec(&spec)?;
-    let sources = if a.pairs.is_empty() {
-        sim::hdl::faults::default_sources()?
-    } else {
-        sim::eval::io::expand_pair_dirs(&a.pairs)?
-            .iter()
-            .map(|d| sim::eval::io::load_pair_dir(d).map(|p| (p.left, p.right)))
-            .collect::<Result<Vec<_>, _>>()?
-    };
+    let dirs = if a.pairs.is_empty() { sim::eval::io::stereo_pair_dirs(&DEFAULT_SOURCES) } else { sim::eval::io::expand_pair_dirs(&a.pairs)? };
+    let sources = sim::eval::io::load_image_pairs(&dirs)?;
     let design = sim::hdl::verilog::generate_block(config, sim::hdl::verilog::Top::Stereo, &sim::hdl::verilog::Generation::of(config))?;
     let bar = Progress::spinner(format!("fault campaign ({config}, verilator)"), a.json);
     let report = run_campaign(&spec, &sources, &design, &Default::default(), &mut |p| bar.phase(p))?;
     bar.finish();
-    let classes = if a.classes.is_empty() { Fault::ALL.to_vec() } else { a.classes.clone() };
     let broken = report.violations.len();
     let outcome = FaultsOutcome {
         config: config.name(),
         frames: spec.frames,
         seed: spec.seed,
-        classes: classes.iter().map(|c| c.name()).collect(),
+        classes: spec.classes().iter().map(|c| c.name()).collect(),
         width: spec.width,
         height: spec.height,
         hblank: spec.hblank,

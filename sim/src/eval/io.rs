@@ -256,6 +256,16 @@ pub fn stereo_data_dir() -> PathBuf {
     }
 }
 
+/// The folders of the pairs `names` in [`stereo_data_dir`].
+pub fn stereo_pair_dirs(names: &[&str]) -> Vec<PathBuf> {
+    names.iter().map(|n| stereo_data_dir().join(n)).collect()
+}
+
+/// The left and right images of each pair folder in `dirs`.
+pub fn load_image_pairs(dirs: &[PathBuf]) -> Result<Vec<(GreyImage, GreyImage)>, SimError> {
+    dirs.iter().map(|d| load_pair_dir(d).map(|p| (p.left, p.right))).collect()
+}
+
 /// The pair folders named by `paths`: a folder with a `meta.txt` is a pair;
 /// a folder without one stands for its sub-folders that have one (sorted),
 /// so `data/stereo` names all eight pairs. Anything else is an error.

@@ -75,6 +75,11 @@ impl Fault {
             Fault::IdleClocks => "idle_clocks",
         }
     }
+
+    /// Every class's name, comma-separated.
+    pub fn all_names() -> String {
+        Fault::ALL.map(Fault::name).join(", ")
+    }
 }
 
 /// The campaign's size and the frames' geometry.
@@ -96,6 +101,25 @@ pub struct CampaignSpec {
     pub classes: Vec<Fault>,
     /// Eq. 6's search area.
     pub area: SearchArea,
+}
+
+impl CampaignSpec {
+    /// The classes the campaign draws from: [`CampaignSpec::classes`], or
+    /// every class when it is empty.
+    pub fn classes(&self) -> Vec<Fault> {
+        if self.classes.is_empty() { Fault::ALL.to_vec() } else { self.classes.clone() }
+    }
+
+    /// Clocks of a line period: `width + hblank`, at least the core's
+    /// [`MIN_LINE_PERIOD`].
+    fn line_period(&self) -> u64 {
+        (self.width as u64 + self.hblank as u64).max(MIN_LINE_PERIOD as u64)
+    }
+
+    /// Clocks of the vertical gap between a frame's end and the next frame.
+    fn gap_clocks(&self) -> u64 {
+        self.gap_lines as u64 * self.line_period()
+    }
 }
 
 /// One invariant broken, with where.
@@ -413,16 +437,8 @@ fn quiet_clocks(spec: &CampaignSpec) -> u64 {
 }
 
 /// The pairs of `data/stereo` the campaign crops real frames from by
-/// default.
+/// default (loaded by [`crate::eval::io::load_image_pairs`]).
 pub const DEFAULT_SOURCES: [&str; 4] = ["cones", "teddy", "venus", "tsukuba"];
-
-/// The [`DEFAULT_SOURCES`] pairs, loaded.
-pub fn default_sources() -> Result<Vec<(GreyImage, GreyImage)>, crate::SimError> {
-    DEFAULT_SOURCES
-        .iter()
-        .map(|name| crate::eval::io::load_pair_dir(&crate::eval::io::stereo_data_dir().join(name)).map(|d| (d.left, d.right)))
-        .collect()
-}
 
 /// The clocks between two frames' starts beyond which the core drops the
 /// older unpaired ([`rtl::params::SOF_SKEW_MAX`] and a tick of the stamp).
@@ -451,8 +467,7 @@ pub fn check_spec(spec: &CampaignSpec) -> Result<(), CosimError> {
     if spec.frames == 0 {
         return Err(CosimError::Port("a campaign of 0 faulty frames".into()));
     }
-    let period = (spec.width as u64 + spec.hblank as u64).max(MIN_LINE_PERIOD as u64);
-    let gap = spec.gap_lines as u64 * period;
+    let (period, gap) = (spec.line_period(), spec.gap_clocks());
     let limit = sof_skew_limit(spec.config);
     if gap <= limit {
         return Err(CosimError::Port(format!(
@@ -471,9 +486,8 @@ pub fn check_spec(spec: &CampaignSpec) -> Result<(), CosimError> {
 pub fn run_campaign(spec: &CampaignSpec, sources: &[(GreyImage, GreyImage)], design: &str, opts: &Options, progress: &mut dyn FnMut(&str)) -> Result<CampaignReport, CosimError> {
     check_spec(spec)?;
     let mut rng = VectorRng(spec.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
-    let classes: Vec<Fault> = if spec.classes.is_empty() { Fault::ALL.to_vec() } else { spec.classes.clone() };
-    let period = (spec.width as u64 + spec.hblank as u64).max(MIN_LINE_PERIOD as u64);
-    let gap = spec.gap_lines as u64 * period;
+    let classes = spec.classes();
+    let gap = spec.gap_clocks();
     let (quiet, start) = (quiet_clocks(spec), 16u64);
 
     // The clean frames and their fresh runs.
