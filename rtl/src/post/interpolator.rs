@@ -17,9 +17,9 @@
 //!   `1 / (X_b - X_a)` comes from a table: the distance is shifted left until
 //!   its top bit is set (`lz` places), and the next [`RECIP_INDEX_BITS`]
 //!   bits address a table of `2^RECIP_SHIFT / m` at the middle of the
-//!   bucket (in LUTs behind its address register, [`LogicRom`]: a block
-//!   RAM's clock-to-out left too little of the clock for the segment
-//!   memory's write). The segment (its last pixel, `X_a`, its base `d_a` (across
+//!   bucket (a [`BlockRam`] that starts with the table and is never
+//!   written, read through its output register, whose word leaves early
+//!   enough in the clock for the segment memory's write). The segment (its last pixel, `X_a`, its base `d_a` (across
 //!   a jump the smaller disparity), `|d_b - d_a|` and its sign, the jump
 //!   flag, `lz` and the reciprocal) goes into the segment
 //!   memory; at the line's end marker the line's description (its last pixel, the
@@ -98,7 +98,6 @@
 
 use crate::primitives::block_ram::BlockRam;
 use crate::primitives::dsp_multiplier::{DspMultiplier, MUL_OPERAND_BITS};
-use crate::primitives::logic_rom::LogicRom;
 use crate::params::*;
 use crate::primitives::reset_register::ResetDff;
 use rust_hdl::prelude::*;
@@ -212,8 +211,8 @@ pub struct Interpolator {
     first_c: ResetDff<Bits<WIDTH_BITS>>,
     // Stage 1: a segment; stage 2: its distance half normalised (`s2_m`);
     // stage 3: the table's address register (in `recip`), the shape with
-    // the whole shift, the table's word out beside it; stage 4: that word
-    // registered (`s4_recip`) beside the segment, into the memory.
+    // the whole shift; stage 4: the table's word out of its output register
+    // (in `recip`) beside the segment, into the memory.
     s1_seg: ResetDff<Bit>,
     s1_last: ResetDff<Bits<WIDTH_BITS>>,
     s1_ax: ResetDff<Bits<POS_BITS>>,
@@ -242,8 +241,7 @@ pub struct Interpolator {
     s4_ad: ResetDff<Bits<POS_BITS>>,
     s4_dd: ResetDff<Bits<POS_BITS>>,
     s4_shape: ResetDff<Bits<SHAPE_BITS>>,
-    s4_recip: ResetDff<Bits<RECIP_BITS>>,
-    recip: LogicRom<RECIP_BITS, RECIP_INDEX_BITS>,
+    recip: BlockRam<RECIP_BITS, RECIP_INDEX_BITS>,
     // ---- The segment memory, one RAM per field, and its pointers (one bit
     // above the address, so that full and empty differ).
     seg_last: BlockRam<WIDTH_BITS, SEG_ADDR_BITS>,
@@ -582,8 +580,7 @@ impl Interpolator {
             s4_ad: Default::default(),
             s4_dd: Default::default(),
             s4_shape: Default::default(),
-            s4_recip: Default::default(),
-            recip: LogicRom::new(recip_table()),
+            recip: BlockRam::with_words(recip_table()),
             seg_last: Default::default(),
             seg_ax: Default::default(),
             seg_ad: Default::default(),
@@ -839,7 +836,7 @@ impl Default for Interpolator {
 impl Logic for Interpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, s4_seg, s4_last, s4_ax, s4_ad, s4_dd, s4_shape, s4_recip, seg_wp, rd_ptr, seg_used, q_used, seg_full, seg_any, q_full, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_wp5, line_ready, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
+        dff_setup!(self, clock, in_line, dropping, has_prev, prev_x, prev_d, prev_c, first_d, first_c, s1_seg, s1_last, s1_ax, s1_ad, s1_dx, s1_dd, s1_neg, s1_min, s2_seg, s2_last, s2_ax, s2_ad, s2_dd, s2_m, s2_shape, s3_seg, s3_last, s3_ax, s3_ad, s3_dd, s3_shape, s4_seg, s4_last, s4_ax, s4_ad, s4_dd, s4_shape, seg_wp, rd_ptr, seg_used, q_used, seg_full, seg_any, q_full, rd1, rd2, fill, wi, ri, e0_last, e0_ax, e0_ad, e0_dd, e0_shape, e0_recip, e1_last, e1_ax, e1_ad, e1_dd, e1_shape, e1_recip, e2_last, e2_ax, e2_ad, e2_dd, e2_shape, e2_recip, e3_last, e3_ax, e3_ad, e3_dd, e3_shape, e3_recip, q_wp, q_wp1, q_wp2, q_wp3, q_wp4, q_wp5, line_ready, q_rp, q_rp1, q_next_q, overflow_q, x, x1, x_zero, head_next, seg_next, last_next, at_e0, at_e1, at_e2, at_e3, p0_valid, p0_last, p0_sof, p0_empty, p0_ramp, p0_neg, p0_base, p0_u, p0_lz, p0_recip, p0_dd, p1_valid, p1_last, p1_sof, p1_empty, p1_ramp, p1_neg, p1_base, p1_dd, p2_valid, p2_last, p2_sof, p2_empty, p2_ramp, p2_neg, p2_base, p2_prod, p2_dd, p3_valid, p3_last, p3_sof, p3_empty, p3_ramp, p3_neg, p3_base, p4_valid, p4_last, p4_sof, p4_empty, p4_ramp, p4_neg, p4_base, p4_prod, p5_valid, p5_last, p5_sof, p5_empty, p5_ramp, p5_neg, p5_base, p5_delta, o_valid, o_last, o_sof, o_empty, o_d);
         self.in_line.reset.next = self.reset.val();
         self.dropping.reset.next = self.reset.val();
         self.has_prev.reset.next = self.reset.val();
@@ -875,7 +872,6 @@ impl Logic for Interpolator {
         self.s4_ad.reset.next = self.reset.val();
         self.s4_dd.reset.next = self.reset.val();
         self.s4_shape.reset.next = self.reset.val();
-        self.s4_recip.reset.next = self.reset.val();
         self.seg_wp.reset.next = self.reset.val();
         self.rd_ptr.reset.next = self.reset.val();
         self.seg_used.reset.next = self.reset.val();
@@ -1158,22 +1154,24 @@ impl Logic for Interpolator {
         }
         // (Through a shift and a cast, not `get_bits`: the Verilog then
         // reads all of `n4`, which Verilator's lint wants of a signal.)
-        self.recip.address.next = bit_cast::<RECIP_INDEX_BITS, POS_BITS>(self.n4.val() >> self.index_low.val());
+        self.recip.write_enable.next = false;
+        self.recip.write_address.next = 0.into();
+        self.recip.write_data.next = 0.into();
+        self.recip.read_address.next = bit_cast::<RECIP_INDEX_BITS, POS_BITS>(self.n4.val() >> self.index_low.val());
         self.s3_seg.d.next = self.s2_seg.q.val();
         self.s3_last.d.next = self.s2_last.q.val();
         self.s3_ax.d.next = self.s2_ax.q.val();
         self.s3_ad.d.next = self.s2_ad.q.val();
         self.s3_dd.d.next = self.s2_dd.q.val();
         self.s3_shape.d.next = self.s2_shape.q.val() | self.l4.val();
-        // Stage 4: the reciprocal registered beside the segment (the table
-        // is logic, and the memory can sit far from it).
+        // Stage 4: the segment, and beside it the reciprocal out of the
+        // table's output register.
         self.s4_seg.d.next = self.s3_seg.q.val();
         self.s4_last.d.next = self.s3_last.q.val();
         self.s4_ax.d.next = self.s3_ax.q.val();
         self.s4_ad.d.next = self.s3_ad.q.val();
         self.s4_dd.d.next = self.s3_dd.q.val();
         self.s4_shape.d.next = self.s3_shape.q.val();
-        self.s4_recip.d.next = self.recip.data.val();
         // The segment into the memory.
         self.seg_last.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
         self.seg_ax.write_address.next = bit_cast::<SEG_ADDR_BITS, SEG_PTR_BITS>(self.seg_wp.q.val());
@@ -1186,7 +1184,7 @@ impl Logic for Interpolator {
         self.seg_ad.write_data.next = self.s4_ad.q.val();
         self.seg_dd.write_data.next = self.s4_dd.q.val();
         self.seg_shape.write_data.next = self.s4_shape.q.val();
-        self.seg_recip.write_data.next = self.s4_recip.q.val();
+        self.seg_recip.write_data.next = self.recip.read_data.val();
         self.seg_last.write_enable.next = self.s4_seg.q.val();
         self.seg_ax.write_enable.next = self.s4_seg.q.val();
         self.seg_ad.write_enable.next = self.s4_seg.q.val();

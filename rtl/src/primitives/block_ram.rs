@@ -2,7 +2,10 @@
 //! primitives instantiated with `REGMODE_B = "OUTREG"` side by side, in the
 //! widest mode that holds the depth ([`dp16kd_mode`]: 18 bits of 1024
 //! words up to 1024 words, 9 bits of 2048, 4 of 4096, 2 of 8192, 1 of
-//! 16384), one per that many bits of width.
+//! 16384), one per that many bits of width. Up to 1024 words it can start
+//! with given words ([`BlockRam::with_words`], the primitives' `INITVAL_xx`):
+//! a table, read-only when its writer never writes (the interpolator's
+//! reciprocal table, about 650 LUT4s as logic).
 //!
 //! Yosys's ECP5 memory mapping never uses a block RAM's output register,
 //! and without it the RAM's clock-to-out takes most of a clock period,
@@ -22,8 +25,9 @@
 //! is then undefined, and the matcher never does it (`no_rw_check`, see
 //! `sim::hdl::verilog`). The Verilog instantiates the primitive by name: Yosys's
 //! `synth_ecp5` knows it, and the co-simulation and lint read a behavioural
-//! model of it (`sim::hdl::primitives`). No reset: the words start at zero (the
-//! primitive's default `INITVAL`s, and the model's `RAM`).
+//! model of it (`sim::hdl::primitives`). No reset: the words start at zero or at
+//! the words given (the primitive's `INITVAL`s, and the model's `RAM`), the
+//! output register at zero.
 //!
 //! No paper equation: a memory primitive.
 
@@ -69,6 +73,25 @@ pub(crate) struct BlockRam<const D: usize, const A: usize> {
     pub read_data: Signal<Out, Bits<D>>,
     ram: RAM<Bits<D>, A>,
     out_reg: DFF<Bits<D>>,
+    /// The initial words, if not zero.
+    _words: Option<Vec<u64>>,
+}
+
+impl<const D: usize, const A: usize> BlockRam<D, A> {
+    /// A RAM that starts with `words` (word `i` at address `i`; missing
+    /// words are 0).
+    ///
+    /// # Panics
+    /// If there are more than `2^A` words, a word has more than `D` bits,
+    /// or `A` is more than the 18-bit mode's [`DP16KD_ADDR_BITS`] (initial
+    /// words are laid out for that mode only; a generation-time parameter
+    /// error).
+    pub(crate) fn with_words(words: Vec<u64>) -> Self {
+        assert!(A <= DP16KD_ADDR_BITS, "initial words in at most {} words", 1 << DP16KD_ADDR_BITS);
+        assert!(words.len() <= 1 << A, "{} words behind a {A}-bit address", words.len());
+        assert!(D < 64 && words.iter().all(|&w| w >> D == 0), "a word wider than {D} bits");
+        BlockRam { ram: RAM::from(words.iter().map(|&w| Bits::<D>::from(w))), _words: Some(words), ..Default::default() }
+    }
 }
 
 impl<const D: usize, const A: usize> Logic for BlockRam<D, A> {
@@ -97,20 +120,58 @@ impl<const D: usize, const A: usize> Logic for BlockRam<D, A> {
     }
 
     fn hdl(&self) -> Verilog {
-        Verilog::Wrapper(Wrapper { code: dp16kd_instances(D, A), cores: String::new() })
+        Verilog::Wrapper(Wrapper { code: dp16kd_instances(D, A, self._words.as_deref()), cores: String::new() })
     }
+}
+
+/// Words of the 18-bit mode in one `INITVAL_xx` parameter (320 bits: a word
+/// in the low 18 bits of each 20, as Yosys's `synth_ecp5` lays a memory's
+/// initial words out, `techlibs/lattice/brams_map_16kd.v`).
+pub const INITVAL_WORDS: usize = 16;
+/// Bits of one word's place in an `INITVAL_xx` parameter.
+const INITVAL_SLOT_BITS: usize = 20;
+/// The `INITVAL_xx` parameters of a `DP16KD`.
+const INITVAL_ROWS: usize = (1 << DP16KD_ADDR_BITS) / INITVAL_WORDS;
+
+/// The `INITVAL_00` to `INITVAL_3F` parameters of the 18-bit-mode
+/// `DP16KD` that holds bits `lo .. lo + 18` of `words` (word `i` at address
+/// `i`): row `r` holds words `16·r .. 16·r + 16`, word `16·r + k` in bits
+/// `20·k .. 20·k + 18`.
+pub fn initvals(words: &[u64], lo: usize) -> String {
+    assert!(words.len() <= 1 << DP16KD_ADDR_BITS, "at most 1024 words in the 18-bit mode");
+    (0..INITVAL_ROWS)
+        .map(|r| {
+            // 80 hex digits, the highest slot first.
+            let mut bits = vec![false; INITVAL_WORDS * INITVAL_SLOT_BITS];
+            for k in 0..INITVAL_WORDS {
+                let word = words.get(r * INITVAL_WORDS + k).map_or(0, |&w| (w >> lo) & ((1 << DP16KD_WIDTH) - 1));
+                for b in 0..DP16KD_WIDTH {
+                    bits[k * INITVAL_SLOT_BITS + b] = (word >> b) & 1 == 1;
+                }
+            }
+            let digits: String = bits
+                .chunks(4)
+                .rev()
+                .map(|n| char::from_digit(n.iter().enumerate().fold(0, |acc, (i, &b)| acc | (u32::from(b) << i)), 16).expect("a nibble").to_ascii_uppercase())
+                .collect();
+            format!(".INITVAL_{r:02X}(320'h{digits})")
+        })
+        .collect::<Vec<_>>()
+        .join(",\n    ")
 }
 
 /// The Verilog body: [`dp16kd_count`]`(d, a)` `DP16KD`s side by side in
 /// the mode [`dp16kd_mode`]`(a)`, port A writing, port B reading through
-/// its output register. The word address is on `AD[13:14-a']` for the mode's
+/// its output register; with `words`, those as the RAMs' initial words
+/// (the 18-bit mode only). The word address is on `AD[13:14-a']` for the mode's
 /// `a'` address bits (`AD[13:4]` in the 18-bit mode, `AD[13:3]` in the
 /// 9-bit one, and so on), the bits below it tied off, except that in the
 /// 18-bit mode `AD[1:0]` are a write's byte enables (both set); a word's
 /// bits are on `DI[w-1:0]` and `DO[w-1:0]` (as Yosys's `synth_ecp5` maps
 /// the modes, `techlibs/lattice/brams_map_16kd.v`).
-fn dp16kd_instances(d: usize, a: usize) -> String {
+fn dp16kd_instances(d: usize, a: usize, words: Option<&[u64]>) -> String {
     let width = dp16kd_mode(a);
+    assert!(words.is_none() || width == DP16KD_WIDTH, "initial words in the 18-bit mode only");
     let mode_addr_bits = a.max(DP16KD_ADDR_BITS);
     let low = DP16KD_MAX_ADDR_BITS - mode_addr_bits;
     let addr = |name: &str, port: &str| -> String {
@@ -148,7 +209,7 @@ DP16KD #(
     .RESETMODE("SYNC"), .ASYNC_RESET_RELEASE("SYNC"),
     .CSDECODE_A("0b000"), .CSDECODE_B("0b000"),
     .WRITEMODE_A("NORMAL"), .WRITEMODE_B("NORMAL"),
-    .GSR("AUTO")
+    .GSR("AUTO"){init}
 ) ram_{i} (
     .CLKA(clock), .CEA(1'b1), .OCEA(1'b1), .WEA(write_enable), .RSTA(1'b0),
     .CSA0(1'b0), .CSA1(1'b0), .CSA2(1'b0),
@@ -160,6 +221,7 @@ DP16KD #(
     {dout}
 );
 "#,
+            init = words.map_or(String::new(), |words| format!(",\n    {}", initvals(words, lo))),
             addr_a = addr("write_address", "A"),
             addr_b = addr("read_address", "B"),
             di = di.join(", "),
@@ -186,12 +248,51 @@ mod tests {
             assert!((w << a.max(DP16KD_ADDR_BITS)) <= 18 * 1024, "{a}: {w}");
             assert_eq!(dp16kd_count(20, a), 20usize.div_ceil(w));
         }
-        let v = dp16kd_instances(8, 11);
+        let v = dp16kd_instances(8, 11, None);
         assert_eq!(v.matches("DP16KD #(").count(), 1);
         assert!(v.contains(".DATA_WIDTH_A(9), .DATA_WIDTH_B(9)"));
         assert!(v.contains(".ADA3(write_address[0])") && v.contains(".ADA13(write_address[10])") && v.contains(".ADA2(1'b0)"));
         assert!(v.contains(".DOB7(read_data[7])") && !v.contains(".DOB8("));
-        let v = dp16kd_instances(15, 10);
+        let v = dp16kd_instances(15, 10, None);
         assert!(v.contains(".ADA4(write_address[0])") && v.contains(".ADA1(1'b1), .ADA0(1'b1)") && v.contains(".ADB1(1'b0), .ADB0(1'b0)"));
+    }
+
+    /// A RAM given words reads each two clocks after its address.
+    #[test]
+    fn a_word_given_reads_two_clocks_after_its_address() {
+        let table: Vec<u64> = (0..8).map(|i| (i * 37 + 5) & 0x3f).collect();
+        let mut r = BlockRam::<6, 3>::with_words(table.clone());
+        r.connect_all();
+        for a in [5u64, 0, 7, 3] {
+            r.read_address.next = a.into();
+            assert!(simulate(&mut r, 100));
+            crate::tick(&mut r, |u| &mut u.clock);
+            r.read_address.next = 1.into();
+            crate::tick(&mut r, |u| &mut u.clock);
+            assert_eq!(r.read_data.val(), Bits::<6>::from(table[a as usize]), "address {a}");
+        }
+    }
+
+    /// The Verilog holds word `16·r + k` in bits `20·k ..` of `INITVAL_r`:
+    /// word 17 = 0x3 is the second slot of
+    /// `INITVAL_01` (hex digits 5 to 9 from the right), word 0 = 0x3FFFF
+    /// fills the first slot of `INITVAL_00`; a table of 20 bits takes two
+    /// RAMs, the second holding the words' top two bits.
+    #[test]
+    fn the_verilog_holds_the_words_given_as_the_rams_initial_words() {
+        let mut table = vec![0u64; 32];
+        table[0] = 0x3_FFFF;
+        table[17] = 0x3;
+        let v = dp16kd_instances(18, 5, Some(&table));
+        assert_eq!(v.matches("DP16KD #(").count(), 1);
+        assert!(v.contains(&format!(".INITVAL_00(320'h{}3FFFF)", "0".repeat(75))), "{v}");
+        assert!(v.contains(&format!(".INITVAL_01(320'h{}0000300000)", "0".repeat(70))), "{v}");
+        assert!(v.contains(&format!(".INITVAL_3F(320'h{})", "0".repeat(80))), "{v}");
+        assert!(v.contains(".ADB4(read_address[0])") && v.contains(".DOB17(read_data[17])"), "{v}");
+        let table: Vec<u64> = (0..4).map(|i| i << 18).collect();
+        let v = dp16kd_instances(20, 2, Some(&table));
+        assert_eq!(v.matches("DP16KD #(").count(), 2);
+        let second = v.split("ram_0").nth(1).expect("a second RAM after the first");
+        assert!(second.contains(&format!(".INITVAL_00(320'h{}00003000020000100000)", "0".repeat(60))), "{v}");
     }
 }

@@ -2,7 +2,6 @@
 
 pub mod block_ram;
 pub mod lut_ram;
-pub(crate) mod logic_rom;
 pub mod dsp_multiplier;
 pub mod reset_register;
 pub mod reset_buffer;

@@ -11,7 +11,7 @@ use rtl::post::interpolator::{LINE_BITS, LINE_QUEUE, PIXEL_LAG, SEGMENT_BITS, SE
 use rtl::params::{
     CELLS_PER_CHOICE_WORD, CHOICE_WORDS, CHOICE_WORD_BITS, DEPTH_INDEX_BITS, DEPTH_WORD_BITS, DIAG_BITS,
     HIST_ADDR_BITS, HIST_COUNT_BITS, INDEX_BITS, LEVELS_BITS, LEVEL_BITS, LINE_BUF_ADDR_BITS, MEDIAN_HALF, MEDIAN_LINE_BUFFERS, MEDIAN_TAPS, N_CELLS,
-    N_MAX, PIXEL_BITS, POS_BITS, RECIP_BITS, ROWS_PER_CELL, ROW_ADDR_BITS, ROW_BANK_BITS,
+    N_MAX, PIXEL_BITS, POS_BITS, RECIP_BITS, RECIP_INDEX_BITS, ROWS_PER_CELL, ROW_ADDR_BITS, ROW_BANK_BITS,
     ROW_ENTRY_BITS, SEG_ADDR_BITS, WIDTH_BITS, W_MAX,
 };
 use rtl::stream::record_fifo::{RECORD_FIFO_DEPTH, RECORD_FIFO_LAG, RECORD_FIFO_LANES};
@@ -289,10 +289,17 @@ fn interpolator_stage(s: &Sizes) -> StageBudget {
     StageBudget::new(NAME, 1, s.stored_width as u64, "W' (one pixel per clock, lines back to back)".to_string(), latency_terms, "the row check's marker out → the row's first disparity out (its pixels start from the marker)")
         .dsp_blocks(2)
         .memories(vec![
-            // (The reciprocal table, 2^RECIP_INDEX_BITS × RECIP_BITS, is no
-            // memory: `Interpolator::recip` is a `LogicRom`, LUTs behind a
-            // registered address.)
-            Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, Some(seg_rams), "Interpolator::seg_* (one block RAM per field; the reciprocal from a table in LUTs, LogicRom)"),
+            Memory::new(NAME, "segment memory", 1, 1, 1 << SEG_ADDR_BITS, SEGMENT_BITS, Some(seg_rams), "Interpolator::seg_* (one block RAM per field)"),
+            Memory::new(
+                NAME,
+                "reciprocal table",
+                1,
+                1,
+                1 << RECIP_INDEX_BITS,
+                RECIP_BITS,
+                Some(dp16kd_of(RECIP_BITS, 1 << RECIP_INDEX_BITS)),
+                "Interpolator::recip (a BlockRam that starts with the table and is never written)",
+            ),
             Memory::new(NAME, "line queue", 1, 2, LINE_QUEUE, LINE_BITS, None, "Interpolator::q_line and q_line_n (LUT RAM, one word a line, kept twice: read at the read pointer and at its successor)"),
         ])
 }

@@ -13,7 +13,8 @@
 // on port A (`WRITEMODE_A = "NORMAL"`), registered reads on port B with the
 // output register when `REGMODE_B = "OUTREG"`, clock enables, chip selects
 // and resets tied off. Anything else stops the simulation with an error.
-// The words and registers start at zero, as the rust-hdl model's do.
+// The words start as the INITVAL_xx parameters give them (the 18-bit mode;
+// zero by default) and the registers at zero, as the rust-hdl model's do.
 /* verilator lint_off UNUSEDSIGNAL */
 /* verilator lint_off UNUSEDPARAM */
 /* verilator lint_off UNDRIVEN */
@@ -41,6 +42,74 @@ module DP16KD(
   parameter WRITEMODE_A = "NORMAL";
   parameter WRITEMODE_B = "NORMAL";
   parameter GSR = "ENABLED";
+  parameter [319:0] INITVAL_00 = 320'h0;
+  parameter [319:0] INITVAL_01 = 320'h0;
+  parameter [319:0] INITVAL_02 = 320'h0;
+  parameter [319:0] INITVAL_03 = 320'h0;
+  parameter [319:0] INITVAL_04 = 320'h0;
+  parameter [319:0] INITVAL_05 = 320'h0;
+  parameter [319:0] INITVAL_06 = 320'h0;
+  parameter [319:0] INITVAL_07 = 320'h0;
+  parameter [319:0] INITVAL_08 = 320'h0;
+  parameter [319:0] INITVAL_09 = 320'h0;
+  parameter [319:0] INITVAL_0A = 320'h0;
+  parameter [319:0] INITVAL_0B = 320'h0;
+  parameter [319:0] INITVAL_0C = 320'h0;
+  parameter [319:0] INITVAL_0D = 320'h0;
+  parameter [319:0] INITVAL_0E = 320'h0;
+  parameter [319:0] INITVAL_0F = 320'h0;
+  parameter [319:0] INITVAL_10 = 320'h0;
+  parameter [319:0] INITVAL_11 = 320'h0;
+  parameter [319:0] INITVAL_12 = 320'h0;
+  parameter [319:0] INITVAL_13 = 320'h0;
+  parameter [319:0] INITVAL_14 = 320'h0;
+  parameter [319:0] INITVAL_15 = 320'h0;
+  parameter [319:0] INITVAL_16 = 320'h0;
+  parameter [319:0] INITVAL_17 = 320'h0;
+  parameter [319:0] INITVAL_18 = 320'h0;
+  parameter [319:0] INITVAL_19 = 320'h0;
+  parameter [319:0] INITVAL_1A = 320'h0;
+  parameter [319:0] INITVAL_1B = 320'h0;
+  parameter [319:0] INITVAL_1C = 320'h0;
+  parameter [319:0] INITVAL_1D = 320'h0;
+  parameter [319:0] INITVAL_1E = 320'h0;
+  parameter [319:0] INITVAL_1F = 320'h0;
+  parameter [319:0] INITVAL_20 = 320'h0;
+  parameter [319:0] INITVAL_21 = 320'h0;
+  parameter [319:0] INITVAL_22 = 320'h0;
+  parameter [319:0] INITVAL_23 = 320'h0;
+  parameter [319:0] INITVAL_24 = 320'h0;
+  parameter [319:0] INITVAL_25 = 320'h0;
+  parameter [319:0] INITVAL_26 = 320'h0;
+  parameter [319:0] INITVAL_27 = 320'h0;
+  parameter [319:0] INITVAL_28 = 320'h0;
+  parameter [319:0] INITVAL_29 = 320'h0;
+  parameter [319:0] INITVAL_2A = 320'h0;
+  parameter [319:0] INITVAL_2B = 320'h0;
+  parameter [319:0] INITVAL_2C = 320'h0;
+  parameter [319:0] INITVAL_2D = 320'h0;
+  parameter [319:0] INITVAL_2E = 320'h0;
+  parameter [319:0] INITVAL_2F = 320'h0;
+  parameter [319:0] INITVAL_30 = 320'h0;
+  parameter [319:0] INITVAL_31 = 320'h0;
+  parameter [319:0] INITVAL_32 = 320'h0;
+  parameter [319:0] INITVAL_33 = 320'h0;
+  parameter [319:0] INITVAL_34 = 320'h0;
+  parameter [319:0] INITVAL_35 = 320'h0;
+  parameter [319:0] INITVAL_36 = 320'h0;
+  parameter [319:0] INITVAL_37 = 320'h0;
+  parameter [319:0] INITVAL_38 = 320'h0;
+  parameter [319:0] INITVAL_39 = 320'h0;
+  parameter [319:0] INITVAL_3A = 320'h0;
+  parameter [319:0] INITVAL_3B = 320'h0;
+  parameter [319:0] INITVAL_3C = 320'h0;
+  parameter [319:0] INITVAL_3D = 320'h0;
+  parameter [319:0] INITVAL_3E = 320'h0;
+  parameter [319:0] INITVAL_3F = 320'h0;
+  // The initial words, INITVAL_00 lowest: in the 18-bit mode word 16*r + k
+  // is in bits [20*k +: 18] of INITVAL_r (Yosys's layout,
+  // techlibs/lattice/brams_map_16kd.v).
+  localparam [20479:0] INITVALS = {INITVAL_3F, INITVAL_3E, INITVAL_3D, INITVAL_3C, INITVAL_3B, INITVAL_3A, INITVAL_39, INITVAL_38, INITVAL_37, INITVAL_36, INITVAL_35, INITVAL_34, INITVAL_33, INITVAL_32, INITVAL_31, INITVAL_30, INITVAL_2F, INITVAL_2E, INITVAL_2D, INITVAL_2C, INITVAL_2B, INITVAL_2A, INITVAL_29, INITVAL_28, INITVAL_27, INITVAL_26, INITVAL_25, INITVAL_24, INITVAL_23, INITVAL_22, INITVAL_21, INITVAL_20, INITVAL_1F, INITVAL_1E, INITVAL_1D, INITVAL_1C, INITVAL_1B, INITVAL_1A, INITVAL_19, INITVAL_18, INITVAL_17, INITVAL_16, INITVAL_15, INITVAL_14, INITVAL_13, INITVAL_12, INITVAL_11, INITVAL_10, INITVAL_0F, INITVAL_0E, INITVAL_0D, INITVAL_0C, INITVAL_0B, INITVAL_0A, INITVAL_09, INITVAL_08, INITVAL_07, INITVAL_06, INITVAL_05, INITVAL_04, INITVAL_03, INITVAL_02, INITVAL_01, INITVAL_00};
 
   // The mode's word width and address bits.
   localparam W = DATA_WIDTH_A;
@@ -62,7 +131,11 @@ module DP16KD(
       $display("DP16KD model: only the simple dual-port use of rtl::block_ram (one width of 18, 9, 4, 2 or 1 bits) is modelled");
       $finish;
     end
-    for (k = 0; k < (1 << AB); k = k + 1) mem[k] = {W{1'b0}};
+    if (W != 18 && INITVALS != 20480'b0) begin
+      $display("DP16KD model: initial words are modelled in the 18-bit mode only");
+      $finish;
+    end
+    for (k = 0; k < (1 << AB); k = k + 1) mem[k] = (W == 18) ? INITVALS[(k / 16) * 320 + (k % 16) * 20 +: 18] : {W{1'b0}};
     ram_q = 18'b0;
     out_q = 18'b0;
   end
