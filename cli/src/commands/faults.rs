@@ -73,9 +73,7 @@ pub(crate) struct FaultsArgs {
 }
 
 fn parse_fault(s: &str) -> Result<Fault, String> {
-    Fault::ALL.into_iter().find(|f| f.name() == s).ok_or_else(|| {
-format!("no class of fault `{s}`: one of {}", Fault::all_names())
-    })
+    Fault::ALL.into_iter().find(|f| f.name() == s).ok_or_else(|| format!("no class of fault `{s}`: one of {}", Fault::all_names()))
 }
 
 /// The campaign as run and what it found.

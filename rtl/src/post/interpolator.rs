@@ -19,10 +19,10 @@
 //!   bits address a table of `2^RECIP_SHIFT / m` at the middle of the
 //!   bucket (a [`BlockRam`] that starts with the table and is never
 //!   written, read through its output register, whose word leaves early
-//!   enough in the clock for the segment memory's write). The segment (its last pixel, `X_a`, its base `d_a` (across
-//!   a jump the smaller disparity), `|d_b - d_a|` and its sign, the jump
-//!   flag, `lz` and the reciprocal) goes into the segment
-//!   memory; at the line's end marker the line's description (its last pixel, the
+//!   enough in the clock for the segment memory's write). The segment (its
+//!   last pixel, `X_a`, its base `d_a` (across a jump the smaller
+//!   disparity), `|d_b - d_a|` and its sign, the jump flag, `lz` and the
+//!   reciprocal) goes into the segment memory; at the line's end marker the line's description (its last pixel, the
 //!   held values and where their pixels start, start of frame) goes into
 //!   the line queue, and is shown to the pixel engine once the line's last
 //!   segment can be in the prefetch registers. The queue (LUT RAM) keeps

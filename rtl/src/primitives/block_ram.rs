@@ -127,9 +127,9 @@ impl<const D: usize, const A: usize> Logic for BlockRam<D, A> {
 /// Words of the 18-bit mode in one `INITVAL_xx` parameter (320 bits: a word
 /// in the low 18 bits of each 20, as Yosys's `synth_ecp5` lays a memory's
 /// initial words out, `techlibs/lattice/brams_map_16kd.v`).
-pub const INITVAL_WORDS: usize = 16;
-/// Bits of one word's place in an `INITVAL_xx` parameter.
-const INITVAL_SLOT_BITS: usize = 20;
+const INITVAL_WORDS: usize = 16;
+/// Hex digits of one word's place (20 bits) in an `INITVAL_xx` parameter.
+const INITVAL_SLOT_DIGITS: usize = 5;
 /// The `INITVAL_xx` parameters of a `DP16KD`.
 const INITVAL_ROWS: usize = (1 << DP16KD_ADDR_BITS) / INITVAL_WORDS;
 
@@ -141,18 +141,13 @@ pub fn initvals(words: &[u64], lo: usize) -> String {
     assert!(words.len() <= 1 << DP16KD_ADDR_BITS, "at most 1024 words in the 18-bit mode");
     (0..INITVAL_ROWS)
         .map(|r| {
-            // 80 hex digits, the highest slot first.
-            let mut bits = vec![false; INITVAL_WORDS * INITVAL_SLOT_BITS];
-            for k in 0..INITVAL_WORDS {
-                let word = words.get(r * INITVAL_WORDS + k).map_or(0, |&w| (w >> lo) & ((1 << DP16KD_WIDTH) - 1));
-                for b in 0..DP16KD_WIDTH {
-                    bits[k * INITVAL_SLOT_BITS + b] = (word >> b) & 1 == 1;
-                }
-            }
-            let digits: String = bits
-                .chunks(4)
+            // A slot of five hex digits a word, the highest slot first.
+            let digits: String = (0..INITVAL_WORDS)
                 .rev()
-                .map(|n| char::from_digit(n.iter().enumerate().fold(0, |acc, (i, &b)| acc | (u32::from(b) << i)), 16).expect("a nibble").to_ascii_uppercase())
+                .map(|k| {
+                    let word = words.get(r * INITVAL_WORDS + k).map_or(0, |&w| (w >> lo) & ((1 << DP16KD_WIDTH) - 1));
+                    format!("{word:0width$X}", width = INITVAL_SLOT_DIGITS)
+                })
                 .collect();
             format!(".INITVAL_{r:02X}(320'h{digits})")
         })

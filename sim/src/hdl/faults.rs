@@ -104,8 +104,8 @@ pub struct CampaignSpec {
 }
 
 impl CampaignSpec {
-    /// The classes the campaign draws from: [`CampaignSpec::classes`], or
-    /// every class when it is empty.
+    /// The classes the campaign draws from: the `classes` field, or every
+    /// class when it is empty.
     pub fn classes(&self) -> Vec<Fault> {
         if self.classes.is_empty() { Fault::ALL.to_vec() } else { self.classes.clone() }
     }
